@@ -1,0 +1,132 @@
+# modelc: every entry point. `make help` lists them.
+#
+#   make deps                    install the Debian packages that are missing (apt-get, sudo when not root)
+#   make demo                    deps + generator + bake the default model + its viewer + a PNG and stats
+#   make test                    the whole test suite; last line "N passed, N failed"
+#   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
+#   make models                  extract the catalogue's sample models under build/models/
+#   make bench                   benchmarks, written to tests/bench/RESULTS.md
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := help
+include models/catalogue.mk
+
+BUILD := build
+CC ?= cc
+CXX ?= g++
+CFLAGS ?= -O2 -g
+CXXFLAGS ?= -O2 -g
+RT_CFLAGS := -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
+HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -Iruntime/include
+GEN_CXXFLAGS := -std=c++17 -Wall -Wextra -Igen -DCGAL_DISABLE_GMP=1 -DCGAL_NO_GMP=1
+GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
+
+# Debian packages: the build, the tests and the benchmarks
+DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
+  libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
+  libosmesa6-dev draco python3
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: help deps gen models views demo view test bench clean
+help:
+	@sed -n 's/^#   //p' Makefile
+
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:" $$missing; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing >/dev/null; \
+	else echo "deps: all installed"; fi
+
+# ---- generator -------------------------------------------------------------------------------
+GEN_SRC := $(wildcard gen/*.cpp)
+GEN_OBJ := $(patsubst gen/%.cpp,$(BUILD)/gen/%.o,$(GEN_SRC)) $(BUILD)/gen/templates.o
+TEMPLATES := $(wildcard templates/*.mustache)
+MODELC := $(BUILD)/bin/modelc
+
+gen: $(MODELC)
+$(MODELC): $(GEN_OBJ)
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) -o $@ $^ $(GEN_LIBS)
+$(BUILD)/gen/%.o: gen/%.cpp $(wildcard gen/*.hpp)
+	@mkdir -p $(@D)
+	$(CXX) $(CXXFLAGS) $(GEN_CXXFLAGS) -c -o $@ $<
+# the templates are compiled into the generator, so build/bin/modelc runs from anywhere
+$(BUILD)/gen/templates.cpp: $(TEMPLATES) Makefile
+	@mkdir -p $(@D)
+	@{ echo '#include "emit.hpp"'; echo '#include <map>'; echo '#include <stdexcept>'; \
+	   echo 'const std::string &mc::template_text(const std::string &name) {'; \
+	   echo '    static const std::map<std::string, std::string> t = {'; \
+	   for f in $(TEMPLATES); do n=$$(basename $$f .mustache); \
+	     printf '        {"%s", R"MCTPL(' "$$n"; cat $$f; echo ')MCTPL"},'; done; \
+	   echo '    };'; echo '    auto it = t.find(name);'; \
+	   echo '    if (it == t.end()) throw std::logic_error("no template " + name);'; \
+	   echo '    return it->second;'; echo '}'; } > $@
+$(BUILD)/gen/templates.o: $(BUILD)/gen/templates.cpp
+	$(CXX) $(CXXFLAGS) $(GEN_CXXFLAGS) -c -o $@ $<
+
+# ---- runtime ---------------------------------------------------------------------------------
+RT_SRC := $(wildcard runtime/src/*.c)
+RT_OBJ := $(patsubst runtime/src/%.c,$(BUILD)/runtime/%.o,$(RT_SRC))
+RT_HDR := $(wildcard runtime/include/modelc/*.h runtime/src/*.h)
+HOST_SRC := $(wildcard runtime/front/host/*.c)
+HOST_OBJ := $(patsubst runtime/front/host/%.c,$(BUILD)/host/%.o,$(HOST_SRC))
+$(BUILD)/runtime/%.o: runtime/src/%.c $(RT_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
+$(BUILD)/host/%.o: runtime/front/host/%.c $(RT_HDR) $(wildcard runtime/front/host/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(HOST_CFLAGS) -c -o $@ $<
+
+# ---- models, bakes and viewers -----------------------------------------------------------------
+MODEL_FILES := $(foreach m,$(CATALOGUE),$(BUILD)/models/$(notdir $($(m).src)))
+models: $(MODEL_FILES)
+$(BUILD)/models/%:
+	@test -f $(CGAL_DATA) || { echo "modelc: $(CGAL_DATA) missing: run make deps (package libcgal-demo)" >&2; exit 1; }
+	@mkdir -p $(@D)
+	@tar -xzf $(CGAL_DATA) -O $(filter %/$*,$(foreach m,$(CATALOGUE),$($(m).src))) > $@.tmp && mv $@.tmp $@
+
+# viewer: runtime + generated model + host front end; -ffunction-sections lets the linker drop
+# runtime code the model does not use; --wrap makes any heap call an undefined reference
+VIEW_LDFLAGS := -Wl,--gc-sections -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free -lm
+link_view = $(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $(BUILD)/$(1)/$(1)-view \
+  $(BUILD)/$(1)/*.c $(RT_OBJ) $(HOST_OBJ) $(VIEW_LDFLAGS)
+
+# build/NAME/budget.json stands for the whole bake of catalogue model NAME
+define catalogue_rules
+$(BUILD)/$(1)/budget.json: $(BUILD)/models/$(notdir $($(1).src)) $(MODELC)
+	$(MODELC) $$< -o $(BUILD) --name $(1) $($(1).opts) $(BAKE_OPTS)
+$(BUILD)/$(1)/$(1)-view: $(BUILD)/$(1)/budget.json $(RT_OBJ) $(HOST_OBJ)
+	$$(call link_view,$(1))
+endef
+$(foreach m,$(CATALOGUE),$(eval $(call catalogue_rules,$(m))))
+views: $(foreach m,$(CATALOGUE),$(BUILD)/$(m)/$(m)-view)
+
+# make view MODEL=path/to/file [NAME=..] [DEPTH=..]
+ifdef MODEL
+NAME ?= $(shell n=$$(basename "$(MODEL)"); n=$${n%.*}; n=$$(echo "$$n" | tr 'A-Z' 'a-z' | tr -c 'a-z0-9_\n' '_'); case $$n in [0-9]*) n=m_$$n;; esac; echo $$n)
+DEPTH ?= 8
+endif
+view: $(MODELC) $(RT_OBJ) $(HOST_OBJ)
+	@test -n "$(MODEL)" || { echo "usage: make view MODEL=path/to/file [NAME=name] [DEPTH=d]" >&2; exit 2; }
+	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --depth $(DEPTH) $(BAKE_OPTS)
+	$(call link_view,$(NAME))
+	@echo "built $(BUILD)/$(NAME)/$(NAME)-view"
+
+# ---- demo ------------------------------------------------------------------------------------
+DEMO_VIEW := $(BUILD)/$(DEFAULT_MODEL)/$(DEFAULT_MODEL)-view
+demo: deps
+	$(MAKE) --no-print-directory $(DEMO_VIEW)
+	$(DEMO_VIEW) --png $(BUILD)/$(DEFAULT_MODEL).png --yaw 20 --pitch 10
+	@python3 -c 'import json,sys; b=json.load(open("$(BUILD)/$(DEFAULT_MODEL)/budget.json")); print("points %d, data %d bytes, %.2f bits/point geometry, %.2f total" % (b["points"], b["flash"]["total"], b["bits_per_point"]["geometry"], b["bits_per_point"]["total"]))'
+	@echo "wrote $(BUILD)/$(DEFAULT_MODEL).png; run $(DEMO_VIEW) in a terminal to turn it"
+
+# ---- tests and benchmarks --------------------------------------------------------------------
+test:
+	@tests/run.sh
+
+bench: $(MODELC) models
+	@tests/bench/run.sh
+
+clean:
+	rm -rf $(BUILD)

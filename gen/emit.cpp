@@ -1,0 +1,217 @@
+// Emission: see emit.hpp.
+#include "emit.hpp"
+
+#include <mstch/mstch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace mc {
+namespace {
+
+struct Array {
+    std::string symbol, what;
+    const uint8_t *data;
+    size_t size;
+};
+
+std::string upper(std::string s) {
+    for (char &c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// Initialiser lines, 24 decimal bytes a line.
+mstch::array byte_lines(const uint8_t *p, size_t n) {
+    mstch::array lines;
+    std::string line;
+    for (size_t i = 0; i < n; i++) {
+        line += std::to_string(p[i]) + ",";
+        if (i % 24 == 23 || i + 1 == n) lines.push_back(line), line.clear();
+    }
+    return lines;
+}
+
+void write_file(const fs::path &path, const std::string &text) {
+    std::ofstream f(path, std::ios::binary);
+    f << text;
+    f.close();
+    if (!f) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
+}
+
+mstch::map common(const EmitOptions &opt) {
+    return mstch::map{{"name", opt.name}, {"NAME", upper(opt.name)}, {"source", opt.source}};
+}
+
+}  // namespace
+
+std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8_t> *groups) {
+    std::vector<size_t> sizes;
+    if (!groups) {
+        for (size_t at = 0; at < n; at += limit) sizes.push_back(std::min(limit, n - at));
+        return sizes;
+    }
+    size_t cur = 0;
+    for (uint8_t g : *groups) {
+        if (cur + g > limit) sizes.push_back(cur), cur = 0;
+        cur += g;
+    }
+    if (cur) sizes.push_back(cur);
+    return sizes;
+}
+
+std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
+    const int D = t.depth;
+    const std::string &name = opt.name;
+    std::vector<Array> arrays;
+    mstch::array lists, levels;
+    nlohmann::json budget_arrays = nlohmann::json::object();
+    size_t mask_bytes = 0, color_bytes = 0;
+
+    // One chunk list per level and kind; each chunk its own array.
+    auto add_stream = [&](const std::vector<uint8_t> &bytes, const std::vector<uint8_t> *groups,
+                          const std::string &kind, int level, const std::string &what) -> std::string {
+        std::string list = "mc_" + name + "_" + kind + std::to_string(level);
+        mstch::array chunks;
+        size_t at = 0, i = 0;
+        for (size_t size : split_chunks(bytes.size(), opt.chunk_bytes, groups)) {
+            std::string sym = list + "_" + std::to_string(i++);
+            arrays.push_back({sym, what + " of level " + std::to_string(level) + ", bytes " + std::to_string(at) +
+                                       ".." + std::to_string(at + size - 1), bytes.data() + at, size});
+            chunks.push_back(mstch::map{{"symbol", sym}, {"size", std::to_string(size)}});
+            budget_arrays[sym] = size;
+            at += size;
+        }
+        lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
+        return list;
+    };
+    for (int l = 0; l <= D; l++) {
+        std::string masks = "0", colors = "0";
+        if (l < D) masks = add_stream(t.masks[l], nullptr, "m", l, "child masks"), mask_bytes += t.masks[l].size();
+        if (l > 0)
+            colors = add_stream(t.colors[l], &t.group_sizes[l], "c", l, "palette indices"),
+            color_bytes += t.colors[l].size();
+        levels.push_back(mstch::map{{"nodes", std::to_string(t.nodes(l))}, {"masks", masks}, {"colors", colors}});
+    }
+    std::vector<uint8_t> palette;
+    for (const auto &c : t.palette) palette.insert(palette.end(), c.begin(), c.end());
+    budget_arrays["mc_" + name + "_palette"] = palette.size();
+    const size_t data_bytes = mask_bytes + color_bytes + palette.size();
+    const size_t points = t.nodes(D);
+    const size_t workspace = static_cast<size_t>(opt.screen_w) * opt.screen_h * 3;
+
+    // Data files: arrays in order, a new file once the current one holds file_bytes.
+    std::vector<std::vector<const Array *>> files(1);
+    size_t in_file = 0;
+    for (const Array &a : arrays) {
+        if (in_file > 0 && in_file + a.size > opt.file_bytes) files.emplace_back(), in_file = 0;
+        files.back().push_back(&a);
+        in_file += a.size;
+    }
+
+    // Render everything in memory first: nothing touches the disk until all of it succeeded.
+    std::vector<std::pair<std::string, std::string>> out;
+    nlohmann::json chunk_files = nlohmann::json::array();
+    for (size_t f = 0; f < files.size(); f++) {
+        mstch::map ctx = common(opt);
+        mstch::array arr;
+        size_t bytes = 0;
+        std::string fname = name + "_data_" + std::to_string(f) + ".c";
+        for (const Array *a : files[f]) {
+            arr.push_back(mstch::map{{"symbol", a->symbol}, {"what", a->what}, {"size", std::to_string(a->size)},
+                                     {"lines", byte_lines(a->data, a->size)}});
+            bytes += a->size;
+            chunk_files.push_back({{"symbol", a->symbol}, {"bytes", a->size}, {"file", fname}});
+        }
+        ctx.emplace("arrays", arr);
+        ctx.emplace("index", std::to_string(f + 1));
+        ctx.emplace("files", std::to_string(files.size()));
+        ctx.emplace("bytes", std::to_string(bytes));
+        ctx.emplace("count", std::to_string(files[f].size()));
+        out.emplace_back(fname, mstch::render(template_text("data.c"), ctx));
+    }
+    mstch::map scene = common(opt);
+    mstch::array decls;
+    for (const Array &a : arrays) decls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
+    scene.emplace("arrays", decls);
+    scene.emplace("lists", lists);
+    scene.emplace("levels", levels);
+    scene.emplace("level_count", std::to_string(D + 1));
+    scene.emplace("depth", std::to_string(D));
+    scene.emplace("palette_size", std::to_string(t.palette.size()));
+    scene.emplace("palette_bytes", std::to_string(palette.size()));
+    scene.emplace("palette_lines", byte_lines(palette.data(), palette.size()));
+    out.emplace_back(name + "_scene.c", mstch::render(template_text("scene.c"), scene));
+
+    mstch::map header = common(opt);
+    header.emplace("depth", std::to_string(D));
+    header.emplace("points", std::to_string(points));
+    header.emplace("palette_size", std::to_string(t.palette.size()));
+    header.emplace("data_bytes", std::to_string(data_bytes));
+    header.emplace("screen_w", std::to_string(opt.screen_w));
+    header.emplace("screen_h", std::to_string(opt.screen_h));
+    header.emplace("workspace_bytes", std::to_string(workspace));
+    out.emplace_back(name + ".h", mstch::render(template_text("model.h"), header));
+    out.emplace_back(name + "_app.c", mstch::render(template_text("app.c"), header));
+
+    nlohmann::json per_level = nlohmann::json::array();
+    for (int l = 0; l <= D; l++) per_level.push_back(t.nodes(l));
+    nlohmann::json budget = {
+        {"model", name},
+        {"source", opt.source},
+        {"kind", "point-octree"},
+        {"depth", D},
+        {"points", points},
+        {"points_per_level", per_level},
+        {"samples", vox.samples},
+        {"palette_entries", t.palette.size()},
+        {"chunk_bytes", opt.chunk_bytes},
+        {"flash",
+         {{"arrays", budget_arrays},
+          {"masks", mask_bytes},
+          {"colors", color_bytes},
+          {"palette", palette.size()},
+          {"total", data_bytes}}},
+        {"ram",
+         {{"color_buffer", static_cast<size_t>(opt.screen_w) * opt.screen_h},
+          {"depth_buffer", static_cast<size_t>(opt.screen_w) * opt.screen_h * 2},
+          {"total", workspace}}},
+        {"screen", {opt.screen_w, opt.screen_h}},
+        {"bits_per_point",
+         {{"geometry", 8.0 * mask_bytes / points},
+          {"color", 8.0 * color_bytes / points},
+          {"total", 8.0 * data_bytes / points}}},
+        {"chunks", chunk_files},
+        {"modules", {"fixed", "trig", "view", "render", "finish"}},
+    };
+    std::string budget_text = budget.dump(2) + "\n";
+    out.emplace_back("budget.json", budget_text);
+
+    // Write to a temporary sibling directory, then swap it in.
+    fs::path parent(opt.out_dir), final_dir = parent / name;
+    std::string pid = std::to_string(getpid());
+    fs::path tmp = parent / ("." + name + ".tmp-" + pid), old = parent / ("." + name + ".old-" + pid);
+    try {
+        fs::create_directories(parent);
+        fs::remove_all(tmp);
+        fs::create_directory(tmp);
+        for (const auto &[fname, text] : out) write_file(tmp / fname, text);
+        if (fs::exists(final_dir)) fs::rename(final_dir, old);
+        fs::rename(tmp, final_dir);
+        fs::remove_all(old);
+    } catch (...) {
+        std::error_code ec;
+        fs::remove_all(tmp, ec);
+        if (!fs::exists(final_dir, ec) && fs::exists(old, ec)) fs::rename(old, final_dir, ec);
+        throw;
+    }
+    return budget_text;
+}
+
+}  // namespace mc

@@ -1,0 +1,29 @@
+// Writing a baked model: chunked C arrays, descriptor, app binding, header and budget.json, through
+// the templates in templates/, into a directory that appears whole or not at all.
+#pragma once
+#include <string>
+#include "octree.hpp"
+
+namespace mc {
+
+struct EmitOptions {
+    std::string name;          // C identifier
+    std::string source;        // input file name, recorded in comments and budget.json
+    std::string out_dir;       // parent directory: writes out_dir/name/
+    size_t chunk_bytes = 65536;
+    size_t file_bytes = 262144;
+    int screen_w = 640, screen_h = 480;
+};
+
+// The templates, compiled in from templates/*.mustache (build/gen/templates.cpp).
+const std::string &template_text(const std::string &name);
+
+// Splits n bytes into chunks of at most limit bytes. With groups (sizes of consecutive runs that
+// must stay together, each <= limit), chunks end only between groups. Returns chunk sizes.
+std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8_t> *groups);
+
+// Writes everything to out_dir/name/ via a temporary directory renamed on success.
+// Returns the budget as JSON text (also written as budget.json).
+std::string emit_model(const Octree &tree, const Voxels &vox, const EmitOptions &opt);
+
+}  // namespace mc

@@ -1,0 +1,151 @@
+// Octree levels from sorted Morton codes, and the palette.
+#include "octree.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace mc {
+namespace {
+
+std::array<uint8_t, 3> to_byte(const std::array<double, 3> &c) {
+    std::array<uint8_t, 3> b;
+    for (int a = 0; a < 3; a++) b[a] = static_cast<uint8_t>(std::lround(std::clamp(c[a], 0.0, 255.0)));
+    return b;
+}
+
+struct Box {
+    std::vector<size_t> items;  // indices into the distinct colours
+    double weight = 0;
+};
+
+}  // namespace
+
+std::vector<std::array<uint8_t, 3>> make_palette(const std::vector<std::array<uint8_t, 3>> &colours,
+                                                 const std::vector<double> &weights, int max_entries,
+                                                 std::vector<uint8_t> &index) {
+    std::map<std::array<uint8_t, 3>, double> distinct;  // ordered: deterministic
+    for (size_t i = 0; i < colours.size(); i++) distinct[colours[i]] += weights[i];
+    std::vector<std::array<uint8_t, 3>> dc;
+    std::vector<double> dw;
+    for (const auto &kv : distinct) dc.push_back(kv.first), dw.push_back(kv.second);
+
+    std::vector<std::array<uint8_t, 3>> palette;
+    if (static_cast<int>(dc.size()) <= max_entries) {
+        palette = dc;
+    } else {
+        // Split the box with the largest weighted range along its longest axis at the weighted median.
+        std::vector<Box> boxes(1);
+        for (size_t i = 0; i < dc.size(); i++) boxes[0].items.push_back(i), boxes[0].weight += dw[i];
+        while (static_cast<int>(boxes.size()) < max_entries) {
+            int best = -1, best_axis = 0;
+            double best_score = 0;
+            for (size_t b = 0; b < boxes.size(); b++) {
+                if (boxes[b].items.size() < 2) continue;
+                for (int a = 0; a < 3; a++) {
+                    int lo = 255, hi = 0;
+                    for (size_t i : boxes[b].items) lo = std::min<int>(lo, dc[i][a]), hi = std::max<int>(hi, dc[i][a]);
+                    double score = (hi - lo) * std::sqrt(boxes[b].weight);
+                    if (score > best_score) best_score = score, best = static_cast<int>(b), best_axis = a;
+                }
+            }
+            if (best < 0) break;
+            Box &box = boxes[best];
+            std::stable_sort(box.items.begin(), box.items.end(),
+                             [&](size_t x, size_t y) { return dc[x][best_axis] < dc[y][best_axis]; });
+            double half = box.weight / 2, acc = 0;
+            size_t cut = 1;
+            for (; cut < box.items.size() - 1; cut++) {
+                acc += dw[box.items[cut - 1]];
+                if (acc >= half) break;
+            }
+            Box upper;
+            upper.items.assign(box.items.begin() + static_cast<long>(cut), box.items.end());
+            box.items.resize(cut);
+            box.weight = 0;
+            for (size_t i : box.items) box.weight += dw[i];
+            for (size_t i : upper.items) upper.weight += dw[i];
+            boxes.push_back(std::move(upper));
+        }
+        for (const Box &b : boxes) {
+            std::array<double, 3> mean{0, 0, 0};
+            for (size_t i : b.items)
+                for (int a = 0; a < 3; a++) mean[a] += dc[i][a] * dw[i] / b.weight;
+            palette.push_back(to_byte(mean));
+        }
+        std::sort(palette.begin(), palette.end());
+        palette.erase(std::unique(palette.begin(), palette.end()), palette.end());
+    }
+    // Nearest entry for each distinct colour, then for each input.
+    std::map<std::array<uint8_t, 3>, uint8_t> lookup;
+    for (const auto &c : dc) {
+        int best = 0;
+        long best_d = -1;
+        for (size_t p = 0; p < palette.size(); p++) {
+            long d = 0;
+            for (int a = 0; a < 3; a++) d += (long)(c[a] - palette[p][a]) * (c[a] - palette[p][a]);
+            if (best_d < 0 || d < best_d) best_d = d, best = static_cast<int>(p);
+        }
+        lookup[c] = static_cast<uint8_t>(best);
+    }
+    index.resize(colours.size());
+    for (size_t i = 0; i < colours.size(); i++) index[i] = lookup[colours[i]];
+    return palette;
+}
+
+Octree build_octree(const Voxels &v, int max_palette) {
+    const int D = v.depth;
+    Octree t;
+    t.depth = D;
+    t.masks.assign(D, {});
+    t.colors.assign(D + 1, {});
+    t.group_sizes.assign(D + 1, {});
+
+    // Level by level from the leaves up: a node's key is its leaves' code >> 3 per level climbed.
+    std::vector<uint64_t> keys = v.codes;
+    std::vector<std::array<double, 3>> sum(v.rgb);    // colour sums of the leaves under each node
+    std::vector<double> count(v.codes.size(), 1.0);
+    std::vector<std::vector<std::array<double, 3>>> mean(D + 1);
+    std::vector<std::vector<double>> weight(D + 1);
+    for (int l = D; l >= 1; l--) {
+        mean[l].resize(keys.size());
+        for (size_t i = 0; i < keys.size(); i++)
+            for (int a = 0; a < 3; a++) mean[l][i][a] = sum[i][a] / count[i];
+        weight[l] = count;
+        std::vector<uint64_t> pkeys;
+        std::vector<std::array<double, 3>> psum;
+        std::vector<double> pcount;
+        std::vector<uint8_t> pmask, groups;
+        for (size_t i = 0; i < keys.size(); i++) {
+            uint64_t parent = keys[i] >> 3;
+            if (pkeys.empty() || pkeys.back() != parent) {
+                pkeys.push_back(parent), psum.push_back({0, 0, 0}), pcount.push_back(0), pmask.push_back(0);
+                groups.push_back(0);
+            }
+            pmask.back() |= static_cast<uint8_t>(1u << (keys[i] & 7u));
+            groups.back()++;
+            for (int a = 0; a < 3; a++) psum.back()[a] += sum[i][a];
+            pcount.back() += count[i];
+        }
+        t.masks[l - 1] = std::move(pmask);
+        t.group_sizes[l] = std::move(groups);
+        keys = std::move(pkeys), sum = std::move(psum), count = std::move(pcount);
+    }
+
+    // One palette over every level's colours, each weighted by the leaves it stands for: a level
+    // weighs as much as the leaves, so the fine image keeps its colours and coarse levels still count.
+    std::vector<std::array<uint8_t, 3>> all;
+    std::vector<double> w;
+    for (int l = 1; l <= D; l++)
+        for (size_t i = 0; i < mean[l].size(); i++) all.push_back(to_byte(mean[l][i])), w.push_back(weight[l][i]);
+    std::vector<uint8_t> index;
+    t.palette = make_palette(all, w, max_palette, index);
+    size_t k = 0;
+    for (int l = 1; l <= D; l++) {
+        t.colors[l].assign(index.begin() + static_cast<long>(k), index.begin() + static_cast<long>(k + mean[l].size()));
+        k += mean[l].size();
+    }
+    return t;
+}
+
+}  // namespace mc

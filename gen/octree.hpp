@@ -1,0 +1,33 @@
+// The octree the runtime decodes: child masks and palette indices, level by level.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+#include "voxel.hpp"
+
+namespace mc {
+
+struct Octree {
+    int depth = 0;
+    // masks[l]: one child-mask byte per node at level l (l = 0..depth-1), depth-first order.
+    std::vector<std::vector<uint8_t>> masks;
+    // colors[l]: palette index per node at level l (l = 0..depth; level 0 is left empty).
+    std::vector<std::vector<uint8_t>> colors;
+    // group_sizes[l]: for l >= 1, the number of children of each node at level l-1, in order: the
+    // sibling groups that chunk boundaries must not split.
+    std::vector<std::vector<uint8_t>> group_sizes;
+    std::vector<std::array<uint8_t, 3>> palette;
+    size_t nodes(int level) const { return level == 0 ? 1 : colors[level].size(); }
+};
+
+// Builds the octree from voxels: coarse nodes get the mean colour of the leaves under them, and all
+// colours share one palette of at most max_palette entries (exact when few enough colours occur).
+Octree build_octree(const Voxels &v, int max_palette);
+
+// Median-cut quantization: at most max_entries colours; exact (deduplicated, sorted) when the input
+// has no more distinct colours than that. index[i] is the entry for colours[i]. Deterministic.
+std::vector<std::array<uint8_t, 3>> make_palette(const std::vector<std::array<uint8_t, 3>> &colours,
+                                                 const std::vector<double> &weights, int max_entries,
+                                                 std::vector<uint8_t> &index);
+
+}  // namespace mc

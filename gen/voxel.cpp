@@ -1,0 +1,216 @@
+// Sampling (CGAL sample_triangle_mesh), voxelization and per-cell colour.
+#include "voxel.hpp"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/distance.h>
+#include <CGAL/Polygon_mesh_processing/locate.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/pca_estimate_normals.h>
+#include <boost/function_output_iterator.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace mc {
+namespace {
+
+using K = CGAL::Simple_cartesian<double>;
+using Point = K::Point_3;
+using Vector = K::Vector_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+// The fixed frontal light of the source paper's scans: from the viewer (+z), two-sided so that
+// meshes with inconsistent orientation still shade, with some ambient so grazing surfaces stay visible.
+double frontal_light(const Vector &n) {
+    double len = std::sqrt(n.squared_length());
+    if (!(len > 0)) return 0.6;
+    return 0.15 + 0.85 * std::fabs(n.z() / len);
+}
+
+struct Cell {
+    double sum[3] = {0, 0, 0};  // sample positions (meshes) or colours/normals (point sets)
+    double extra[3] = {0, 0, 0};
+    uint32_t count = 0;
+};
+
+class Grid {
+public:
+    Grid(const Model &m, int depth) : depth_(depth), n_(1u << depth) {
+        std::array<double, 3> lo = m.points[0], hi = m.points[0];
+        for (const auto &p : m.points)
+            for (int a = 0; a < 3; a++) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+        double ext = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+        side_ = ext * (1 + 1e-9);  // keeps the max corner inside the last cell
+        cell_ = side_ / n_;
+        for (int a = 0; a < 3; a++) origin_[a] = (lo[a] + hi[a]) / 2 - side_ / 2;
+    }
+    uint64_t code(double x, double y, double z) const {
+        return morton_encode(index(x, 0), index(y, 1), index(z, 2), depth_);
+    }
+    double cell() const { return cell_; }
+    const std::array<double, 3> &origin() const { return origin_; }
+
+private:
+    uint32_t index(double v, int a) const {
+        double t = std::floor((v - origin_[a]) / cell_);
+        return t < 0 ? 0 : t >= n_ ? n_ - 1 : static_cast<uint32_t>(t);
+    }
+    int depth_;
+    uint32_t n_;
+    double side_, cell_;
+    std::array<double, 3> origin_;
+};
+
+// Receives CGAL's samples one by one: the samples themselves are never stored, only the cells.
+// (A plain struct of pointers: CGAL copy-assigns the output iterator, which a lambda cannot be.)
+struct SampleSink {
+    const Grid *grid;
+    std::unordered_map<uint64_t, Cell> *cells;
+    uint64_t *samples;
+    Progress *progress;
+    double expected;
+    void operator()(const Point &p) const {
+        Cell &c = (*cells)[grid->code(p.x(), p.y(), p.z())];
+        c.sum[0] += p.x(), c.sum[1] += p.y(), c.sum[2] += p.z();
+        c.count++;
+        if ((++*samples & 0xFFFF) == 0) progress->update(std::min(static_cast<double>(*samples), 0.99 * expected), expected);
+    }
+};
+
+Mesh to_cgal(const Model &m) {
+    Mesh mesh;
+    std::vector<Mesh::Vertex_index> v;
+    v.reserve(m.points.size());
+    for (const auto &p : m.points) v.push_back(mesh.add_vertex(Point(p[0], p[1], p[2])));
+    for (const auto &t : m.tris) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);  // non-manifold faces are dropped
+    return mesh;
+}
+
+void voxelize_mesh(const Model &m, const std::string &file, const Grid &grid, const VoxelOptions &opt,
+                   Progress &progress, std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples) {
+    Mesh mesh = to_cgal(m);
+    if (mesh.number_of_faces() == 0)
+        throw InputError(file, InputError::Where::none, 0, "no triangle can be built from the faces (non-manifold?)");
+    progress.step("sampling");
+    // grid sampling puts about one sample per spacing^2 of area: the denominator of the progress
+    const double spacing = grid.cell() * opt.spacing;
+    const double total = PMP::area(mesh) / (spacing * spacing) + 1;
+    SampleSink sink{&grid, &cells, &samples, &progress, total};
+    PMP::sample_triangle_mesh(mesh, boost::make_function_output_iterator(sink),
+                              CGAL::parameters::use_grid_sampling(true)
+                                  .grid_spacing(spacing)
+                                  .do_sample_vertices(true)
+                                  .do_sample_edges(true));
+
+    // A cell's colour is the surface colour at the centroid of its samples, found with one AABB
+    // query per cell (a cell's samples lie within one cell of each other, so per-sample queries
+    // would cost ten times more for differences below a grey level).
+    progress.step("shading");
+    auto vnormal = mesh.add_property_map<Mesh::Vertex_index, Vector>("v:n", Vector(0, 0, 0)).first;
+    PMP::compute_vertex_normals(mesh, vnormal);
+    using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+    using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+    Tree tree;
+    PMP::build_AABB_tree(mesh, tree);
+    const bool colored = !m.colors.empty();
+    size_t done = 0;
+    for (auto &kv : cells) {
+        Cell &c = kv.second;
+        Point centroid(c.sum[0] / c.count, c.sum[1] / c.count, c.sum[2] / c.count);
+        auto loc = PMP::locate_with_AABB_tree(centroid, tree, mesh);
+        auto h = mesh.halfedge(loc.first);
+        Mesh::Vertex_index vs[3] = {mesh.source(h), mesh.target(h), mesh.target(mesh.next(h))};
+        double rgb[3] = {0, 0, 0};
+        Vector n(0, 0, 0);
+        for (int i = 0; i < 3; i++) {
+            double w = loc.second[i];
+            if (colored)
+                for (int a = 0; a < 3; a++) rgb[a] += w * m.colors[vs[i].idx()][a];
+            n = n + w * vnormal[vs[i]];
+        }
+        if (!colored) rgb[0] = rgb[1] = rgb[2] = 255.0 * frontal_light(n);
+        for (int a = 0; a < 3; a++) c.extra[a] = rgb[a];
+        if ((++done & 0xFFF) == 0) progress.update(static_cast<double>(done), static_cast<double>(cells.size()));
+    }
+}
+
+void voxelize_points(const Model &m, const Grid &grid, Progress &progress,
+                     std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples) {
+    // Without colours, shade by normals: the file's, or PCA estimates from 12 neighbours (CGAL).
+    std::vector<std::array<double, 3>> normals = m.normals;
+    if (m.colors.empty() && normals.empty()) {
+        progress.step("estimating normals");
+        std::vector<std::pair<Point, Vector>> pts;
+        pts.reserve(m.points.size());
+        for (const auto &p : m.points) pts.emplace_back(Point(p[0], p[1], p[2]), Vector(0, 0, 0));
+        CGAL::pca_estimate_normals<CGAL::Sequential_tag>(
+            pts, 12,
+            CGAL::parameters::point_map(CGAL::First_of_pair_property_map<std::pair<Point, Vector>>())
+                .normal_map(CGAL::Second_of_pair_property_map<std::pair<Point, Vector>>()));
+        for (const auto &pn : pts) normals.push_back({pn.second.x(), pn.second.y(), pn.second.z()});
+    }
+    progress.step("voxelizing");
+    for (size_t i = 0; i < m.points.size(); i++) {
+        const auto &p = m.points[i];
+        Cell &c = cells[grid.code(p[0], p[1], p[2])];
+        if (!m.colors.empty()) {
+            for (int a = 0; a < 3; a++) c.extra[a] += m.colors[i][a];
+        } else {
+            double g = 255.0 * frontal_light(Vector(normals[i][0], normals[i][1], normals[i][2]));
+            for (int a = 0; a < 3; a++) c.extra[a] += g;
+        }
+        c.count++;
+        samples++;
+        if ((i & 0xFFFF) == 0) progress.update(static_cast<double>(i), static_cast<double>(m.points.size()));
+    }
+    for (auto &kv : cells)
+        for (int a = 0; a < 3; a++) kv.second.extra[a] /= kv.second.count;
+}
+
+}  // namespace
+
+uint64_t morton_encode(uint32_t x, uint32_t y, uint32_t z, int depth) {
+    uint64_t code = 0;
+    for (int b = depth - 1; b >= 0; b--)
+        code = (code << 3) | (((z >> b) & 1u) << 2) | (((y >> b) & 1u) << 1) | ((x >> b) & 1u);
+    return code;
+}
+
+std::array<uint32_t, 3> morton_decode(uint64_t code, int depth) {
+    std::array<uint32_t, 3> c{0, 0, 0};
+    for (int b = depth - 1; b >= 0; b--)
+        for (int a = 0; a < 3; a++) c[a] |= static_cast<uint32_t>((code >> (3 * b + a)) & 1u) << b;
+    return c;
+}
+
+Voxels voxelize(const Model &model, const std::string &file, const VoxelOptions &opt, Progress &progress) {
+    Grid grid(model, opt.depth);
+    std::unordered_map<uint64_t, Cell> cells;
+    Voxels out;
+    out.depth = opt.depth;
+    out.origin = grid.origin();
+    out.cell = grid.cell();
+    if (model.is_mesh)
+        voxelize_mesh(model, file, grid, opt, progress, cells, out.samples);
+    else
+        voxelize_points(model, grid, progress, cells, out.samples);
+    if (cells.empty()) throw InputError(file, InputError::Where::none, 0, "no sample landed in the grid");
+    out.codes.reserve(cells.size());
+    for (const auto &kv : cells) out.codes.push_back(kv.first);
+    std::sort(out.codes.begin(), out.codes.end());  // hash order is not deterministic across libraries
+    out.rgb.reserve(out.codes.size());
+    for (uint64_t c : out.codes) {
+        const Cell &cell = cells.at(c);
+        out.rgb.push_back({cell.extra[0], cell.extra[1], cell.extra[2]});
+    }
+    return out;
+}
+
+}  // namespace mc

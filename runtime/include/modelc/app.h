@@ -1,0 +1,22 @@
+/* The binding between a baked model and a front end (viewer or firmware main).
+ *
+ * modelc writes <name>_app.c defining mc_app_model: the model's scene and static frame buffers of
+ * exactly the size asked for at bake time (--screen). A front end links against this one symbol and
+ * so works with any model. Libraries built with --emit lib leave it out.
+ */
+#ifndef MODELC_APP_H
+#define MODELC_APP_H
+
+#include <stdint.h>
+#include "scene.h"
+
+typedef struct mc_app {
+    const mc_scene *scene;
+    uint8_t *color;        /* max_width * max_height palette indices */
+    uint16_t *depth;       /* max_width * max_height depths */
+    uint16_t max_width, max_height;
+} mc_app;
+
+extern const mc_app mc_app_model;
+
+#endif

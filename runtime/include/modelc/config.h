@@ -1,0 +1,56 @@
+/* modelc runtime configuration.
+ *
+ * Every setting is a macro with a default; override it on the compiler command line
+ * (-DMC_FRAC_BITS=20) or in a file named by -DMC_CONFIG_FILE="my_config.h". A setting that cannot
+ * work fails the build with a message naming it, not with a wrong picture.
+ */
+#ifndef MODELC_CONFIG_H
+#define MODELC_CONFIG_H
+
+#ifdef MC_CONFIG_FILE
+#include MC_CONFIG_FILE
+#endif
+
+/* MC_FRAC_BITS: fraction bits of the fixed-point screen coordinates (mc_fix). The source paper uses
+ * 17 integer and 15 fraction bits in a 32-bit word. More fraction bits place points more exactly but
+ * shrink the representable screen range: coordinates must stay below 2^(30 - MC_FRAC_BITS) pixels
+ * (MC_COORD_LIMIT), and views are clamped to that (see view.h). */
+#ifndef MC_FRAC_BITS
+#define MC_FRAC_BITS 15
+#endif
+#if MC_FRAC_BITS < 8 || MC_FRAC_BITS > 24
+#error "MC_FRAC_BITS must be in 8..24: below 8 points land off by whole pixels, above 24 the screen range is under 64 pixels"
+#endif
+
+/* MC_MAX_DEPTH: deepest octree the runtime can decode. Sizes per-level tables on the stack
+ * (about 110 bytes per level). The generator refuses deeper models. */
+#ifndef MC_MAX_DEPTH
+#define MC_MAX_DEPTH 12
+#endif
+#if MC_MAX_DEPTH < 1 || MC_MAX_DEPTH > 12
+#error "MC_MAX_DEPTH must be in 1..12"
+#endif
+
+/* MC_ABORT_LEVEL: tree level at which the abort callback is polled. The source paper polls at level 4:
+ * about 512 polls a frame for a face scan, so a frame gives up within a millisecond of a key press
+ * while the poll costs nothing measurable. */
+#ifndef MC_ABORT_LEVEL
+#define MC_ABORT_LEVEL 4
+#endif
+
+/* MC_ANGLE_BITS: angles are integers, 2^MC_ANGLE_BITS units per full turn (default 4096, 0.088
+ * degrees a unit). The sine table holds a quarter turn: 2^(MC_ANGLE_BITS-2)+1 entries. */
+#ifndef MC_ANGLE_BITS
+#define MC_ANGLE_BITS 12
+#endif
+#if MC_ANGLE_BITS != 12
+#error "MC_ANGLE_BITS: only 12 is supported (the committed sine table has 1025 entries)"
+#endif
+
+/* MC_PLOT_HOOK(px, py, color_ptr): called for every point that lands on screen, before the depth
+ * test. Empty by default; tests define it to compare each point with a double-precision reference. */
+#ifndef MC_PLOT_HOOK
+#define MC_PLOT_HOOK(px, py, color_ptr) ((void)0)
+#endif
+
+#endif

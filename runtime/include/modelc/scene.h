@@ -1,0 +1,42 @@
+/* The baked model: what the generator emits and the renderer reads.
+ *
+ * An octree of depth D is stored level by level. Level l holds one entry per node at depth l, in
+ * depth-first order (which, restricted to one level, is also left-to-right order). Each internal node
+ * has a child-mask byte (bit k set = child k present; child k is offset by +-1/4 of the node's side
+ * along x (bit 0), y (bit 1) and z (bit 2)). Each node at levels 1..D has a palette index.
+ *
+ * Because a level's entries are in depth-first order, a depth-first walk that keeps one read cursor
+ * per level meets each level's entries exactly in stored order. So rendering at depth d <= D reads
+ * the masks of levels 0..d-1 and the colours of level d, and nothing else: one baked model gives the
+ * coarse image drawn while the view moves and the fine image drawn after.
+ *
+ * Every array is split into chunks (at most the generator's --chunk-bytes each) that may live in
+ * different translation units; a chunk list ends with a {0, 0} sentinel. Colour chunks end only
+ * between sibling groups, so the children of one node never straddle two chunks.
+ */
+#ifndef MODELC_SCENE_H
+#define MODELC_SCENE_H
+
+#include <stdint.h>
+#include "config.h"
+
+typedef struct mc_chunk {
+    const uint8_t *data;
+    uint32_t size;
+} mc_chunk;
+
+typedef struct mc_level {
+    uint32_t nodes;          /* nodes at this depth */
+    const mc_chunk *masks;   /* child masks, one byte per node; NULL at the deepest level */
+    const mc_chunk *colors;  /* palette index per node; NULL at level 0 */
+} mc_level;
+
+typedef struct mc_scene {
+    const char *name;
+    uint8_t depth;           /* D: levels 0..D, leaves at D */
+    uint16_t palette_size;   /* 1..256 */
+    const uint8_t *palette;  /* palette_size RGB triplets */
+    const mc_level *levels;  /* D + 1 entries */
+} mc_scene;
+
+#endif
