@@ -3,13 +3,10 @@
 
 #define F MC_FRAC_BITS
 
-/* Depth buffer value from a depth coordinate z (Q F, in cube sides, offset so the model spans
- * [1 - sqrt(3)/2, 1 + sqrt(3)/2]): 15 fraction bits of a cube side, at most 61,147 < MC_DEPTH_EMPTY. */
-#if F >= 15
-#define DEPTH_OF(z) ((uint16_t)((z) >> (F - 15)))
-#else
-#define DEPTH_OF(z) ((uint16_t)((uint32_t)(z) << (15 - F)))
-#endif
+/* Depth coordinates are in the same Q F pixels as x and y (so that perspective divides by a
+ * distance as exact as the position it scales), offset so the model's bounding sphere spans
+ * [0, 2 * radius]; the depth buffer keeps z >> zshift, with zshift chosen per frame to fit 16 bits. */
+#define DEPTH_OF(z) ((uint16_t)((uint32_t)(z) >> c->zshift))
 
 /* sqrt(3)/2 in Q30, rounded up, for bounding spheres that are never too small */
 #define HALF_SQRT3_Q30 929887697
@@ -29,9 +26,10 @@ typedef struct ctx {
     uint16_t *zb;
     int32_t w, h, wf, hf;                /* size in pixels and in Q F */
     unsigned d;                          /* drawn level */
+    unsigned zshift;                     /* depth buffer value = z >> zshift */
     int perspective;
     int32_t cx, cy;                      /* perspective: screen centre plus translation, Q F */
-    int64_t eye;                         /* perspective: eye distance, Q F cube sides */
+    int64_t eye, near;                   /* perspective: eye distance and near plane, Q F pixels */
     mc_abort_fn abort;
     void *user;
     uint32_t points, polls;
@@ -121,28 +119,30 @@ static void draw_leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, int
         c->points += popcount8[m];
         for (; m; m &= m - 1, col++) {
             int k = lowest_bit(m);
-            int32_t px = (x + vx[k]) >> F, py = (y + vy[k]) >> F;
+            int32_t fx = x + vx[k], fy = y + vy[k];
+            int32_t px = fx >> F, py = fy >> F;
             uint16_t depth = DEPTH_OF(z + vz[k]);
             int32_t i = py * w + px;
-            MC_PLOT_HOOK(px, py, col);
+            MC_PLOT_HOOK(fx, fy, col);
             if (depth < zb[i]) { zb[i] = depth; fb[i] = *col; }
         }
         return;
     }
     for (; m; m &= m - 1, col++) {
         int k = lowest_bit(m);
-        int32_t px = (x + vx[k]) >> F, py = (y + vy[k]) >> F;
+        int32_t fx = x + vx[k], fy = y + vy[k];
+        int32_t px = fx >> F, py = fy >> F;
         if ((uint32_t)px >= (uint32_t)w || (uint32_t)py >= (uint32_t)c->h) continue;
         uint16_t depth = DEPTH_OF(z + vz[k]);
         int32_t i = py * w + px;
         c->points++;
-        MC_PLOT_HOOK(px, py, col);
+        MC_PLOT_HOOK(fx, fy, col);
         if (depth < zb[i]) { zb[i] = depth; fb[i] = *col; }
     }
 }
 
 /* Perspective variant of draw_leaves: each point divides by its own distance (exact, not
- * linearised, so it places points as the double reference does). Points at or behind the near plane
+ * linearised, so it places points as the double reference does). Points nearer than the near plane
  * (1/64 cube side in front of the eye) are not drawn. */
 static void draw_leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z)
 {
@@ -151,21 +151,21 @@ static void draw_leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, in
     if (c->color.p == c->color.end) cursor_refill(&c->color);
     const uint8_t *col = c->color.p;
     c->color.p += popcount8[m];
-    const int64_t near = (int64_t)1 << (F - 6);
     for (; m; m &= m - 1, col++) {
         int k = lowest_bit(m);
         int32_t zk = z + vz[k];
-        int64_t dist = c->eye + zk - ((int64_t)1 << F);      /* z carries a +1 cube side offset */
-        if (dist < near) continue;
-        int64_t q = (c->eye << F) / dist;                    /* Q F magnification, < 2^(F+14) */
+        int64_t dist = c->eye + zk - c->radius[0];       /* z carries a +radius offset */
+        if (dist < c->near) continue;
+        int64_t q = (c->eye << 24) / dist;                /* magnification, Q24, at most 2^38 */
         /* exact and saturating: near the eye the magnification reaches 2^14 */
-        int64_t ox = mc_mul_shift64(x + vx[k], q, F), oy = mc_mul_shift64(y + vy[k], q, F);
+        int64_t ox = mc_mul_shift64(x + vx[k], q, 24), oy = mc_mul_shift64(y + vy[k], q, 24);
         if (ox < -c->cx || oy < -c->cy || ox >= c->wf - c->cx || oy >= c->hf - c->cy) continue;
-        int32_t px = (int32_t)((c->cx + ox) >> F), py = (int32_t)((c->cy + oy) >> F);
+        int32_t fx = (int32_t)(c->cx + ox), fy = (int32_t)(c->cy + oy);
+        int32_t px = fx >> F, py = fy >> F;
         int32_t i = py * c->w + px;
         uint16_t depth = DEPTH_OF(zk);
         c->points++;
-        MC_PLOT_HOOK(px, py, col);
+        MC_PLOT_HOOK(fx, fy, col);
         if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
     }
 }
@@ -223,11 +223,15 @@ static void setup_vectors(ctx *c, const mc_view *v)
             int64_t ez = sx * r[2][0] + sy * r[2][1] + sz * r[2][2];
             c->vx[l][k] = (int32_t)mc_mul_shift64(ex, scale, 30 + 16 + (int)l + 2 - F);
             c->vy[l][k] = (int32_t)-mc_mul_shift64(ey, scale, 30 + 16 + (int)l + 2 - F);
-            c->vz[l][k] = (int32_t)-mc_round_shift(ez, 30 + (int)l + 2 - F);
+            c->vz[l][k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F);
         }
     }
     for (unsigned l = 0; l <= c->d; l++)
         c->radius[l] = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 + (int)l - F) + 2;
+    c->zshift = 0;
+    while (((uint32_t)(2 * c->radius[0]) >> c->zshift) >= MC_DEPTH_EMPTY - 1) c->zshift++;
+    c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
+    c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
 }
 
 void mc_clear(const mc_target *t)
@@ -254,7 +258,6 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     c.hf = c.h << F;
     c.d = depth;
     c.perspective = v.projection == MC_PERSPECTIVE;
-    c.eye = mc_round_shift((int64_t)v.eye << F, 16);
     c.abort = abort;
     c.user = user;
     c.points = c.polls = 0;
@@ -264,16 +267,16 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     setup_vectors(&c, &v);
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis
-     * (perspective: projected per point); depth offset by one cube side to keep it positive */
+     * (perspective: projected per point); depth offset by the bounding radius to keep it positive */
     int32_t centre_x = (int32_t)(((int64_t)c.w << (F - 1)) + ((int64_t)v.tx << F));
     int32_t centre_y = (int32_t)(((int64_t)c.h << (F - 1)) + ((int64_t)v.ty << F));
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;
-        visit(&c, 0, 0, 0, (int32_t)1 << F, 1);
+        visit(&c, 0, 0, 0, c.radius[0], 1);
     } else {
         int where = classify(&c, centre_x, centre_y, c.radius[0]);
-        if (where >= 0) visit(&c, 0, centre_x, centre_y, (int32_t)1 << F, !where);
+        if (where >= 0) visit(&c, 0, centre_x, centre_y, c.radius[0], !where);
     }
     if (stats) {
         stats->points = c.points;

@@ -47,10 +47,12 @@
 #error "MC_ANGLE_BITS: only 12 is supported (the committed sine table has 1025 entries)"
 #endif
 
-/* MC_PLOT_HOOK(px, py, color_ptr): called for every point that lands on screen, before the depth
- * test. Empty by default; tests define it to compare each point with a double-precision reference. */
+/* MC_PLOT_HOOK(fx, fy, color_ptr): called for every point that lands on screen, before the depth
+ * test, with its screen position in Q MC_FRAC_BITS pixels (int32) and a pointer to its palette index
+ * (which identifies the leaf). Empty by default; tests define it to compare each point with a
+ * double-precision reference. */
 #ifndef MC_PLOT_HOOK
-#define MC_PLOT_HOOK(px, py, color_ptr) ((void)0)
+#define MC_PLOT_HOOK(fx, fy, color_ptr) ((void)0)
 #endif
 
 #endif

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Generator properties on real models: determinism, chunk limits and reassembly, budget.json,
+# --help, progress output, and that the output compiles in any split.
+set -u
+cd "$(dirname "$0")/../.."
+modelc=${1:-build/bin/modelc}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+ok() { echo "ok - gen: $1"; }
+nok() { echo "not ok - gen: $1"; fails=$((fails + 1)); }
+check() { local name=$1; shift; if "$@"; then ok "$name"; else nok "$name"; fi; }
+
+src=build/models/nefertiti.off
+pts=build/models/kitten.xyz
+
+# determinism: same input and options, byte-identical output (twice in a row, and from another
+# working directory through another path)
+"$modelc" "$src" -o "$tmp/a" -q && "$modelc" "$src" -o "$tmp/b" -q
+check "same input and options give byte-identical output" diff -r "$tmp/a/nefertiti" "$tmp/b/nefertiti"
+(cd "$tmp" && "$OLDPWD/$modelc" "$OLDPWD/$src" -o c -q)
+check "output does not depend on the working directory" diff -r "$tmp/a/nefertiti" "$tmp/c/nefertiti"
+"$modelc" "$pts" -o "$tmp/a" -q && "$modelc" "$pts" -o "$tmp/b" -q
+check "point sets bake deterministically too" diff -r "$tmp/a/kitten" "$tmp/b/kitten"
+
+# a build of the dump checker against one bake
+link() { gcc -std=c99 -O1 -Iruntime/include -o "$2" tests/gen/dump.c runtime/src/*.c "$1"/*.c; }
+
+# chunking: small chunks and small files must change nothing but the split
+for limit in 64 1000 65536; do
+    "$modelc" build/models/bunny00.off -o "$tmp/chunk$limit" --name bunny -q --chunk-bytes $limit --file-bytes $((limit * 4))
+    if link "$tmp/chunk$limit/bunny" "$tmp/dump$limit" && "$tmp/dump$limit" $limit >"$tmp/dump$limit.txt"; then
+        ok "--chunk-bytes $limit: every chunk within the limit, counts add up, colour chunks end between sibling groups"
+    else
+        nok "--chunk-bytes $limit: $(grep -v '^level [0-9]* nodes\|^frame' "$tmp/dump$limit.txt" | head -n 3 | tr '\n' ' ')"
+    fi
+    # the largest array in the .c files, counted from the initialisers themselves
+    biggest=$(awk '/\] = \{/ {n=0; on=1; next} on && /^\};/ {if (n>max) max=n; on=0} on {n+=gsub(/,/,",")} END {print max+0}' "$tmp/chunk$limit/bunny"/bunny_data_*.c)
+    check "--chunk-bytes $limit: largest emitted array has $biggest <= $limit bytes" test "$biggest" -le "$limit"
+done
+check "chunks reassemble to the same streams and the same frame (64 vs 65536)" diff "$tmp/dump64.txt" "$tmp/dump65536.txt"
+check "chunks reassemble to the same streams and the same frame (1000 vs 65536)" diff "$tmp/dump1000.txt" "$tmp/dump65536.txt"
+nfiles=$(ls "$tmp/chunk1000/bunny"/bunny_data_*.c | wc -l)
+check "--file-bytes spreads the data over several files ($nfiles)" test "$nfiles" -gt 10
+
+# budget.json agrees with the emitted arrays and the octree
+check "budget.json: flash totals, points and bits per point agree with the arrays" python3 - "$tmp/chunk1000/bunny" <<'PY'
+import json, re, sys, glob
+d = sys.argv[1]
+b = json.load(open(d + "/budget.json"))
+sizes = {}
+for f in glob.glob(d + "/bunny_data_*.c"):
+    for sym, n in re.findall(r"const uint8_t (\w+)\[(\d+)\]", open(f).read()):
+        sizes[sym] = int(n)
+pal = b["flash"]["palette"]
+assert sum(sizes.values()) + pal == b["flash"]["total"], "total"
+assert {k: v for k, v in b["flash"]["arrays"].items() if not k.endswith("_palette")} == sizes, "arrays"
+assert b["points"] == b["points_per_level"][-1], "points"
+assert b["flash"]["masks"] == sum(b["points_per_level"][:-1]), "masks"
+assert b["flash"]["colors"] == sum(b["points_per_level"][1:]), "colours"
+assert abs(b["bits_per_point"]["geometry"] - 8 * b["flash"]["masks"] / b["points"]) < 1e-9
+assert pal == 3 * b["palette_entries"] and 1 <= b["palette_entries"] <= 256
+assert b["ram"]["total"] == 3 * b["screen"][0] * b["screen"][1]
+PY
+
+# palette: --palette 16 quantizes to at most 16 entries and still renders
+"$modelc" build/models/b9_training.ply -o "$tmp/pal" -q --palette 16 --depth 6
+check "--palette 16 gives at most 16 entries" python3 -c "import json,sys; sys.exit(json.load(open('$tmp/pal/b9_training/budget.json'))['palette_entries'] > 16)"
+
+# --help names every option
+help=$("$modelc" --help)
+for opt in --out --name --depth --spacing --palette --chunk-bytes --file-bytes --screen --quiet --version; do
+    check "--help covers $opt" grep -q -- "$opt" <<<"$help"
+done
+
+# progress: nothing on stderr when it is not a terminal; on a terminal, a step over a second shows
+"$modelc" build/models/bunny00.off -o "$tmp/p" --depth 10 2>"$tmp/stderr.txt" >/dev/null
+check "quiet when stderr is not a terminal" test ! -s "$tmp/stderr.txt"
+script -qec "$modelc build/models/bunny00.off -o $tmp/p --depth 10" /dev/null >"$tmp/tty.txt" 2>&1
+check "progress on a terminal for steps over a second" grep -q 'modelc: [a-z ]* *[0-9]*%\|modelc: [a-z ]* done' "$tmp/tty.txt"
+
+# bad options: one line, exit 2, no output
+"$modelc" build/models/nefertiti.off -o "$tmp/bad" --depth 13 2>"$tmp/e.txt"
+st=$?
+check "--depth 13 is refused with one line and status 2" test "$st" = 2 -a "$(wc -l <"$tmp/e.txt")" = 1 -a ! -e "$tmp/bad"
+"$modelc" build/models/nefertiti.off -o "$tmp/bad" --name 'no good' 2>"$tmp/e.txt"
+st=$?
+check "a name that is not a C identifier is refused" test "$st" = 2 -a "$(wc -l <"$tmp/e.txt")" = 1 -a ! -e "$tmp/bad"
+exit $((fails > 0))

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Renders of every catalogue model against the double-precision reference (compare.c says what is
+# checked and why the tolerances are what they are). SANITIZE=1 builds with ASan + UBSan.
+set -u
+cd "$(dirname "$0")/../.."
+flags="-O2 -g"
+out=build/tests/render
+if [ "${SANITIZE:-0}" = 1 ]; then
+    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    out=build/san/render
+fi
+mkdir -p "$out"
+models=$(make -s -f models/catalogue.mk -f - <<<'print: ; @echo $(CATALOGUE)' print)
+status=0
+for m in $models; do
+    if [ ! -f "build/$m/budget.json" ]; then
+        echo "not ok - $m: not baked (run make views)"; status=1; continue
+    fi
+    # the runtime is compiled into the test with the plot hook pointing at the recorder
+    if ! gcc -std=c99 $flags -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref \
+        '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \
+        -o "$out/compare-$m" tests/render/compare.c runtime/ref/ref.c runtime/src/*.c "build/$m"/*.c -lm \
+        2>"$out/compare-$m.log"; then
+        echo "not ok - $m: test build failed: $(head -n 3 "$out/compare-$m.log" | tr '\n' ' ')"; status=1; continue
+    fi
+    "$out/compare-$m" || status=1
+done
+exit $status
