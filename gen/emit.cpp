@@ -93,9 +93,11 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     };
     for (int l = 0; l <= D; l++) {
         std::string masks = "0", colors = "0";
-        if (l < D) masks = add_stream(t.masks[l], nullptr, "m", l, "child masks"), mask_bytes += t.masks[l].size();
+        if (l < D)
+            masks = add_stream(t.masks[l], l > 0 ? &t.siblings[l] : nullptr, "m", l, "child masks"),
+            mask_bytes += t.masks[l].size();
         if (l > 0)
-            colors = add_stream(t.colors[l], &t.group_sizes[l], "c", l, "palette indices"),
+            colors = add_stream(t.colors[l], &t.cousins[l], "c", l, "palette indices"),
             color_bytes += t.colors[l].size();
         levels.push_back(mstch::map{{"nodes", std::to_string(t.nodes(l))}, {"masks", masks}, {"colors", colors}});
     }

@@ -99,7 +99,8 @@ Octree build_octree(const Voxels &v, int max_palette) {
     t.depth = D;
     t.masks.assign(D, {});
     t.colors.assign(D + 1, {});
-    t.group_sizes.assign(D + 1, {});
+    t.siblings.assign(D + 1, {});
+    t.cousins.assign(D + 1, {});
 
     // Level by level from the leaves up: a node's key is its leaves' code >> 3 per level climbed.
     std::vector<uint64_t> keys = v.codes;
@@ -128,8 +129,19 @@ Octree build_octree(const Voxels &v, int max_palette) {
             pcount.back() += count[i];
         }
         t.masks[l - 1] = std::move(pmask);
-        t.group_sizes[l] = std::move(groups);
+        t.siblings[l] = std::move(groups);
         keys = std::move(pkeys), sum = std::move(psum), count = std::move(pcount);
+    }
+
+    // Cousin groups: a node at level l-2 has as many grandchildren as its children have children.
+    for (int l = 1; l <= D; l++) {
+        if (l == 1) { t.cousins[1] = {static_cast<uint8_t>(t.siblings[1].size() ? t.siblings[1][0] : 0)}; continue; }
+        size_t child = 0;  // index into siblings[l], one entry per node at level l-1
+        for (uint8_t n_children : t.siblings[l - 1]) {
+            unsigned sum = 0;
+            for (unsigned i = 0; i < n_children; i++) sum += t.siblings[l][child++];
+            t.cousins[l].push_back(static_cast<uint8_t>(sum));
+        }
     }
 
     // One palette over every level's colours, each weighted by the leaves it stands for: a level

@@ -13,9 +13,11 @@ struct Octree {
     std::vector<std::vector<uint8_t>> masks;
     // colors[l]: palette index per node at level l (l = 0..depth; level 0 is left empty).
     std::vector<std::vector<uint8_t>> colors;
-    // group_sizes[l]: for l >= 1, the number of children of each node at level l-1, in order: the
-    // sibling groups that chunk boundaries must not split.
-    std::vector<std::vector<uint8_t>> group_sizes;
+    // Runs of consecutive entries the renderer reads from one chunk, so chunk boundaries must fall
+    // between them. siblings[l] (l >= 1): the number of children of each node at level l-1 (the
+    // masks a node at level l-1 reads at once). cousins[l] (l >= 1): the number of grandchildren of
+    // each node at level l-2, or the whole of level 1 (the colours a node two levels up reads).
+    std::vector<std::vector<uint8_t>> siblings, cousins;
     std::vector<std::array<uint8_t, 3>> palette;
     size_t nodes(int level) const { return level == 0 ? 1 : colors[level].size(); }
 };

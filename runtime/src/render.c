@@ -6,10 +6,15 @@
 /* Depth coordinates are in the same Q F pixels as x and y (so that perspective divides by a
  * distance as exact as the position it scales), offset so the model's bounding sphere spans
  * [0, 2 * radius]; the depth buffer keeps z >> zshift, with zshift chosen per frame to fit 16 bits. */
-#define DEPTH_OF(z) ((uint16_t)((uint32_t)(z) >> c->zshift))
 
 /* sqrt(3)/2 in Q30, rounded up, for bounding spheres that are never too small */
 #define HALF_SQRT3_Q30 929887697
+
+#if defined(__GNUC__) || defined(__clang__)
+#define ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE static inline
+#endif
 
 /* A read position in a chunked byte array. */
 typedef struct cursor {
@@ -21,12 +26,16 @@ typedef struct ctx {
     cursor mask[MC_MAX_DEPTH];
     cursor color;                        /* colours of the drawn level */
     int32_t vx[MC_MAX_DEPTH][8], vy[MC_MAX_DEPTH][8], vz[MC_MAX_DEPTH][8]; /* level-l node -> child k */
+    /* the same x and y vectors packed as x * 2^32 + y: on screen both coordinates are
+     * non-negative, so one 64-bit addition moves a point in x and y at once */
+    int64_t vxy[MC_MAX_DEPTH][8];
     int32_t radius[MC_MAX_DEPTH + 1];    /* bounding sphere of a level-l node, Q F pixels */
     uint8_t *fb;
     uint16_t *zb;
     int32_t w, h, wf, hf;                /* size in pixels and in Q F */
     unsigned d;                          /* drawn level */
-    unsigned zshift;                     /* depth buffer value = z >> zshift */
+    unsigned zshift;                     /* perspective: depth buffer value = z >> zshift */
+    unsigned poll_level;                 /* level at which the abort callback is polled */
     int perspective;
     int32_t cx, cy;                      /* perspective: screen centre plus translation, Q F */
     int64_t eye, near;                   /* perspective: eye distance and near plane, Q F pixels */
@@ -46,7 +55,7 @@ static const uint8_t popcount8[256] = {
 #undef B6
 };
 
-static int lowest_bit(unsigned m)
+ALWAYS_INLINE int lowest_bit(unsigned m)
 {
 #if defined(__GNUC__) || defined(__clang__)
     return __builtin_ctz(m);
@@ -74,10 +83,14 @@ static void cursor_refill(cursor *c)
     }
 }
 
-static unsigned cursor_byte(cursor *c)
+/* The next n bytes, which the generator guarantees lie in one chunk (a sibling group for masks,
+ * a group of cousins for colours: see scene.h). */
+ALWAYS_INLINE const uint8_t *cursor_take(cursor *c, uint32_t n)
 {
     if (c->p == c->end) cursor_refill(c);
-    return *c->p++;
+    const uint8_t *p = c->p;
+    c->p += n;
+    return p;
 }
 
 static void cursor_skip(cursor *c, uint32_t n)
@@ -98,59 +111,40 @@ static void skip_subtree(ctx *c, unsigned l)
     uint32_t n = 1;
     for (unsigned lev = l; lev < c->d; lev++) {
         uint32_t children = 0;
-        for (uint32_t i = 0; i < n; i++) children += popcount8[cursor_byte(&c->mask[lev])];
+        for (uint32_t i = 0; i < n; i++) {
+            if (c->mask[lev].p == c->mask[lev].end) cursor_refill(&c->mask[lev]);
+            children += popcount8[*c->mask[lev].p++];
+        }
         n = children;
     }
     cursor_skip(&c->color, n);
 }
 
-/* Draws the children of one node at level d-1: the hot loop, one pixel per set bit. */
-static void draw_leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, int clip)
+/* Leaves of one level d-1 node that may reach off screen: each point checked. */
+static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
     const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
-    if (c->color.p == c->color.end) cursor_refill(&c->color);  /* siblings never straddle chunks */
-    const uint8_t *col = c->color.p;
-    c->color.p += popcount8[m];
-    uint8_t *fb = c->fb;
-    uint16_t *zb = c->zb;
-    const int32_t w = c->w;
-    if (!clip) {
-        c->points += popcount8[m];
-        for (; m; m &= m - 1, col++) {
-            int k = lowest_bit(m);
-            int32_t fx = x + vx[k], fy = y + vy[k];
-            int32_t px = fx >> F, py = fy >> F;
-            uint16_t depth = DEPTH_OF(z + vz[k]);
-            int32_t i = py * w + px;
-            MC_PLOT_HOOK(fx, fy, col);
-            if (depth < zb[i]) { zb[i] = depth; fb[i] = *col; }
-        }
-        return;
-    }
     for (; m; m &= m - 1, col++) {
         int k = lowest_bit(m);
         int32_t fx = x + vx[k], fy = y + vy[k];
         int32_t px = fx >> F, py = fy >> F;
-        if ((uint32_t)px >= (uint32_t)w || (uint32_t)py >= (uint32_t)c->h) continue;
-        uint16_t depth = DEPTH_OF(z + vz[k]);
-        int32_t i = py * w + px;
+        if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
+        uint16_t depth = (uint16_t)(z + vz[k]);
+        int32_t i = py * c->w + px;
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
-        if (depth < zb[i]) { zb[i] = depth; fb[i] = *col; }
+        if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
     }
 }
 
-/* Perspective variant of draw_leaves: each point divides by its own distance (exact, not
- * linearised, so it places points as the double reference does). Points nearer than the near plane
+/* Leaves of one level d-1 node in perspective: each point divides by its own distance (exact, not
+ * linearised, so it lands where the double reference puts it). Points nearer than the near plane
  * (1/64 cube side in front of the eye) are not drawn. */
-static void draw_leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z)
+static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
     const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
-    if (c->color.p == c->color.end) cursor_refill(&c->color);
-    const uint8_t *col = c->color.p;
-    c->color.p += popcount8[m];
     for (; m; m &= m - 1, col++) {
         int k = lowest_bit(m);
         int32_t zk = z + vz[k];
@@ -161,13 +155,81 @@ static void draw_leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, in
         int64_t ox = mc_mul_shift64(x + vx[k], q, 24), oy = mc_mul_shift64(y + vy[k], q, 24);
         if (ox < -c->cx || oy < -c->cy || ox >= c->wf - c->cx || oy >= c->hf - c->cy) continue;
         int32_t fx = (int32_t)(c->cx + ox), fy = (int32_t)(c->cy + oy);
-        int32_t px = fx >> F, py = fy >> F;
-        int32_t i = py * c->w + px;
-        uint16_t depth = DEPTH_OF(zk);
+        int32_t i = (fy >> F) * c->w + (fx >> F);
+        uint16_t depth = (uint16_t)((uint32_t)zk >> c->zshift);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
         if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
     }
+}
+
+/* One node at level d-1 that may reach off screen, or any node in perspective. */
+static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
+{
+    if (c->perspective) leaves_perspective(c, m, x, y, z, col);
+    else leaves_clipped(c, m, x, y, z, col);
+}
+
+/* The hot path: the leaves of one node at level d-1 wholly on screen, orthographic. cm is its mask,
+ * pxy its packed centre (see ctx.vxy), pz its depth; lv, lz the leaf level's vectors; col its
+ * leaves' colours. The 8-child loop is unrolled, as in the paper: a present child costs one 64-bit
+ * and one 32-bit addition, the pixel index and the depth test; an absent one a test and a branch. */
+#define DRAW_LEAVES_INSIDE(cm, pxy, pz, lv, lz, col, fb, zb, w)                             \
+    do {                                                                                   \
+        LEAF_INSIDE(0, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(1, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(2, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(3, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(4, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(5, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(6, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+        LEAF_INSIDE(7, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+    } while (0)
+#define LEAF_INSIDE(j, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
+    if ((cm) & (1u << (j))) {                                                              \
+        int64_t p_ = (pxy) + (lv)[j];                                                      \
+        intptr_t i_ = (intptr_t)((uint32_t)p_ >> F) * (w) + (intptr_t)(p_ >> (32 + F));    \
+        uint16_t depth_ = (uint16_t)((pz) + (lz)[j]);                                      \
+        MC_PLOT_HOOK((int32_t)(p_ >> 32), (int32_t)(uint32_t)p_, col);                     \
+        if (depth_ < (zb)[i_]) { (zb)[i_] = depth_; (fb)[i_] = *(col); }                   \
+        (col)++;                                                                           \
+    }
+
+/* Nodes at level d-2 wholly on screen, orthographic: the children of one node at level d-3 whose
+ * mask is m, or just one of them (one = 1, m = its child bit). Masks of level d-1 come one sibling
+ * group per d-2 node and colours one cousin group per d-2 node, each from one chunk (scene.h).
+ * Everything the loops touch is in locals, so nothing is reloaded after each pixel store. */
+ALWAYS_INLINE void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, int64_t xy, int32_t z)
+{
+    const int64_t *restrict v3 = c->vxy[l3], *restrict v2 = c->vxy[l3 + 1], *restrict v1 = c->vxy[l3 + 2];
+    const int32_t *restrict z3 = c->vz[l3], *restrict z2 = c->vz[l3 + 1], *restrict z1 = c->vz[l3 + 2];
+    uint8_t *restrict fb = c->fb;
+    uint16_t *restrict zb = c->zb;
+    const intptr_t w = c->w;
+    uint32_t points = 0;
+    for (; m; m &= m - 1) {
+        const int k3 = lowest_bit(m);
+        const int64_t xy2 = xy + v3[k3];
+        const int32_t zz2 = z + z3[k3];
+        const unsigned m2 = *masks2++;
+        const uint8_t *masks1 = cursor_take(&c->mask[l3 + 2], popcount8[m2]);
+        if (c->color.p == c->color.end) cursor_refill(&c->color);
+        const uint8_t *col = c->color.p, *const first = col;
+        /* the level d-1 loop unrolled too: constant offsets into the vector tables */
+#define PARENT_INSIDE(k2)                                                                  \
+        if (m2 & (1u << (k2))) {                                                           \
+            const int64_t pxy = xy2 + v2[k2];                                              \
+            const int32_t pz = zz2 + z2[k2];                                               \
+            const unsigned cm = *masks1++;                                                 \
+            DRAW_LEAVES_INSIDE(cm, pxy, pz, v1, z1, col, fb, zb, w);                       \
+        }
+        PARENT_INSIDE(0) PARENT_INSIDE(1) PARENT_INSIDE(2) PARENT_INSIDE(3)
+        PARENT_INSIDE(4) PARENT_INSIDE(5) PARENT_INSIDE(6) PARENT_INSIDE(7)
+#undef PARENT_INSIDE
+        points += (uint32_t)(col - first);   /* every leaf here is on screen */
+        c->color.p = col;
+    }
+    c->points += points;
 }
 
 /* 0: partly on screen, 1: wholly on screen, -1: wholly off screen (orthographic only). */
@@ -177,30 +239,83 @@ static int classify(const ctx *c, int32_t x, int32_t y, int32_t r)
     return x - r >= 0 && y - r >= 0 && x + r < c->wf && y + r < c->hf;
 }
 
-/* Visits one node at level l < d whose centre is at (x, y, z). clip: the node may reach off screen. */
-static void visit(ctx *c, unsigned l, int32_t x, int32_t y, int32_t z, int clip)
+/* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
+ * with checks: it may reach off screen, or the projection is perspective. */
+static void draw_checked(ctx *c, unsigned l, unsigned m, int32_t x, int32_t y, int32_t z)
 {
-    if (l == MC_ABORT_LEVEL && c->abort) {
-        c->polls++;
-        if (c->abort(c->user)) { c->aborted = 1; return; }
+    const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
+    if (l + 1 == c->d) {                                 /* only when d = 1: the root's leaves */
+        leaves(c, m, x, y, z, cursor_take(&c->color, popcount8[m]));
+        return;
     }
-    unsigned m = cursor_byte(&c->mask[l]);
-    if (l + 1 == c->d) {
-        if (c->perspective) draw_leaves_perspective(c, m, x, y, z);
-        else draw_leaves(c, m, x, y, z, clip);
+    const uint8_t *masks = cursor_take(&c->mask[l + 1], popcount8[m]);
+    if (c->color.p == c->color.end) cursor_refill(&c->color);
+    for (; m; m &= m - 1) {
+        int k = lowest_bit(m);
+        unsigned cm = *masks++;
+        const uint8_t *col = c->color.p;
+        c->color.p += popcount8[cm];
+        leaves(c, cm, x + vx[k], y + vy[k], z + vz[k], col);
+    }
+}
+
+/* Polls the abort callback; non-zero when the frame is to be given up. */
+static int poll_abort(ctx *c)
+{
+    c->polls++;
+    if (c->abort(c->user)) c->aborted = 1;
+    return c->aborted;
+}
+
+/* A node at level l <= d-3 of an orthographic subtree wholly on screen: no checks at all, packed
+ * positions. Its level d-3 nodes draw their grandchildren's leaves in one loop (draw_inside). */
+static void visit_inside(ctx *c, unsigned l, int64_t xy, int32_t z)
+{
+    if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    unsigned m = *cursor_take(&c->mask[l], 1);
+    const int64_t *v = c->vxy[l];
+    const int32_t *vz = c->vz[l];
+    if (l + 3 == c->d) {
+        draw_inside(c, l, m, cursor_take(&c->mask[l + 1], popcount8[m]), xy, z);
+        return;
+    }
+    for (; m; m &= m - 1) {
+        int k = lowest_bit(m);
+        visit_inside(c, l + 1, xy + v[k], z + vz[k]);
+        if (c->aborted) return;
+    }
+}
+
+/* Visits one node at level l < d whose centre is at (x, y, z) and which may reach off screen (or
+ * any node in perspective). Children wholly off screen are stepped over, children wholly on screen
+ * go to visit_inside / draw_inside, the rest are visited here. The last levels are drawn without
+ * further calls (the paper's Algorithm 2, taken two levels further).
+ * The abort callback is polled on entering a node at level MC_ABORT_LEVEL, or at level d-3 when
+ * that is shallower (small depths), below which the walk makes no calls. */
+static void visit(ctx *c, unsigned l, int32_t x, int32_t y, int32_t z)
+{
+    if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    unsigned m = *cursor_take(&c->mask[l], 1);
+    if (l + 2 >= c->d) {                                 /* d <= 2: the root draws everything */
+        draw_checked(c, l, m, x, y, z);
         return;
     }
     const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
     for (; m; m &= m - 1) {
         int k = lowest_bit(m);
-        int32_t cx = x + vx[k], cy = y + vy[k];
-        int child_clip = clip;
-        if (clip && !c->perspective) {
-            int where = classify(c, cx, cy, c->radius[l + 1]);
-            if (where < 0) { skip_subtree(c, l + 1); continue; }
-            child_clip = !where;
+        int32_t cx = x + vx[k], cy = y + vy[k], cz = z + vz[k];
+        int where = c->perspective ? 0 : classify(c, cx, cy, c->radius[l + 1]);
+        if (where < 0) {
+            skip_subtree(c, l + 1);
+        } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
+            const uint8_t *cm = cursor_take(&c->mask[l + 1], 1);
+            if (where > 0) draw_inside(c, l, 1u << k, cm, (int64_t)x * 4294967296 + y, z);
+            else draw_checked(c, l + 1, *cm, cx, cy, cz);
+        } else if (where > 0) {
+            visit_inside(c, l + 1, (int64_t)cx * 4294967296 + cy, cz);
+        } else {
+            visit(c, l + 1, cx, cy, cz);
         }
-        visit(c, l + 1, cx, cy, z + vz[k], child_clip);
         if (c->aborted) return;
     }
 }
@@ -214,6 +329,13 @@ static void setup_vectors(ctx *c, const mc_view *v)
     mc_view_rotation(v, r);
     uint32_t side = (uint32_t)(c->w < c->h ? c->w : c->h);
     int64_t scale = (int64_t)v->zoom * side;       /* pixels per cube side, Q16 */
+    for (unsigned l = 0; l <= c->d; l++)
+        c->radius[l] = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 + (int)l - F) + 2;
+    c->zshift = 0;
+    while (((uint32_t)(2 * c->radius[0]) >> c->zshift) >= 65000u) c->zshift++;
+    /* orthographic depth vectors are in depth-buffer units (the shift folded in, one rounding per
+     * level); perspective keeps Q F pixels, since it divides by the distance */
+    const int zunits = c->perspective ? 0 : (int)c->zshift;
     for (unsigned l = 0; l < c->d; l++) {
         for (int k = 0; k < 8; k++) {
             int64_t sx = k & 1 ? 1 : -1, sy = k & 2 ? 1 : -1, sz = k & 4 ? 1 : -1;
@@ -223,13 +345,10 @@ static void setup_vectors(ctx *c, const mc_view *v)
             int64_t ez = sx * r[2][0] + sy * r[2][1] + sz * r[2][2];
             c->vx[l][k] = (int32_t)mc_mul_shift64(ex, scale, 30 + 16 + (int)l + 2 - F);
             c->vy[l][k] = (int32_t)-mc_mul_shift64(ey, scale, 30 + 16 + (int)l + 2 - F);
-            c->vz[l][k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F);
+            c->vz[l][k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F + zunits);
+            c->vxy[l][k] = (int64_t)c->vx[l][k] * 4294967296 + c->vy[l][k];
         }
     }
-    for (unsigned l = 0; l <= c->d; l++)
-        c->radius[l] = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 + (int)l - F) + 2;
-    c->zshift = 0;
-    while (((uint32_t)(2 * c->radius[0]) >> c->zshift) >= MC_DEPTH_EMPTY - 1) c->zshift++;
     c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
     c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
 }
@@ -265,6 +384,7 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     for (unsigned l = 0; l < depth; l++) cursor_init(&c.mask[l], scene->levels[l].masks);
     cursor_init(&c.color, scene->levels[depth].colors);
     setup_vectors(&c, &v);
+    c.poll_level = depth >= MC_ABORT_LEVEL + 3 ? MC_ABORT_LEVEL : depth >= 3 ? depth - 3 : 0;
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis
      * (perspective: projected per point); depth offset by the bounding radius to keep it positive */
@@ -273,10 +393,12 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;
-        visit(&c, 0, 0, 0, c.radius[0], 1);
+        visit(&c, 0, 0, 0, c.radius[0]);
     } else {
         int where = classify(&c, centre_x, centre_y, c.radius[0]);
-        if (where >= 0) visit(&c, 0, centre_x, centre_y, c.radius[0], !where);
+        int32_t z = c.radius[0] >> c.zshift;
+        if (where > 0 && depth >= 3) visit_inside(&c, 0, (int64_t)centre_x * 4294967296 + centre_y, z);
+        else if (where >= 0) visit(&c, 0, centre_x, centre_y, z);
     }
     if (stats) {
         stats->points = c.points;

@@ -3,7 +3,7 @@
  *   dump LIMIT    prints, per level, the node count and an FNV-1a hash of the reassembled mask and
  *                 colour streams, then a checksum of a rendered frame; exits 1 (with a message) when
  *                 a chunk is larger than LIMIT, a level's chunks do not add up to its node count, or
- *                 a colour chunk boundary splits a sibling group. */
+ *                 a chunk boundary splits a group the renderer reads at once (scene.h). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -28,11 +28,54 @@ static int walk(const mc_chunk *c, unsigned long limit, uint32_t *total, uint32_
     return bad;
 }
 
+/* prefix[l][i]: children of the first i nodes of level l = where node i's children start at l+1 */
+static uint32_t prefix_store[1u << 23];
+static uint32_t *prefix[MC_MAX_DEPTH];
+
+static void build_prefixes(const mc_scene *s)
+{
+    uint32_t *p = prefix_store;
+    for (unsigned l = 0; l < s->depth; l++) {
+        prefix[l] = p;
+        uint32_t i = 0, sum = 0;
+        p[0] = 0;
+        for (const mc_chunk *c = s->levels[l].masks; c->data; c++)
+            for (uint32_t b = 0; b < c->size; b++) {
+                for (unsigned m = c->data[b]; m; m &= m - 1) sum++;
+                p[++i] = sum;
+            }
+        p += i + 1;
+    }
+}
+
+/* Every chunk of `chunks` (entries of level l) must end where the descendants of some node at level
+ * l - up end: the renderer reads such a group from one chunk. */
+static int check_groups(const mc_scene *s, const mc_chunk *chunks, unsigned l, unsigned up, const char *what)
+{
+    unsigned a = l < up ? 0 : l - up;
+    uint32_t i = 0, end = 0;
+    for (const mc_chunk *c = chunks; c->data; c++) {
+        end += c->size;
+        uint32_t boundary = 0;
+        while (boundary < end && i < s->levels[a].nodes) {
+            uint32_t b = ++i;
+            for (unsigned j = a; j < l; j++) b = prefix[j][b];
+            boundary = b;
+        }
+        if (boundary != end) {
+            printf("level %u %s: a chunk ends at %u, inside a group read at once\n", l, what, end);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const mc_scene *s = mc_app_model.scene;
     unsigned long limit = argc > 1 ? strtoul(argv[1], NULL, 10) : 65536;
     int bad = 0;
+    build_prefixes(s);
     for (unsigned l = 0; l <= s->depth; l++) {
         const mc_level *lv = &s->levels[l];
         uint32_t hm = 2166136261u, hc = 2166136261u, nm = 0, nc = 0;
@@ -42,24 +85,8 @@ int main(int argc, char **argv)
             printf("level %u: chunks hold %u masks and %u colours for %u nodes\n", l, nm, nc, lv->nodes);
             bad = 1;
         }
-        /* every colour chunk must end where a sibling group ends: on a running sum of the
-         * popcounts of the parent level's masks */
-        if (l > 0 && lv->colors) {
-            const mc_chunk *pc = s->levels[l - 1].masks;
-            uint32_t pi = 0, groups_end = 0, chunk_end = 0;
-            for (const mc_chunk *c = lv->colors; c->data; c++) {
-                chunk_end += c->size;
-                while (groups_end < chunk_end) {
-                    while (pi == pc->size) pc++, pi = 0;
-                    uint8_t m = pc->data[pi++];
-                    for (; m; m &= (uint8_t)(m - 1)) groups_end++;
-                }
-                if (groups_end != chunk_end) {
-                    printf("level %u: colour chunk ends at %u inside a sibling group\n", l, chunk_end);
-                    bad = 1;
-                }
-            }
-        }
+        if (l > 0 && l < s->depth) bad |= check_groups(s, lv->masks, l, 1, "masks");
+        if (l > 0) bad |= check_groups(s, lv->colors, l, 2, "colours");
         printf("level %u nodes %u masks %08x colours %08x\n", l, lv->nodes, hm, hc);
     }
     mc_target t = {mc_app_model.color, mc_app_model.depth, 320, 240};

@@ -30,7 +30,7 @@ link() { gcc -std=c99 -O1 -Iruntime/include -o "$2" tests/gen/dump.c runtime/src
 for limit in 64 1000 65536; do
     "$modelc" build/models/bunny00.off -o "$tmp/chunk$limit" --name bunny -q --chunk-bytes $limit --file-bytes $((limit * 4))
     if link "$tmp/chunk$limit/bunny" "$tmp/dump$limit" && "$tmp/dump$limit" $limit >"$tmp/dump$limit.txt"; then
-        ok "--chunk-bytes $limit: every chunk within the limit, counts add up, colour chunks end between sibling groups"
+        ok "--chunk-bytes $limit: every chunk within the limit, counts add up, chunks end between the groups read at once"
     else
         nok "--chunk-bytes $limit: $(grep -v '^level [0-9]* nodes\|^frame' "$tmp/dump$limit.txt" | head -n 3 | tr '\n' ' ')"
     fi

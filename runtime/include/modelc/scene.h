@@ -11,8 +11,10 @@
  * coarse image drawn while the view moves and the fine image drawn after.
  *
  * Every array is split into chunks (at most the generator's --chunk-bytes each) that may live in
- * different translation units; a chunk list ends with a {0, 0} sentinel. Colour chunks end only
- * between sibling groups, so the children of one node never straddle two chunks.
+ * different translation units; a chunk list ends with a {0, 0} sentinel. Chunks end only where the
+ * renderer may cross them: mask chunks between sibling groups (the children of one node), colour
+ * chunks between cousin groups (the grandchildren of one node), so the renderer checks for the end
+ * of a chunk once per group instead of once per byte.
  */
 #ifndef MODELC_SCENE_H
 #define MODELC_SCENE_H
