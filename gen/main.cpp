@@ -38,6 +38,7 @@ int main(int argc, char **argv) {
     mc::EmitOptions emit;
     int palette = 256;
     bool quiet = false;
+    std::string up = "y";
     app.add_option("input", input, "model file: .off .obj .ply .stl (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
@@ -52,6 +53,8 @@ int main(int argc, char **argv) {
         ->check(CLI::Range(64, 1 << 30))->capture_default_str();
     app.add_option("--screen", screen, "largest frame WxH the app binding's static buffers hold")
         ->capture_default_str();
+    app.add_option("--up", up, "the model's up axis: y, or z for scans and CAD models that stand on the xy plane")
+        ->check(CLI::IsMember({"y", "z"}))->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress output even on a terminal");
     app.set_version_flag("--version", "modelc 0.1");
 
@@ -76,6 +79,7 @@ int main(int argc, char **argv) {
         mc::Progress progress(quiet);
         progress.step("loading");
         mc::Model model = mc::load_model(input);
+        if (up == "z") mc::make_z_up_y_up(model);
         mc::Voxels voxels = mc::voxelize(model, input, vox, progress);
         progress.step("building octree");
         mc::Octree tree = mc::build_octree(voxels, palette);

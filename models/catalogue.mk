@@ -25,15 +25,15 @@ lion_head.src := data/meshes/lion-head.off
 lion_head.opts := --depth 8
 
 man.src := data/meshes/man.off
-man.opts := --depth 8
+man.opts := --depth 8 --up z
 
 fandisk.src := data/meshes/fandisk.off
 fandisk.opts := --depth 8
 
 # point set with per-point colours (an aerial scan)
 b9_training.src := data/points_3/b9_training.ply
-b9_training.opts := --depth 8
+b9_training.opts := --depth 8 --up z
 
 # point set with normals
 kitten.src := data/points_3/kitten.xyz
-kitten.opts := --depth 8
+kitten.opts := --depth 7
