@@ -27,7 +27,7 @@ DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo l
   libosmesa6-dev draco python3
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: help deps gen models views demo view test bench clean
+.PHONY: help deps gen models views demo view readme-images test bench clean
 help:
 	@sed -n 's/^#   //p' Makefile
 
@@ -120,6 +120,11 @@ demo: deps
 	$(DEMO_VIEW) --png $(BUILD)/$(DEFAULT_MODEL).png --yaw 20 --pitch 10
 	@python3 -c 'import json,sys; b=json.load(open("$(BUILD)/$(DEFAULT_MODEL)/budget.json")); print("points %d, data %d bytes, %.2f bits/point geometry, %.2f total" % (b["points"], b["flash"]["total"], b["bits_per_point"]["geometry"], b["bits_per_point"]["total"]))'
 	@echo "wrote $(BUILD)/$(DEFAULT_MODEL).png; run $(DEMO_VIEW) in a terminal to turn it"
+
+# the README's pictures, rendered by the viewer binaries
+readme-images: $(BUILD)/bunny00/bunny00-view $(BUILD)/nefertiti/nefertiti-view
+	$(BUILD)/bunny00/bunny00-view --png models/img/bunny00.png --zoom 0.9 --yaw 25 --pitch 10
+	$(BUILD)/nefertiti/nefertiti-view --png models/img/nefertiti.png --zoom 0.85 --yaw -30 --pitch 5
 
 # ---- tests and benchmarks --------------------------------------------------------------------
 test:
