@@ -104,7 +104,7 @@ views: $(foreach m,$(CATALOGUE),$(BUILD)/$(m)/$(m)-view)
 
 # make view MODEL=path/to/file [NAME=..] [DEPTH=..]
 ifdef MODEL
-NAME ?= $(shell n=$$(basename "$(MODEL)"); n=$${n%.*}; n=$$(echo "$$n" | tr 'A-Z' 'a-z' | tr -c 'a-z0-9_\n' '_'); case $$n in [0-9]*) n=m_$$n;; esac; echo $$n)
+NAME ?= $(shell basename "$(MODEL)" | sed 's/\.[^.]*$$//' | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9_]/_/g; s/^[0-9]/m_&/')
 DEPTH ?= 8
 endif
 view: $(MODELC) $(RT_OBJ) $(HOST_OBJ)
