@@ -3,9 +3,11 @@
 
 #define F MC_FRAC_BITS
 
-/* Depth coordinates are in the same Q F pixels as x and y (so that perspective divides by a
- * distance as exact as the position it scales), offset so the model's bounding sphere spans
- * [0, 2 * radius]; the depth buffer keeps z >> zshift, with zshift chosen per frame to fit 16 bits. */
+/* Depth: offset so the model's bounding sphere spans [0, 2 * radius] and never goes negative. The
+ * depth buffer keeps z >> zshift, zshift chosen per frame so that the span fits 16 bits. In
+ * perspective z is in the same Q F pixels as x and y (so the division by the distance is as exact
+ * as the position it scales) and shifted per point; orthographic depth vectors are built already
+ * shifted, so the hot loop stores z as it is. */
 
 /* sqrt(3)/2 in Q30, rounded up, for bounding spheres that are never too small */
 #define HALF_SQRT3_Q30 929887697
@@ -22,19 +24,28 @@ typedef struct cursor {
     const mc_chunk *next;
 } cursor;
 
+/* Displacement from the centre of a node at one level to that of its child k. xy packs x and y as
+ * x * 2^32 + y: on screen both coordinates are non-negative, so one 64-bit addition moves a point
+ * in x and y at once. Kept together so that the hot loop reaches all of a level's vectors from one
+ * base register. */
+typedef struct levelvec {
+    int64_t xy[8];
+    int32_t z[8], x[8], y[8];
+} levelvec;
+
 typedef struct ctx {
     cursor mask[MC_MAX_DEPTH];
     cursor color;                        /* colours of the drawn level */
-    int32_t vx[MC_MAX_DEPTH][8], vy[MC_MAX_DEPTH][8], vz[MC_MAX_DEPTH][8]; /* level-l node -> child k */
-    /* the same x and y vectors packed as x * 2^32 + y: on screen both coordinates are
-     * non-negative, so one 64-bit addition moves a point in x and y at once */
-    int64_t vxy[MC_MAX_DEPTH][8];
-    int32_t radius[MC_MAX_DEPTH + 1];    /* bounding sphere of a level-l node, Q F pixels */
+    levelvec v[MC_MAX_DEPTH];            /* level-l node -> child k */
+    int32_t radius;                      /* bounding sphere of the model, Q F pixels */
+    /* how far the drawn leaves under a level-l node can lie from its centre, per screen axis: the
+     * sum of the largest displacement of each level below, so exact for the fixed-point positions */
+    int32_t reach_x[MC_MAX_DEPTH + 1], reach_y[MC_MAX_DEPTH + 1];
     uint8_t *fb;
     uint16_t *zb;
     int32_t w, h, wf, hf;                /* size in pixels and in Q F */
     unsigned d;                          /* drawn level */
-    unsigned zshift;                     /* perspective: depth buffer value = z >> zshift */
+    unsigned zshift;                     /* depth buffer value = z >> zshift (see the top) */
     unsigned poll_level;                 /* level at which the abort callback is polled */
     int perspective;
     int32_t cx, cy;                      /* perspective: screen centre plus translation, Q F */
@@ -55,12 +66,12 @@ static const uint8_t popcount8[256] = {
 #undef B6
 };
 
-ALWAYS_INLINE int lowest_bit(unsigned m)
+ALWAYS_INLINE unsigned lowest_bit(unsigned m)
 {
 #if defined(__GNUC__) || defined(__clang__)
-    return __builtin_ctz(m);
+    return (unsigned)__builtin_ctz(m);   /* unsigned: used as an index without sign extension */
 #else
-    int k = 0;
+    unsigned k = 0;
     while (!(m & 1u)) { m >>= 1; k++; }
     return k;
 #endif
@@ -124,9 +135,9 @@ static void skip_subtree(ctx *c, unsigned l)
 static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
-    const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
+    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
-        int k = lowest_bit(m);
+        unsigned k = lowest_bit(m);
         int32_t fx = x + vx[k], fy = y + vy[k];
         int32_t px = fx >> F, py = fy >> F;
         if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
@@ -144,11 +155,11 @@ static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, 
 static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
-    const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
+    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
-        int k = lowest_bit(m);
+        unsigned k = lowest_bit(m);
         int32_t zk = z + vz[k];
-        int64_t dist = c->eye + zk - c->radius[0];       /* z carries a +radius offset */
+        int64_t dist = c->eye + zk - c->radius;       /* z carries a +radius offset */
         if (dist < c->near) continue;
         int64_t q = (c->eye << 24) / dist;                /* magnification, Q24, at most 2^38 */
         /* exact and saturating: near the eye the magnification reaches 2^14 */
@@ -170,80 +181,91 @@ static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const ui
     else leaves_clipped(c, m, x, y, z, col);
 }
 
-/* The hot path: the leaves of one node at level d-1 wholly on screen, orthographic. cm is its mask,
- * pxy its packed centre (see ctx.vxy), pz its depth; lv, lz the leaf level's vectors; col its
- * leaves' colours. The 8-child loop is unrolled, as in the paper: a present child costs one 64-bit
- * and one 32-bit addition, the pixel index and the depth test; an absent one a test and a branch. */
-#define DRAW_LEAVES_INSIDE(cm, pxy, pz, lv, lz, col, fb, zb, w)                             \
-    do {                                                                                   \
-        LEAF_INSIDE(0, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(1, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(2, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(3, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(4, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(5, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(6, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-        LEAF_INSIDE(7, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-    } while (0)
-#define LEAF_INSIDE(j, cm, pxy, pz, lv, lz, col, fb, zb, w)                                \
-    if ((cm) & (1u << (j))) {                                                              \
-        int64_t p_ = (pxy) + (lv)[j];                                                      \
-        intptr_t i_ = (intptr_t)((uint32_t)p_ >> F) * (w) + (intptr_t)(p_ >> (32 + F));    \
-        uint16_t depth_ = (uint16_t)((pz) + (lz)[j]);                                      \
-        MC_PLOT_HOOK((int32_t)(p_ >> 32), (int32_t)(uint32_t)p_, col);                     \
-        if (depth_ < (zb)[i_]) { (zb)[i_] = depth_; (fb)[i_] = *(col); }                   \
-        (col)++;                                                                           \
+/* The hot path: the leaves of one node at level d-1 wholly on screen, orthographic. pxy is its
+ * packed centre (see levelvec), pz its depth; lv, lz the leaf level's vectors; col its leaves'
+ * colours. A present child costs one 64-bit and one 32-bit addition, the pixel index and the depth
+ * test. LEAF(n, j) draws child j of a node whose mask is n, when bit j is set; its colour is the
+ * rank of j among the set bits of n. */
+#define LEAF(n, j)                                                                         \
+    if ((n) & (1u << (j))) {                                                               \
+        int64_t p_ = pxy + lv[j];                                                          \
+        intptr_t i_ = (intptr_t)((uint32_t)p_ >> F) * w + (intptr_t)(p_ >> (32 + F));      \
+        uint16_t depth_ = (uint16_t)(pz + lz[j]);                                          \
+        const uint8_t *col_ = col + popcount8[(n) & ((1u << (j)) - 1u)];                   \
+        MC_PLOT_HOOK((int32_t)(p_ >> 32), (int32_t)(uint32_t)p_, col_);                    \
+        if (depth_ < zb[i_]) { zb[i_] = depth_; fb[i_] = *col_; }                          \
     }
+#define LEAVES(n) LEAF(n, 0) LEAF(n, 1) LEAF(n, 2) LEAF(n, 3) LEAF(n, 4) LEAF(n, 5) LEAF(n, 6) LEAF(n, 7)
+
+#if MC_LEAF_SWITCH
+/* One case per mask value: the compiler folds every test of LEAVES(n) and every colour rank, so a
+ * node costs one indirect jump and each present leaf only its own work (see config.h). */
+#define CASE1(n) case n: LEAVES(n) break;
+#define CASE4(n) CASE1(n) CASE1(n + 1) CASE1(n + 2) CASE1(n + 3)
+#define CASE16(n) CASE4(n) CASE4(n + 4) CASE4(n + 8) CASE4(n + 12)
+#define CASE64(n) CASE16(n) CASE16(n + 16) CASE16(n + 32) CASE16(n + 48)
+#define DRAW_LEAVES(cm)                                                                    \
+    switch (cm) { CASE64(0) CASE64(64) CASE64(128) CASE64(192) }
+#else
+/* The paper's unrolled 8-child loop: an absent child costs a test and a branch. */
+#define DRAW_LEAVES(cm) LEAVES(cm)
+#endif
 
 /* Nodes at level d-2 wholly on screen, orthographic: the children of one node at level d-3 whose
- * mask is m, or just one of them (one = 1, m = its child bit). Masks of level d-1 come one sibling
- * group per d-2 node and colours one cousin group per d-2 node, each from one chunk (scene.h).
- * Everything the loops touch is in locals, so nothing is reloaded after each pixel store. */
-ALWAYS_INLINE void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, int64_t xy, int32_t z)
+ * mask is m (or just one of them: m = its child bit). Masks of level d-1 come one sibling group per
+ * d-2 node and colours one cousin group per d-2 node, each from one chunk (scene.h). Everything the
+ * loops touch is in locals, so nothing is reloaded after each pixel store. Not inlined: there is
+ * one copy of the leaf code however many callers. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, int64_t xy, int32_t z)
 {
-    const int64_t *restrict v3 = c->vxy[l3], *restrict v2 = c->vxy[l3 + 1], *restrict v1 = c->vxy[l3 + 2];
-    const int32_t *restrict z3 = c->vz[l3], *restrict z2 = c->vz[l3 + 1], *restrict z1 = c->vz[l3 + 2];
+    const levelvec *restrict L = &c->v[l3];       /* levels d-3, d-2 (L + 1) and d-1 (L + 2) */
+#define lv (L[2].xy)
+#define lz (L[2].z)
     uint8_t *restrict fb = c->fb;
     uint16_t *restrict zb = c->zb;
     const intptr_t w = c->w;
     uint32_t points = 0;
     for (; m; m &= m - 1) {
-        const int k3 = lowest_bit(m);
-        const int64_t xy2 = xy + v3[k3];
-        const int32_t zz2 = z + z3[k3];
-        const unsigned m2 = *masks2++;
+        const unsigned k3 = lowest_bit(m);
+        const int64_t xy2 = xy + L[0].xy[k3];
+        const int32_t zz2 = z + L[0].z[k3];
+        unsigned m2 = *masks2++;
         const uint8_t *masks1 = cursor_take(&c->mask[l3 + 2], popcount8[m2]);
         if (c->color.p == c->color.end) cursor_refill(&c->color);
         const uint8_t *col = c->color.p, *const first = col;
-        /* the level d-1 loop unrolled too: constant offsets into the vector tables */
-#define PARENT_INSIDE(k2)                                                                  \
-        if (m2 & (1u << (k2))) {                                                           \
-            const int64_t pxy = xy2 + v2[k2];                                              \
-            const int32_t pz = zz2 + z2[k2];                                               \
-            const unsigned cm = *masks1++;                                                 \
-            DRAW_LEAVES_INSIDE(cm, pxy, pz, v1, z1, col, fb, zb, w);                       \
+        for (; m2; m2 &= m2 - 1) {
+            const unsigned k2 = lowest_bit(m2);
+            const int64_t pxy = xy2 + L[1].xy[k2];
+            const int32_t pz = zz2 + L[1].z[k2];
+            const unsigned cm = *masks1++;
+            DRAW_LEAVES(cm)
+            col += popcount8[cm];
         }
-        PARENT_INSIDE(0) PARENT_INSIDE(1) PARENT_INSIDE(2) PARENT_INSIDE(3)
-        PARENT_INSIDE(4) PARENT_INSIDE(5) PARENT_INSIDE(6) PARENT_INSIDE(7)
-#undef PARENT_INSIDE
         points += (uint32_t)(col - first);   /* every leaf here is on screen */
         c->color.p = col;
     }
     c->points += points;
+#undef lv
+#undef lz
 }
 
-/* 0: partly on screen, 1: wholly on screen, -1: wholly off screen (orthographic only). */
-static int classify(const ctx *c, int32_t x, int32_t y, int32_t r)
+/* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen, 1 wholly on
+ * screen, -1 wholly off screen (orthographic only). */
+static int classify(const ctx *c, int32_t x, int32_t y, unsigned l)
 {
-    if (x + r < 0 || y + r < 0 || x - r >= c->wf || y - r >= c->hf) return -1;
-    return x - r >= 0 && y - r >= 0 && x + r < c->wf && y + r < c->hf;
+    const int32_t rx = c->reach_x[l], ry = c->reach_y[l];
+    if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;
+    return x - rx >= 0 && y - ry >= 0 && x + rx < c->wf && y + ry < c->hf;
 }
 
 /* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
  * with checks: it may reach off screen, or the projection is perspective. */
 static void draw_checked(ctx *c, unsigned l, unsigned m, int32_t x, int32_t y, int32_t z)
 {
-    const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
+    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     if (l + 1 == c->d) {                                 /* only when d = 1: the root's leaves */
         leaves(c, m, x, y, z, cursor_take(&c->color, popcount8[m]));
         return;
@@ -251,7 +273,7 @@ static void draw_checked(ctx *c, unsigned l, unsigned m, int32_t x, int32_t y, i
     const uint8_t *masks = cursor_take(&c->mask[l + 1], popcount8[m]);
     if (c->color.p == c->color.end) cursor_refill(&c->color);
     for (; m; m &= m - 1) {
-        int k = lowest_bit(m);
+        unsigned k = lowest_bit(m);
         unsigned cm = *masks++;
         const uint8_t *col = c->color.p;
         c->color.p += popcount8[cm];
@@ -273,14 +295,14 @@ static void visit_inside(ctx *c, unsigned l, int64_t xy, int32_t z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
     unsigned m = *cursor_take(&c->mask[l], 1);
-    const int64_t *v = c->vxy[l];
-    const int32_t *vz = c->vz[l];
+    const int64_t *v = c->v[l].xy;
+    const int32_t *vz = c->v[l].z;
     if (l + 3 == c->d) {
         draw_inside(c, l, m, cursor_take(&c->mask[l + 1], popcount8[m]), xy, z);
         return;
     }
     for (; m; m &= m - 1) {
-        int k = lowest_bit(m);
+        unsigned k = lowest_bit(m);
         visit_inside(c, l + 1, xy + v[k], z + vz[k]);
         if (c->aborted) return;
     }
@@ -300,11 +322,11 @@ static void visit(ctx *c, unsigned l, int32_t x, int32_t y, int32_t z)
         draw_checked(c, l, m, x, y, z);
         return;
     }
-    const int32_t *vx = c->vx[l], *vy = c->vy[l], *vz = c->vz[l];
+    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1) {
-        int k = lowest_bit(m);
+        unsigned k = lowest_bit(m);
         int32_t cx = x + vx[k], cy = y + vy[k], cz = z + vz[k];
-        int where = c->perspective ? 0 : classify(c, cx, cy, c->radius[l + 1]);
+        int where = c->perspective ? 0 : classify(c, cx, cy, l + 1);
         if (where < 0) {
             skip_subtree(c, l + 1);
         } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
@@ -329,10 +351,9 @@ static void setup_vectors(ctx *c, const mc_view *v)
     mc_view_rotation(v, r);
     uint32_t side = (uint32_t)(c->w < c->h ? c->w : c->h);
     int64_t scale = (int64_t)v->zoom * side;       /* pixels per cube side, Q16 */
-    for (unsigned l = 0; l <= c->d; l++)
-        c->radius[l] = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 + (int)l - F) + 2;
+    c->radius = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 - F) + 2 * MC_MAX_DEPTH;
     c->zshift = 0;
-    while (((uint32_t)(2 * c->radius[0]) >> c->zshift) >= 65000u) c->zshift++;
+    while (((uint32_t)(2 * c->radius) >> c->zshift) >= 65000u) c->zshift++;
     /* orthographic depth vectors are in depth-buffer units (the shift folded in, one rounding per
      * level); perspective keeps Q F pixels, since it divides by the distance */
     const int zunits = c->perspective ? 0 : (int)c->zshift;
@@ -343,11 +364,24 @@ static void setup_vectors(ctx *c, const mc_view *v)
             int64_t ex = sx * r[0][0] + sy * r[0][1] + sz * r[0][2];
             int64_t ey = sx * r[1][0] + sy * r[1][1] + sz * r[1][2];
             int64_t ez = sx * r[2][0] + sy * r[2][1] + sz * r[2][2];
-            c->vx[l][k] = (int32_t)mc_mul_shift64(ex, scale, 30 + 16 + (int)l + 2 - F);
-            c->vy[l][k] = (int32_t)-mc_mul_shift64(ey, scale, 30 + 16 + (int)l + 2 - F);
-            c->vz[l][k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F + zunits);
-            c->vxy[l][k] = (int64_t)c->vx[l][k] * 4294967296 + c->vy[l][k];
+            levelvec *v = &c->v[l];
+            v->x[k] = (int32_t)mc_mul_shift64(ex, scale, 30 + 16 + (int)l + 2 - F);
+            v->y[k] = (int32_t)-mc_mul_shift64(ey, scale, 30 + 16 + (int)l + 2 - F);
+            v->z[k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F + zunits);
+            v->xy[k] = (int64_t)v->x[k] * 4294967296 + v->y[k];
         }
+    }
+    c->reach_x[c->d] = c->reach_y[c->d] = 0;
+    for (unsigned l = c->d; l-- > 0;) {
+        int32_t mx = 0, my = 0;
+        for (int k = 0; k < 8; k++) {
+            int32_t ax = c->v[l].x[k] < 0 ? -c->v[l].x[k] : c->v[l].x[k];
+            int32_t ay = c->v[l].y[k] < 0 ? -c->v[l].y[k] : c->v[l].y[k];
+            mx = ax > mx ? ax : mx;
+            my = ay > my ? ay : my;
+        }
+        c->reach_x[l] = c->reach_x[l + 1] + mx;
+        c->reach_y[l] = c->reach_y[l + 1] + my;
     }
     c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
     c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
@@ -393,10 +427,11 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;
-        visit(&c, 0, 0, 0, c.radius[0]);
+        visit(&c, 0, 0, 0, c.radius);
     } else {
-        int where = classify(&c, centre_x, centre_y, c.radius[0]);
-        int32_t z = c.radius[0] >> c.zshift;
+        int where = classify(&c, centre_x, centre_y, 0);
+        /* depth units: each level's vector is rounded to them, so leave one unit per level of room */
+        int32_t z = (c.radius >> c.zshift) + MC_MAX_DEPTH;
         if (where > 0 && depth >= 3) visit_inside(&c, 0, (int64_t)centre_x * 4294967296 + centre_y, z);
         else if (where >= 0) visit(&c, 0, centre_x, centre_y, z);
     }

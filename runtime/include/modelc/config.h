@@ -47,6 +47,15 @@
 #error "MC_ANGLE_BITS: only 12 is supported (the committed sine table has 1025 entries)"
 #endif
 
+/* MC_LEAF_SWITCH: how the renderer's hot loop visits the up to eight leaves of a node.
+ *   1 (default): a switch with one case per mask value, each case drawing exactly its leaves: one
+ *     indirect jump per node and no per-child tests; about 50 KB of code on x86-64.
+ *   0: the source paper's unrolled loop, a test and a branch per child; about 3 KB of code, for
+ *     small flash. Both draw the same pixels. */
+#ifndef MC_LEAF_SWITCH
+#define MC_LEAF_SWITCH 1
+#endif
+
 /* MC_PLOT_HOOK(fx, fy, color_ptr): called for every point that lands on screen, before the depth
  * test, with its screen position in Q MC_FRAC_BITS pixels (int32) and a pointer to its palette index
  * (which identifies the leaf). Empty by default; tests define it to compare each point with a
