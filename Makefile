@@ -24,7 +24,7 @@ GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
 # Debian packages: the build, the tests and the benchmarks
 DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
-  libosmesa6-dev draco python3
+  libosmesa6-dev draco python3 perl strace bsdutils coreutils
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: help deps gen models views demo view readme-images test bench clean

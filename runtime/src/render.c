@@ -385,6 +385,7 @@ static void setup_vectors(ctx *c, const mc_view *v)
     }
     c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
     c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
+    if (c->near < 1) c->near = 1;                                    /* tiny views: never divide by 0 */
 }
 
 void mc_clear(const mc_target *t)
@@ -422,8 +423,8 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis
      * (perspective: projected per point); depth offset by the bounding radius to keep it positive */
-    int32_t centre_x = (int32_t)(((int64_t)c.w << (F - 1)) + ((int64_t)v.tx << F));
-    int32_t centre_y = (int32_t)(((int64_t)c.h << (F - 1)) + ((int64_t)v.ty << F));
+    int32_t centre_x = (int32_t)(((int64_t)c.w << (F - 1)) + (int64_t)v.tx * ((int64_t)1 << F));
+    int32_t centre_y = (int32_t)(((int64_t)c.h << (F - 1)) + (int64_t)v.ty * ((int64_t)1 << F));
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;

@@ -25,13 +25,15 @@ static inline mc_fix mc_fix_sat(int64_t v)
     return v > MC_FIX_MAX ? MC_FIX_MAX : v < MC_FIX_MIN ? MC_FIX_MIN : (mc_fix)v;
 }
 
-/* Shift right by s (0..62) rounding to nearest, ties away from zero. */
+/* Shift right by s (0..63) rounding to nearest, ties away from zero, for any v > INT64_MIN.
+ * Works on the magnitude (so -2.5 rounds like 2.5) and adds the last bit shifted out instead of
+ * half a unit, so nothing can overflow. */
 static inline int64_t mc_round_shift(int64_t v, int s)
 {
     if (s <= 0) return v;
-    int64_t half = (int64_t)1 << (s - 1);
-    /* work on the magnitude so that -2.5 rounds like 2.5; v > INT64_MIN is guaranteed by callers */
-    return v >= 0 ? (v + half) >> s : -((-v + half) >> s);
+    uint64_t m = v >= 0 ? (uint64_t)v : 0u - (uint64_t)v;
+    uint64_t q = (m >> s) + ((m >> (s - 1)) & 1u);
+    return v >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
 static inline mc_fix mc_fix_from_int(int32_t i) { return mc_fix_sat((int64_t)i * MC_FIX_ONE); }

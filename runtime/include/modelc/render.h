@@ -29,7 +29,8 @@ typedef struct mc_target {
 /* Largest target side: keeps width/2 plus a translation inside MC_COORD_LIMIT. */
 #define MC_TARGET_MAX (MC_COORD_LIMIT / 8 < 8192 ? MC_COORD_LIMIT / 8 : 8192)
 
-/* Polled every time the walk enters a node at depth MC_ABORT_LEVEL; return non-zero to give up. */
+/* Polled every time the walk enters a node at depth min(MC_ABORT_LEVEL, d - 3) for drawn depth d
+ * (depth 0, once, when d <= 3); return non-zero to give up. */
 typedef int (*mc_abort_fn)(void *user);
 
 typedef struct mc_stats {

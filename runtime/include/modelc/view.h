@@ -6,7 +6,7 @@
  * angles every frame.
  *
  * Any values are accepted. Values the fixed-point format cannot represent are clamped, never wrapped
- * (see mc_view_clamp): zoom to [1/64, 64] and to a screen extent below MC_COORD_LIMIT / 2 pixels,
+ * (see mc_view_clamp): zoom to [1/64, 64] and to a screen extent of at most MC_COORD_LIMIT / 2 pixels,
  * translations to +-MC_COORD_LIMIT / 4 pixels, the perspective eye distance to [1/16, 256] cube sides.
  */
 #ifndef MODELC_VIEW_H

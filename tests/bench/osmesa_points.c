@@ -1,0 +1,251 @@
+/* Benchmark baseline: Mesa's software OpenGL (OSMesa) drawing the same cells as a modelc bake.
+ *
+ * Links against a bake's generated sources (for mc_app_model.scene) but not against the runtime's
+ * renderer: the cells are decoded by tests/bench/cells.h in double precision and uploaded once into a
+ * vertex buffer as one-pixel GL_POINTS with per-point colours (in the order mc_render draws them).
+ * The view matches modelc's (modelc/view.h): orthographic, the model's bounding cube centred with its
+ * side spanning the shorter screen side at zoom 1, screen y down, +z toward the viewer,
+ * R = Rz(roll) * Rx(pitch) * Ry(yaw); depth test GL_LESS on a 16-bit depth buffer like modelc's.
+ *
+ *   osmesa_points [--frames N] [--size WxH] [--views K] [--ppm FILE] [--mask FILE]
+ *                 [--image-yaw U] [--ply FILE] [--ply-rgb FILE] [--no-bench]
+ *
+ * --frames N   time N frames of one full turn (yaw = i * 4096 / N modelc angle units, as the viewer's
+ *              --bench does): glClear + glDrawArrays + glFinish each, print the median wall-clock time
+ *              and the median CPU time of the process (which leaves out time spent preempted on a
+ *              busy machine)
+ * --views K    count the pixels drawn in K views of the turn (untimed), print the mean
+ * --ppm FILE   write one frame as a binary PPM: yaw U modelc angle units from --image-yaw (default 0,
+ *              frontal)
+ * --mask FILE  write that frame's coverage (255 = drawn) as a binary PGM
+ * --ply FILE   write the cells' integer coordinates as an ASCII PLY point cloud (for draco_encoder);
+ *              --ply-rgb FILE the same with the palette colours
+ * Run with LP_NUM_THREADS=0 to keep llvmpipe on one thread.
+ */
+#define _POSIX_C_SOURCE 200809L
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <modelc/app.h>
+#include "cells.h"
+
+#define ANGLE_FULL 4096
+
+typedef struct vertex {
+    float x, y, z;
+    uint8_t r, g, b, a;
+} vertex;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double clock_ms(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+static double now_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
+static double cpu_ms(void) { return clock_ms(CLOCK_PROCESS_CPUTIME_ID); }
+
+static double median_of(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof v[0], cmp_double);
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+static int w = 320, h = 240;
+static GLsizei npoints;
+
+/* One frame of the turn at `yaw_units` (modelc angle units): what is timed. */
+static void draw_frame(int32_t yaw_units)
+{
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    double s = (w < h ? w : h);          /* zoom 1: cube side = shorter screen side, in pixels */
+    glScaled(s, s, s);
+    /* R = Rz(roll) * Rx(pitch) * Ry(yaw); roll = pitch = 0 here */
+    glRotated(0.0, 0, 0, 1);
+    glRotated(0.0, 1, 0, 0);
+    glRotated(yaw_units * 360.0 / ANGLE_FULL, 0, 1, 0);
+    glDrawArrays(GL_POINTS, 0, npoints);
+    glFinish();
+}
+
+/* OSMesa's buffer is bottom-up (GL window rows); images are written top-down like modelc's. */
+static int write_image(const char *path, const uint8_t *rgba, int mask)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) { perror(path); return -1; }
+    fprintf(f, "%s\n%d %d\n255\n", mask ? "P5" : "P6", w, h);
+    for (int y = h - 1; y >= 0; y--)
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = rgba + 4 * ((size_t)y * w + x);
+            if (mask) {
+                fputc(p[3] ? 255 : 0, f);
+            } else if (p[3]) {
+                fputc(p[0], f); fputc(p[1], f); fputc(p[2], f);
+            } else {
+                fputc(24, f); fputc(24, f); fputc(32, f);   /* the viewer's background */
+            }
+        }
+    return fclose(f);
+}
+
+static long covered(const uint8_t *rgba)
+{
+    long n = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++) n += rgba[4 * i + 3] != 0;
+    return n;
+}
+
+static int write_ply(const char *path, const bench_cell *cells, uint32_t n, const uint8_t *palette, int rgb)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) { perror(path); return -1; }
+    fprintf(f, "ply\nformat ascii 1.0\nelement vertex %u\nproperty float x\nproperty float y\nproperty float z\n", n);
+    if (rgb) fprintf(f, "property uchar red\nproperty uchar green\nproperty uchar blue\n");
+    fprintf(f, "end_header\n");
+    for (uint32_t i = 0; i < n; i++) {
+        fprintf(f, "%u %u %u", cells[i].ix, cells[i].iy, cells[i].iz);
+        if (rgb) {
+            const uint8_t *c = palette + 3 * cells[i].color;
+            fprintf(f, " %u %u %u", c[0], c[1], c[2]);
+        }
+        fputc('\n', f);
+    }
+    return fclose(f);
+}
+
+int main(int argc, char **argv)
+{
+    int frames = 200, views = 20, bench = 1;
+    long image_yaw = 0;
+    const char *ppm = NULL, *mask = NULL, *ply = NULL, *ply_rgb = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--no-bench")) { bench = 0; continue; }
+        if (!v) { fprintf(stderr, "osmesa_points: %s needs a value\n", a); return 2; }
+        i++;
+        if (!strcmp(a, "--frames")) frames = atoi(v);
+        else if (!strcmp(a, "--views")) views = atoi(v);
+        else if (!strcmp(a, "--size")) { if (sscanf(v, "%dx%d", &w, &h) != 2) return 2; }
+        else if (!strcmp(a, "--ppm")) ppm = v;
+        else if (!strcmp(a, "--mask")) mask = v;
+        else if (!strcmp(a, "--image-yaw")) image_yaw = atol(v);
+        else if (!strcmp(a, "--ply")) ply = v;
+        else if (!strcmp(a, "--ply-rgb")) ply_rgb = v;
+        else { fprintf(stderr, "osmesa_points: unknown option %s\n", a); return 2; }
+    }
+    if (frames < 1 || views < 0 || w < 1 || h < 1 || w > 4096 || h > 4096) return 2;
+
+    const mc_scene *scene = mc_app_model.scene;
+    uint32_t n;
+    bench_cell *cells = bench_decode_cells(scene, &n);
+    if (!cells) return 1;
+    if (ply && write_ply(ply, cells, n, scene->palette, 0)) return 1;
+    if (ply_rgb && write_ply(ply_rgb, cells, n, scene->palette, 1)) return 1;
+    if (!bench && !ppm && !mask && views == 0) return 0;
+
+    OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 16, 0, 0, NULL);
+    if (!ctx) { fprintf(stderr, "osmesa_points: OSMesaCreateContextExt failed\n"); return 1; }
+    uint8_t *buf = calloc((size_t)w * h, 4);
+    if (!buf || !OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, w, h)) {
+        fprintf(stderr, "osmesa_points: OSMesaMakeCurrent failed\n");
+        return 1;
+    }
+    GLint depth_bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    const char *lp = getenv("LP_NUM_THREADS");
+    printf("renderer: %s\n", (const char *)glGetString(GL_RENDERER));
+    printf("version: %s\n", (const char *)glGetString(GL_VERSION));
+    printf("LP_NUM_THREADS: %s\n", lp ? lp : "(unset)");
+    printf("depth bits: %d\n", depth_bits);
+
+    vertex *vb = malloc((size_t)n * sizeof *vb);
+    if (!vb) return 1;
+    for (uint32_t i = 0; i < n; i++) {
+        const uint8_t *c = scene->palette + 3 * cells[i].color;
+        vb[i] = (vertex){(float)cells[i].x, (float)cells[i].y, (float)cells[i].z, c[0], c[1], c[2], 255};
+    }
+    npoints = (GLsizei)n;
+    GLuint vbo;
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)n * sizeof *vb, vb, GL_STATIC_DRAW);
+    free(vb);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(3, GL_FLOAT, sizeof(vertex), (const void *)0);
+    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(vertex), (const void *)offsetof(vertex, r));
+
+    glViewport(0, 0, w, h);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    /* pixels, origin at the screen centre (GL window y up; images are flipped on output);
+     * eye-space z in [-s, s] covers the bounding sphere, nearer (larger z) = smaller depth */
+    double s = (w < h ? w : h);
+    glOrtho(-w / 2.0, w / 2.0, -h / 2.0, h / 2.0, -s, s);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_POINT_SMOOTH);
+    glDisable(GL_DITHER);
+    glPointSize(1.0f);
+    glClearColor(0, 0, 0, 0);
+    glClearDepth(1.0);
+
+    /* warm up: llvmpipe compiles its shaders on the first draws */
+    for (int i = 0; i < 3; i++) draw_frame(0);
+    if (glGetError() != GL_NO_ERROR) { fprintf(stderr, "osmesa_points: GL error\n"); return 1; }
+
+    printf("points: %u\n", n);
+    if (bench) {
+        double *ms = malloc((size_t)frames * sizeof *ms), *cpu = malloc((size_t)frames * sizeof *cpu);
+        if (!ms || !cpu) return 1;
+        for (int i = 0; i < frames; i++) {
+            int32_t yaw = (int32_t)((int64_t)ANGLE_FULL * i / frames);
+            double t0 = now_ms(), c0 = cpu_ms();
+            draw_frame(yaw);
+            ms[i] = now_ms() - t0;
+            cpu[i] = cpu_ms() - c0;
+        }
+        double median = median_of(ms, frames), cpu_median = median_of(cpu, frames);
+        printf("frames: %d size %dx%d\n", frames, w, h);
+        printf("ms per frame (median): %.3f\n", median);
+        printf("cpu ms per frame (median): %.3f\n", cpu_median);
+        printf("Mpoints/s: %.2f\n", n / median / 1e3);
+        free(cpu);
+        free(ms);
+    }
+    if (views > 0) {
+        double sum = 0;
+        for (int i = 0; i < views; i++) {
+            draw_frame((int32_t)((int64_t)ANGLE_FULL * i / views));
+            sum += covered(buf);
+        }
+        printf("pixels covered per view (mean of %d views): %.0f\n", views, sum / views);
+    }
+    if (ppm || mask) {
+        draw_frame((int32_t)image_yaw);
+        printf("pixels covered in the image (yaw %ld units): %ld\n", image_yaw, covered(buf));
+        if (ppm && write_image(ppm, buf, 0)) return 1;
+        if (mask && write_image(mask, buf, 1)) return 1;
+    }
+    glDeleteBuffers(1, &vbo);
+    OSMesaDestroyContext(ctx);
+    free(buf);
+    free(cells);
+    return 0;
+}

@@ -1,0 +1,213 @@
+#!/usr/bin/env bash
+# The test suite once more under AddressSanitizer and UndefinedBehaviorSanitizer:
+#   - tests/unit/suite.sh and tests/render/suite.sh (if present) with SANITIZE=1: each builds its own
+#     programs with the sanitizers into build/san/...
+#   - a sanitized generator build/san/bin/modelc (gen/*.cpp + build/gen/templates.cpp, compiled as the
+#     Makefile does plus the sanitizer flags): tests/gen/errors.sh (if present) with it, and one real
+#     bake of nefertiti, which must give the same files as the normal generator's bake
+#   - a sanitized bunny00 viewer: a few views, --png and --bench 20, with the same pictures as the
+#     normal viewer
+# Any sanitizer report fails the check it happens in (the programs halt on the first one).
+# Passed-through lines are prefixed "san: " so their names stay unique.
+# Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+san=build/san
+mkdir -p "$san/bin" "$san/gen" "$san/viewer"
+SAN_FLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+status=0
+ok() { echo "ok - san: $1"; }
+notok() { echo "not ok - san: $1: $2"; status=1; }
+check() { if [ -z "$2" ]; then ok "$1"; else notok "$1" "$2"; fi; }
+oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+sanitizer_report() {   # the first line of a sanitizer report in file $1, if any
+    grep -m1 -E 'runtime error:|ERROR: AddressSanitizer|ERROR: LeakSanitizer|SUMMARY: (Address|Undefined|Leak)' "$1" | oneline
+}
+mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1"; }
+jobs_max=$(nproc 2>/dev/null || echo 2)
+
+# pass_through LABEL LOG STATUS [PREFIX]: the suite's check lines with "san: PREFIX" added; a failing
+# suite that reported no failure (a crash, a sanitizer abort outside a check) is one more failure
+pass_through() {
+    local label=$1 log=$2 rc=$3 pfx=${4:-}
+    grep -E '^(ok|not ok) ' "$log" | sed -E "s/^(ok|not ok) - /\\1 - san: $pfx/"
+    if [ "$rc" -ne 0 ]; then
+        status=1
+        grep -q '^not ok ' "$log" ||
+            notok "$label" "exited with status $rc without reporting a failure: $(sanitizer_report "$log") (see $log)"
+    fi
+}
+
+# ---- the unit and render suites ----------------------------------------------------------------
+SANITIZE=1 tests/unit/suite.sh >"$san/unit-suite.log" 2>&1
+pass_through "unit suite" "$san/unit-suite.log" $?
+if [ -e tests/render/suite.sh ]; then
+    SANITIZE=1 tests/render/suite.sh >"$san/render-suite.log" 2>&1
+    pass_through "render suite" "$san/render-suite.log" $? "render: "
+fi
+
+# ---- sanitized generator -----------------------------------------------------------------------
+# compiled like the Makefile's $(BUILD)/gen/%.o, objects rebuilt when a source, a header or the flags
+# changed; several at a time, as they are slow
+build_generator() {
+    local cxx cxxflags libs src obj flags_now failed=0 pids=() logs=()
+    cxx=$(mkvar CXX)
+    cxxflags="$(mkvar GEN_CXXFLAGS) $SAN_FLAGS"
+    libs=$(mkvar GEN_LIBS)
+    make -s build/gen/templates.cpp >"$san/gen/templates.log" 2>&1 || {
+        echo "cannot generate build/gen/templates.cpp: $(head -n 3 "$san/gen/templates.log" | oneline)"
+        return 1
+    }
+    flags_now="$cxx $cxxflags"
+    [ "$(cat "$san/gen/flags" 2>/dev/null)" = "$flags_now" ] || rm -f "$san"/gen/*.o
+    echo "$flags_now" >"$san/gen/flags"
+    local newest_hdr
+    newest_hdr=$(ls -t gen/*.hpp gen/*.h 2>/dev/null | head -n 1)
+    for src in gen/*.cpp build/gen/templates.cpp; do
+        obj=$san/gen/$(basename "$src" .cpp).o
+        if [ -f "$obj" ] && [ "$obj" -nt "$src" ] && { [ -z "$newest_hdr" ] || [ "$obj" -nt "$newest_hdr" ]; }; then
+            continue
+        fi
+        while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n; done
+        # shellcheck disable=SC2086
+        ($cxx $cxxflags -c -o "$obj.tmp" "$src" >"$obj.log" 2>&1 && mv "$obj.tmp" "$obj") &
+        pids+=($!)
+        logs+=("$obj.log")
+    done
+    local i
+    for i in "${!pids[@]}"; do
+        if ! wait "${pids[$i]}"; then
+            echo "compiling ${logs[$i]%.o.log}.cpp failed: $(grep -m3 -E 'error' "${logs[$i]}" | oneline)"
+            failed=1
+        fi
+    done
+    [ "$failed" = 0 ] || return 1
+    # shellcheck disable=SC2086
+    $cxx $cxxflags -o "$san/bin/modelc" "$san"/gen/*.o $libs >"$san/gen/link.log" 2>&1 ||
+        { echo "link failed: $(head -n 3 "$san/gen/link.log" | oneline)"; return 1; }
+}
+problems=$(build_generator)
+check "generator builds with $SAN_FLAGS into $san/bin/modelc" "$problems"
+if [ -z "$problems" ]; then
+    # errors.sh takes the generator as $1 (written separately; skipped when absent)
+    if [ -e tests/gen/errors.sh ]; then
+        bash tests/gen/errors.sh "$san/bin/modelc" >"$san/gen-errors.log" 2>&1
+        pass_through "gen errors.sh with the sanitized generator" "$san/gen-errors.log" $? "gen errors: "
+    fi
+    # one real bake: nefertiti, with the catalogue's options
+    model=nefertiti
+    src=build/models/$(basename "$(mkvar "$model.src")")
+    [ -f "$src" ] || make -s "$src" >"$san/models.log" 2>&1
+    rm -rf "$san/bake"
+    mkdir -p "$san/bake"
+    # shellcheck disable=SC2046
+    "$san/bin/modelc" "$src" -o "$san/bake" --name "$model" $(mkvar "$model.opts") $(mkvar BAKE_OPTS) \
+        >"$san/bake.log" 2>&1
+    rc=$?
+    name="sanitized generator bakes $src ($(mkvar "$model.opts")) without a sanitizer report"
+    if [ "$rc" -ne 0 ] || [ -n "$(sanitizer_report "$san/bake.log")" ] || [ ! -f "$san/bake/$model/budget.json" ]; then
+        notok "$name" "status $rc: $( (sanitizer_report "$san/bake.log"; tail -n 2 "$san/bake.log") | oneline)"
+    else
+        ok "$name"
+        # the same files as the normal generator's bake (when that bake is up to date)
+        name="sanitized generator's bake of $model equals build/$model/ byte for byte"
+        newest=$(ls -t gen/* templates/* build/bin/modelc 2>/dev/null | head -n 1)
+        if [ -f "build/$model/budget.json" ] && [ "build/$model/budget.json" -nt "$newest" ]; then
+            diffs=""
+            for f in "$san/bake/$model"/*; do
+                cmp -s "$f" "build/$model/$(basename "$f")" || diffs+="$(basename "$f") "
+            done
+            for f in "build/$model"/*.c "build/$model"/*.h "build/$model"/*.json; do
+                [ -e "$san/bake/$model/$(basename "$f")" ] || diffs+="$(basename "$f") (missing) "
+            done
+            check "$name" "${diffs:+differ: $diffs}"
+        else
+            echo "# skipped: $name (build/$model is older than the generator: run make views)"
+        fi
+    fi
+fi
+
+# ---- sanitized viewer --------------------------------------------------------------------------
+m=bunny00
+v=$san/viewer/$m-view
+name="viewer $m builds with $SAN_FLAGS"
+if [ ! -f "build/$m/budget.json" ]; then
+    notok "$name" "build/$m is not baked (run make views)"
+else
+    cc=$(mkvar CC)
+    rt_cflags=$(mkvar RT_CFLAGS)
+    host_cflags=$(mkvar HOST_CFLAGS)
+    ldflags=$(mkvar VIEW_LDFLAGS)
+    problems=""
+    objs=()
+    for f in runtime/src/*.c "build/$m"/*.c; do
+        o=$san/viewer/$(basename "$f" .c).o
+        # shellcheck disable=SC2086
+        $cc $SAN_FLAGS $rt_cflags -c -o "$o" "$f" >"$o.log" 2>&1 || problems+="$f: $(head -n 2 "$o.log" | oneline); "
+        objs+=("$o")
+    done
+    for f in runtime/front/host/*.c; do
+        o=$san/viewer/host-$(basename "$f" .c).o
+        # shellcheck disable=SC2086
+        $cc $SAN_FLAGS $host_cflags -c -o "$o" "$f" >"$o.log" 2>&1 || problems+="$f: $(head -n 2 "$o.log" | oneline); "
+        objs+=("$o")
+    done
+    if [ -z "$problems" ]; then
+        # shellcheck disable=SC2086
+        $cc $SAN_FLAGS -o "$v" "${objs[@]}" $ldflags >"$san/viewer/link.log" 2>&1 ||
+            problems="link: $(head -n 3 "$san/viewer/link.log" | oneline)"
+    fi
+    check "$name" "$problems"
+    if [ -z "$problems" ]; then
+        normal=build/$m/$m-view
+        views=(
+            ""
+            "--yaw 30 --pitch 20 --roll 10"
+            "--zoom 8"
+            "--zoom 8 --yaw 123 --pitch -40"
+            "--zoom 0.015625"
+            "--perspective"
+            "--perspective --zoom 8 --yaw 200 --pitch 15"
+            "--perspective --zoom 64"
+            "--size 640x480 --yaw -75"
+            "--size 1x1"
+            "--size 7x480 --zoom 3"
+            "--depth 1"
+            "--depth 5 --no-finish --roll 33"
+        )
+        for args in "${views[@]}"; do
+            n=$(echo "render ${args:-default}" | tr -c 'a-zA-Z0-9.\n-' '_')
+            name="viewer $m --ppm ${args:-(default view)}: no sanitizer report, same picture as the normal viewer"
+            # shellcheck disable=SC2086
+            timeout 300 "$v" $args --ppm "$san/viewer/$n.ppm" >"$san/viewer/$n.log" 2>&1
+            rc=$?
+            rep=$(sanitizer_report "$san/viewer/$n.log")
+            if [ "$rc" -ne 0 ] || [ -n "$rep" ]; then
+                notok "$name" "status $rc: ${rep:-$(tail -n 2 "$san/viewer/$n.log" | oneline)}"
+                continue
+            fi
+            # shellcheck disable=SC2086
+            if [ -x "$normal" ] && "$normal" $args --ppm "$san/viewer/$n.normal.ppm" >/dev/null 2>&1; then
+                cmp -s "$san/viewer/$n.ppm" "$san/viewer/$n.normal.ppm" && problems="" ||
+                    problems="the picture differs from $normal's"
+            else
+                problems="$normal could not render the same view"
+            fi
+            check "$name" "$problems"
+        done
+        for args in "--png $san/viewer/out.png --yaw 45" "--bench 20" "--bench 20 --perspective --zoom 4"; do
+            name="viewer $m $args: no sanitizer report"
+            n=$(echo "${args%% *}-$RANDOM" | tr -c 'a-zA-Z0-9\n-' '_')
+            # shellcheck disable=SC2086
+            timeout 600 "$v" $args >"$san/viewer/$n.log" 2>&1
+            rc=$?
+            rep=$(sanitizer_report "$san/viewer/$n.log")
+            if [ "$rc" -ne 0 ] || [ -n "$rep" ]; then notok "$name" "status $rc: ${rep:-$(tail -n 2 "$san/viewer/$n.log" | oneline)}"
+            else ok "$name"; fi
+        done
+    fi
+fi
+
+exit $status

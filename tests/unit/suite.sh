@@ -1,0 +1,229 @@
+#!/usr/bin/env bash
+# Unit tests of the runtime: fixed point, sine table and rotation, view clamping, mc_render's
+# contract on hand-made and random scenes, hole filling (cmocka, tests/unit/test_*.c), and the
+# freestanding build of runtime/src under gcc and clang.
+#
+# Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
+# SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit).
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+
+out=build/tests/unit
+flags="-O2 -g"
+if [ "${SANITIZE:-0}" = 1 ]; then
+    out=build/san/unit
+    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:halt_on_error=1:detect_leaks=1}"
+    export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
+fi
+mkdir -p "$out"
+CC_UNIT=${CC_UNIT:-gcc}
+status=0
+ok() { echo "ok - $1"; }
+notok() { echo "not ok - $1: $2"; status=1; }
+oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+
+# ---- cmocka programs ---------------------------------------------------------------------------
+# The runtime is compiled into each test program. test_view's copy reports every plotted point to
+# the test (MC_PLOT_HOOK), which checks it lies on the target.
+hook='-DMC_PLOT_HOOK(fx,fy,c)=do { extern void mc_test_plot_hook(int32_t, int32_t, const uint8_t *); mc_test_plot_hook((fx), (fy), (c)); } while (0)'
+
+# run_cmocka PREFIX PROGRAM: runs a cmocka program in TAP mode, rewriting "ok N - test" into
+# "ok - PREFIX test" and "not ok N - test" into "not ok - PREFIX test: <the failure message>". A
+# program that stops early (a sanitizer report, a crash) is one more failure.
+run_cmocka() {
+    local pfx=$1 prog=$2 log="$2.log" rc plan n
+    CMOCKA_MESSAGE_OUTPUT=TAP "$prog" >"$log" 2>&1
+    rc=$?
+    awk -v pfx="$pfx" -v countfile="$log.count" '
+        function flush() {
+            if (pending != "") print pending (reason != "" ? ": " reason : "")
+            pending = ""; reason = ""; collecting = 0
+        }
+        /^1\.\.[0-9]+$/ { plan = substr($0, 4); next }
+        /^ok [0-9]+ - / { flush(); sub(/^ok [0-9]+ - /, ""); print "ok - " pfx $0; n++; next }
+        /^not ok [0-9]+ - / {
+            flush(); sub(/^not ok [0-9]+ - /, ""); pending = "not ok - " pfx $0; reason = err; err = ""
+            collecting = 1; n++; next
+        }
+        /^ERROR: / { m = $0; sub(/^ERROR: /, "", m); if (err == "") err = m; next }
+        /^# (ok|not ok) - / { flush(); next }                  # cmocka group summary
+        /^# info/ { flush(); print; next }
+        /^# / {
+            if (collecting) { m = $0; sub(/^# /, "", m); reason = reason (reason != "" ? "; " : "") m }
+            else print
+            next
+        }
+        { flush(); print "# " $0 }
+        END { flush(); print n + 0, plan + 0 > countfile }
+    ' "$log"
+    read -r n plan <"$log.count"
+    [ "$rc" -ne 0 ] && status=1    # cmocka exits with the number of failed tests
+    if [ "$rc" -ne 0 ] && { [ "$n" -lt "$plan" ] || [ "$plan" -eq 0 ]; }; then
+        local why
+        why=$(grep -m1 -E 'runtime error|ERROR: AddressSanitizer|ERROR: LeakSanitizer|Segmentation|Aborted' "$log" |
+            oneline)
+        notok "${pfx}program" "exited with status $rc after $n of $plan tests${why:+: $why} (see $log)"
+    fi
+}
+
+build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
+    local pfx=$1 name=$2
+    shift 2
+    local prog="$out/$name"
+    # shellcheck disable=SC2086
+    if ! $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "$@" -o "$prog" \
+        "tests/unit/${name%%-*}.c" runtime/src/*.c -lcmocka -lm >"$prog.build.log" 2>&1; then
+        notok "${pfx}build" "$(head -n 5 "$prog.build.log" | oneline)"
+        return
+    fi
+    run_cmocka "$pfx" "$prog"
+}
+
+# fixed point and views at the default and both extreme MC_FRAC_BITS
+for f in 15 8 24; do
+    build_and_run "unit: fixed F=$f: " "test_fixed-f$f" -DMC_FRAC_BITS=$f
+done
+build_and_run "unit: trig: " test_trig
+for f in 15 8 24; do
+    build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f "$hook"
+done
+
+# ---- freestanding builds -----------------------------------------------------------------------
+# (not repeated under SANITIZE=1: they check the compilers' output, not run anything)
+if [ "${SANITIZE:-0}" != 1 ]; then
+    fs=$out/freestanding
+    rm -rf "$fs"
+    mkdir -p "$fs"
+    FS_FLAGS="-std=c99 -ffreestanding -nostdlib -Wall -Wextra -Werror -pedantic -Iruntime/include"
+    # symbols a freestanding object may still need: the compilers' own helper libraries (libgcc,
+    # compiler-rt: 64-bit division on 32-bit targets, ARM EABI helpers) and the GOT of PIC code.
+    # Not the memory functions (memcpy, memset, __aeabi_memcpy...): those come from a libc.
+    helpers='^(__(u?(div|mod|mul)[sdt]i3|u?divmod[sdt]i4|(ash[lr]|lshr)[sdt]i3|(popcount|ctz|clz|parity|ffs|bswap)[sdt]i2|cmp[dt]i2|ucmp[dt]i2|neg[dt]i2|aeabi_(l|ui|i|ul)(div|divmod|mul|asr|lsl|lsr|cmp|ucmp)|aeabi_(idiv|uidiv|idivmod|uidivmod|ldivmod|uldivmod|lmul|llsl|llsr|lasr|lcmp|ulcmp))|_GLOBAL_OFFSET_TABLE_)$'
+
+    # fs_build TAG "CC FLAGS...": compiles every runtime/src/*.c at several optimisation levels into
+    # $fs/TAG/O*/, with only the compiler's own headers on the include path (-nostdinc), and prints
+    # the problems, if any
+    fs_build() {
+        local tag=$1 cc=$2 inc o f dir
+        inc=$($cc -print-file-name=include 2>/dev/null)
+        case $cc in clang*) inc="$(clang -print-resource-dir)/include" ;; esac
+        for o in -O0 -O1 -O2 -O3 -Os; do
+            dir="$fs/$tag/O${o#-O}"
+            mkdir -p "$dir"
+            for f in runtime/src/*.c; do
+                # shellcheck disable=SC2086
+                if ! $cc $o $FS_FLAGS -nostdinc -isystem "$inc" -c -o "$dir/$(basename "$f" .c).o" "$f" \
+                    >"$dir/$(basename "$f" .c).log" 2>&1; then
+                    echo "$f at $o: $(head -n 3 "$dir/$(basename "$f" .c).log" | oneline)"
+                fi
+            done
+        done
+    }
+    # fs_undefined TAG LD NM: links each optimisation level's objects into one relocatable object
+    # (ld -r) and prints the undefined symbols that are not compiler helpers
+    fs_undefined() {
+        local tag=$1 ld=$2 nm=$3 dir bad
+        for dir in "$fs/$tag"/O*; do
+            if ! $ld -r -o "$dir/runtime.o" "$dir"/*.o 2>"$dir/ld.log"; then
+                echo "ld -r failed at -O${dir##*/O}: $(head -n 2 "$dir/ld.log" | oneline)"
+                continue
+            fi
+            bad=$($nm -u "$dir/runtime.o" | awk '{print $NF}' | grep -Ev "$helpers" | tr '\n' ' ')
+            [ -n "$bad" ] && echo "-O${dir##*/O} needs: $bad"
+            $nm -u "$dir/runtime.o" | awk '{print $NF}' >"$dir/undefined.txt"
+        done
+    }
+
+    targets=("gcc|gcc|ld|nm" "clang|clang|ld|nm")
+    # two 32-bit targets where 64-bit arithmetic needs helpers: x86 and a Cortex-M0 (no divide, no
+    # long multiply), when the compilers support them
+    if echo 'int x;' | gcc -m32 -x c -c -o /dev/null - 2>/dev/null; then targets+=("gcc-m32|gcc -m32|ld -m elf_i386|nm"); fi
+    if echo 'int x;' | clang --target=thumbv6m-none-eabi -ffreestanding -x c -c -o /dev/null - 2>/dev/null &&
+        command -v ld.lld >/dev/null; then
+        targets+=("clang-cortex-m0|clang --target=thumbv6m-none-eabi -mcpu=cortex-m0|ld.lld|llvm-nm")
+    fi
+    for t in "${targets[@]}"; do
+        IFS='|' read -r tag cc ld nm <<<"$t"
+        problems=$(fs_build "$tag" "$cc")
+        if [ -z "$problems" ]; then
+            ok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at -O0..-O3,-Os"
+        else
+            notok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at -O0..-O3,-Os" \
+                "$(echo "$problems" | oneline)"
+            continue
+        fi
+        problems=$(fs_undefined "$tag" "$ld" "$nm")
+        if [ -z "$problems" ]; then
+            ok "unit: freestanding: $tag runtime object (ld -r) has no undefined symbols but compiler helpers"
+        else
+            notok "unit: freestanding: $tag runtime object (ld -r) has no undefined symbols but compiler helpers" \
+                "$(echo "$problems" | oneline)"
+        fi
+    done
+
+    # no floating point: with -mgeneral-regs-only (x86-64) gcc refuses any floating-point operation,
+    # clang turns it into soft-float library calls (__muldf3...), which no compiler helper above allows
+    for cc in gcc clang; do
+        problems=""
+        mkdir -p "$fs/nofloat-$cc"
+        for f in runtime/src/*.c; do
+            o=$fs/nofloat-$cc/$(basename "$f" .c).o
+            # shellcheck disable=SC2086
+            if ! $cc -O2 $FS_FLAGS -mgeneral-regs-only -c -o "$o" "$f" >"$o.log" 2>&1; then
+                problems+="$f: $(head -n 2 "$o.log" | oneline) "
+            fi
+        done
+        if [ -z "$problems" ]; then
+            if ld -r -o "$fs/nofloat-$cc.o" "$fs/nofloat-$cc"/*.o 2>"$fs/nofloat-$cc.log"; then
+                bad=$(nm -u "$fs/nofloat-$cc.o" | awk '{print $NF}' | grep -Ev "$helpers" | tr '\n' ' ')
+                [ -n "$bad" ] && problems+="the runtime needs: $bad"
+            else
+                problems+="ld -r failed: $(head -n 2 "$fs/nofloat-$cc.log" | oneline)"
+            fi
+        fi
+        if [ -z "$problems" ]; then ok "unit: freestanding: $cc builds runtime/src with -mgeneral-regs-only (no floating point)"
+        else notok "unit: freestanding: $cc builds runtime/src with -mgeneral-regs-only (no floating point)" "$problems"; fi
+    done
+
+    # the runtime's sources and headers, comments removed: no float/double types, no float literals
+    problems=""
+    for f in runtime/src/*.c runtime/src/*.h runtime/include/modelc/*.h; do
+        hits=$(gcc -fpreprocessed -dD -E -P "$f" 2>/dev/null | sed 's/"\([^"\\]\|\\.\)*"/""/g' |
+            grep -nP '\b(float|double|_Complex|_Imaginary|__float128|_Float\d+x?)\b|(?<![\w.])(\d+\.\d*|\.\d+|\d+[eE][+-]?\d+)(?![\w.])' |
+            head -n 3 | oneline)
+        [ -n "$hits" ] && problems+="$f: $hits "
+    done
+    if [ -z "$problems" ]; then ok "unit: freestanding: no float, double or floating literal in runtime/src and runtime/include"
+    else notok "unit: freestanding: no float, double or floating literal in runtime/src and runtime/include" "$problems"; fi
+
+    # includes: the standard headers every freestanding C99 compiler provides, the runtime's own
+    # headers, and the user's MC_CONFIG_FILE
+    check_includes() {
+        local f line name problems=""
+        for f in "$@"; do
+            while IFS= read -r line; do
+                name=$(echo "$line" | sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*//; s/[[:space:]]*(\/[*/].*)?$//')
+                case $name in
+                    '<stdint.h>' | '<stddef.h>' | '<stdbool.h>' | '<limits.h>' | MC_CONFIG_FILE) ;;
+                    \"*\")
+                        name=${name#\"}
+                        name=${name%\"}
+                        [ -f "runtime/include/$name" ] || [ -f "runtime/include/modelc/$name" ] || [ -f "runtime/src/$name" ] ||
+                            problems+="$f: $name is not a runtime header; "
+                        ;;
+                    *) problems+="$f: $name; " ;;
+                esac
+            done < <(grep -E '^[[:space:]]*#[[:space:]]*include' "$f")
+        done
+        echo "$problems"
+    }
+    problems=$(check_includes runtime/include/modelc/*.h runtime/src/*.h)
+    if [ -z "$problems" ]; then ok "unit: freestanding: runtime headers include only <stdint.h> <stddef.h> <stdbool.h> <limits.h> and runtime headers"
+    else notok "unit: freestanding: runtime headers include only <stdint.h> <stddef.h> <stdbool.h> <limits.h> and runtime headers" "$problems"; fi
+    problems=$(check_includes runtime/src/*.c)
+    if [ -z "$problems" ]; then ok "unit: freestanding: runtime sources include only <stdint.h> <stddef.h> <stdbool.h> <limits.h> and runtime headers"
+    else notok "unit: freestanding: runtime sources include only <stdint.h> <stddef.h> <stdbool.h> <limits.h> and runtime headers" "$problems"; fi
+fi
+
+exit $status
