@@ -200,15 +200,18 @@ static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const ui
 #if MC_LEAF_SWITCH
 /* One case per mask value: the compiler folds every test of LEAVES(n) and every colour rank, so a
  * node costs one indirect jump and each present leaf only its own work (see config.h). */
-#define CASE1(n) case n: LEAVES(n) break;
+#define CASE1(n) case n: LEAVES(n) col += POPCOUNT8(n); break;
 #define CASE4(n) CASE1(n) CASE1(n + 1) CASE1(n + 2) CASE1(n + 3)
 #define CASE16(n) CASE4(n) CASE4(n + 4) CASE4(n + 8) CASE4(n + 12)
 #define CASE64(n) CASE16(n) CASE16(n + 16) CASE16(n + 32) CASE16(n + 48)
+#define POPCOUNT8(n) (((n) & 1) + ((n) >> 1 & 1) + ((n) >> 2 & 1) + ((n) >> 3 & 1) + \
+                      ((n) >> 4 & 1) + ((n) >> 5 & 1) + ((n) >> 6 & 1) + ((n) >> 7 & 1))
+/* ... and moves col past the node's colours by a constant */
 #define DRAW_LEAVES(cm)                                                                    \
     switch (cm) { CASE64(0) CASE64(64) CASE64(128) CASE64(192) }
 #else
 /* The paper's unrolled 8-child loop: an absent child costs a test and a branch. */
-#define DRAW_LEAVES(cm) LEAVES(cm)
+#define DRAW_LEAVES(cm) LEAVES(cm) col += popcount8[cm];
 #endif
 
 /* Nodes at level d-2 wholly on screen, orthographic: the children of one node at level d-3 whose
@@ -242,7 +245,6 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
             const int32_t pz = zz2 + L[1].z[k2];
             const unsigned cm = *masks1++;
             DRAW_LEAVES(cm)
-            col += popcount8[cm];
         }
         points += (uint32_t)(col - first);   /* every leaf here is on screen */
         c->color.p = col;
