@@ -24,7 +24,8 @@ GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
 # Debian packages: the build, the tests and the benchmarks
 DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
-  libosmesa6-dev draco python3 perl strace bsdutils coreutils
+  libosmesa6-dev draco python3 perl strace bsdutils coreutils \
+  gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: help deps gen models views demo view readme-images test bench clean
@@ -135,3 +136,87 @@ bench: $(MODELC) models
 
 clean:
 	rm -rf $(BUILD)
+
+# ---- firmware (issue 4): Cortex-M images run under QEMU ---------------------------------------------
+#   make firmware MODEL=m BOARD=b      bake catalogue model m for board b, cross-compile, check the ELF
+#   make firmware-run MODEL=m BOARD=b  run it under qemu-system-arm; compare its checksums with the host's
+#   make bench-firmware                instructions per frame and per point under QEMU (RESULTS.md section)
+# Boards: runtime/front/fw/boards/B.mk (CPU flags, QEMU machine, default bake depth and screen) and
+# B.ld (flash/RAM map for picolibc.ld). FW_DEPTH= and FW_SCREEN= override the board's bake.
+FW_BOARDS := $(patsubst runtime/front/fw/boards/%.mk,%,$(wildcard runtime/front/fw/boards/*.mk))
+include $(wildcard runtime/front/fw/boards/*.mk)
+BOARD ?= lm3s6965evb
+FW_MODEL := $(or $(MODEL),$(DEFAULT_MODEL))
+FW_DEPTH ?= $($(BOARD).depth)
+FW_SCREEN ?= $($(BOARD).screen)
+FW_DIR := $(BUILD)/fw/$(BOARD)
+FW_BAKE := $(FW_DIR)/$(FW_MODEL)
+FW_ELF := $(FW_DIR)/$(FW_MODEL).elf
+FW_HOSTVIEW := $(FW_BAKE)/$(FW_MODEL)-view
+FW_QEMU_TIMEOUT ?= 600
+ARM_CC := arm-none-eabi-gcc
+FW_SRC := $(wildcard runtime/front/fw/*.c)
+FW_HDR := $(wildcard runtime/front/fw/*.h)
+# the catalogue's bake options without its --depth, then the board's depth and screen
+FW_BAKE_OPTS = $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) --screen $(FW_SCREEN)
+# -fstack-usage and -fcallgraph-info give runtime/front/fw/stack_bound.py the frames and the call graph;
+# integer-only printf keeps picolibc's float formatting out of flash
+FW_CFLAGS := $($(BOARD).cpu) -O2 -g -ffunction-sections -fdata-sections -fstack-usage -fcallgraph-info=su \
+  --specs=picolibc.specs -DPICOLIBC_INTEGER_PRINTF_SCANF
+FW_LDFLAGS := $($(BOARD).cpu) --specs=picolibc.specs --oslib=semihost --crt0=hosted -DPICOLIBC_INTEGER_PRINTF_SCANF \
+  -Truntime/front/fw/boards/$(BOARD).ld -Wl,--print-memory-usage -Wl,--gc-sections \
+  -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free -Wl,-Map=$(FW_DIR)/$(FW_MODEL).map
+FW_QEMU = timeout $(FW_QEMU_TIMEOUT) qemu-system-arm -M $($(BOARD).qemu) -nographic -monitor none \
+  -semihosting-config enable=on,target=native,arg=$(FW_MODEL),arg=$(FW_DIR)/$(FW_MODEL).ppm -kernel $(FW_ELF)
+
+.PHONY: firmware firmware-run firmware-host bench-firmware fw-args FORCE
+fw_usage = { echo "usage: make firmware|firmware-run MODEL=<catalogue model: $(CATALOGUE)> BOARD=<$(FW_BOARDS)>" >&2; exit 2; }
+fw-args:
+	@test -n "$(filter $(BOARD),$(FW_BOARDS))" -a -n "$(filter $(FW_MODEL),$(CATALOGUE))" || $(fw_usage)
+
+# the bake is redone when its options change (e.g. FW_DEPTH=6)
+$(FW_DIR)/$(FW_MODEL).opts: FORCE
+	@mkdir -p $(@D)
+	@echo '$(FW_BAKE_OPTS)' | cmp -s - $@ || echo '$(FW_BAKE_OPTS)' > $@
+$(FW_BAKE)/budget.json: $(BUILD)/models/$(notdir $($(FW_MODEL).src)) $(MODELC) $(FW_DIR)/$(FW_MODEL).opts
+	rm -rf $(FW_BAKE)
+	$(MODELC) $< -o $(FW_DIR) --name $(FW_MODEL) -q $(FW_BAKE_OPTS)
+
+# runtime (freestanding), firmware front end and the bake, compiled for the board, then linked
+$(FW_ELF): $(FW_BAKE)/budget.json $(RT_SRC) $(RT_HDR) $(FW_SRC) $(FW_HDR) runtime/front/host/image.h \
+  runtime/front/fw/boards/$(BOARD).ld runtime/front/fw/boards/$(BOARD).mk Makefile
+	@rm -rf $(FW_DIR)/obj && mkdir -p $(FW_DIR)/obj
+	@set -e; o=$(FW_DIR)/obj; \
+	for f in $(RT_SRC); do echo "  ARM CC $$f"; \
+	  $(ARM_CC) $(FW_CFLAGS) $(RT_CFLAGS) -c -o $$o/rt_$$(basename $$f .c).o $$f; done; \
+	for f in $(FW_SRC); do echo "  ARM CC $$f"; \
+	  $(ARM_CC) $(FW_CFLAGS) $(HOST_CFLAGS) -c -o $$o/fw_$$(basename $$f .c).o $$f; done; \
+	for f in $(FW_BAKE)/*.c; do echo "  ARM CC $$f"; \
+	  $(ARM_CC) $(FW_CFLAGS) $(RT_CFLAGS) -c -o $$o/model_$$(basename $$f .c).o $$f; done
+	$(ARM_CC) -o $@ $(FW_DIR)/obj/*.o $(FW_LDFLAGS)
+
+# the host viewer linked with the same bake: --checksums prints what the firmware must print
+$(FW_HOSTVIEW): $(FW_BAKE)/budget.json $(RT_OBJ) $(HOST_OBJ)
+	$(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $@ $(FW_BAKE)/*.c $(RT_OBJ) $(HOST_OBJ) $(VIEW_LDFLAGS)
+$(BUILD)/host/viewer.o: runtime/front/fw/frames.h runtime/front/fw/views.h
+
+# after linking: no heap, ELF against budget.json, stack bound against the board's RAM
+firmware: fw-args $(FW_ELF)
+	python3 runtime/front/fw/check_elf.py --elf $(FW_ELF) --budget $(FW_BAKE)/budget.json \
+	  --ld runtime/front/fw/boards/$(BOARD).ld --obj $(FW_DIR)/obj --depth $(FW_DEPTH)
+
+firmware-host: fw-args $(FW_HOSTVIEW)
+
+firmware-run: firmware $(FW_HOSTVIEW)
+	@rm -f $(FW_DIR)/$(FW_MODEL).ppm
+	$(FW_QEMU) < /dev/null 2>&1 | tee $(FW_DIR)/$(FW_MODEL).run.txt
+	@$(FW_HOSTVIEW) --checksums --ppm $(FW_DIR)/$(FW_MODEL).host.ppm > $(FW_DIR)/$(FW_MODEL).host.txt
+	@grep '^frame ' $(FW_DIR)/$(FW_MODEL).run.txt > $(FW_DIR)/$(FW_MODEL).fw-frames.txt || true
+	@if cmp -s $(FW_DIR)/$(FW_MODEL).fw-frames.txt $(FW_DIR)/$(FW_MODEL).host.txt && \
+	    cmp -s $(FW_DIR)/$(FW_MODEL).ppm $(FW_DIR)/$(FW_MODEL).host.ppm; then \
+	  echo "firmware-run: all $$(wc -l < $(FW_DIR)/$(FW_MODEL).host.txt) frame checksums and the written frame equal the host viewer's"; \
+	else echo "firmware-run: firmware and host differ:" >&2; \
+	  diff $(FW_DIR)/$(FW_MODEL).fw-frames.txt $(FW_DIR)/$(FW_MODEL).host.txt >&2; exit 1; fi
+
+bench-firmware:
+	@tests/fw/bench.sh

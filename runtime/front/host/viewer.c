@@ -3,6 +3,7 @@
  *   NAME-view [--png FILE | --ppm FILE] [--yaw D --pitch D --roll D --zoom Z --depth N --size WxH
  *              --perspective --no-finish]
  *   NAME-view --bench N [...]
+ *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
  *   NAME-view            interactive, when stdout is a terminal
  *
  * Reads no files: the model is compiled in. Host-only code (stdio, clocks, terminal) lives here,
@@ -22,6 +23,7 @@
 
 #include "image.h"
 #include "term.h"
+#include "../fw/frames.h"   /* the firmware's view list and frame checksum: --checksums */
 
 static uint8_t rgb_buffer[4096 * 4096 * 3];
 
@@ -32,6 +34,10 @@ static void usage(FILE *f)
             "  --png FILE      render one frame to a PNG file\n"
             "  --ppm FILE      render one frame to a binary PPM file\n"
             "  --bench N       render N frames of one full turn and print ms per frame (median)\n"
+            "  --checksums     render the firmware's fixed view list (runtime/front/fw/views.h) at the\n"
+            "                  baked screen size and the model's depth (unless --size, --depth) and\n"
+            "                  print the firmware's checksum line per frame; --ppm/--png then write\n"
+            "                  the frame the firmware writes out\n"
             "  --yaw DEG       rotation about the vertical axis (default 0)\n"
             "  --pitch DEG     rotation about the horizontal axis (default 0)\n"
             "  --roll DEG      rotation about the view axis (default 0)\n"
@@ -105,13 +111,30 @@ static int bench(const mc_target *t, mc_view v, unsigned depth, int finish, int 
     return 0;
 }
 
+/* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c). */
+static int checksums(const mc_target *t, unsigned depth, const char *png, const char *ppm)
+{
+    int status = 0;
+    for (unsigned i = 0; i < MC_FW_VIEW_COUNT; i++) {
+        mc_fw_result r = mc_fw_frame(mc_app_model.scene, i, depth, t);
+        printf(MC_FW_FRAME_LINE, MC_FW_FRAME_ARGS(i, depth, t, r));
+        if (r.rc != MC_OK) status = 1;
+        if (i == MC_FW_PPM_VIEW && (png || ppm)) {
+            mc_host_to_rgb(t, mc_app_model.scene->palette, rgb_buffer);
+            if (png && mc_host_write_png(png, rgb_buffer, t->width, t->height)) return die("cannot write PNG", png);
+            if (ppm && mc_host_write_ppm(ppm, rgb_buffer, t->width, t->height)) return die(strerror(errno), ppm);
+        }
+    }
+    return status;
+}
+
 int main(int argc, char **argv)
 {
     const mc_scene *scene = mc_app_model.scene;
     const char *png = NULL, *ppm = NULL;
     double yaw = 0, pitch = 0, roll = 0, zoom = 1, dv;
     unsigned depth = scene->depth, w = 320, h = 240;
-    int finish = 1, perspective = 0;
+    int finish = 1, perspective = 0, check = 0, sized = 0;
     long frames = 0;
     static const struct option opts[] = {
         {"png", required_argument, 0, 'P'}, {"ppm", required_argument, 0, 'M'},
@@ -119,7 +142,8 @@ int main(int argc, char **argv)
         {"pitch", required_argument, 0, 'p'}, {"roll", required_argument, 0, 'r'},
         {"zoom", required_argument, 0, 'z'}, {"depth", required_argument, 0, 'd'},
         {"size", required_argument, 0, 's'}, {"no-finish", no_argument, 0, 'n'},
-        {"perspective", no_argument, 0, 'e'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+        {"perspective", no_argument, 0, 'e'}, {"checksums", no_argument, 0, 'c'},
+        {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -143,7 +167,9 @@ int main(int argc, char **argv)
             if (sscanf(optarg, "%ux%u", &w, &h) != 2 || w < 1 || h < 1 || w > mc_app_model.max_width ||
                 h > mc_app_model.max_height)
                 return die("--size expects WxH within the baked screen size", optarg);
+            sized = 1;
             break;
+        case 'c': check = 1; break;
         case 'n': finish = 0; break;
         case 'e': perspective = 1; break;
         case 'h': usage(stdout); return 0;
@@ -152,7 +178,15 @@ int main(int argc, char **argv)
     }
     if (optind < argc) return die("unexpected argument (see --help)", argv[optind]);
 
+    if (check && !sized) {
+        w = mc_app_model.max_width;
+        h = mc_app_model.max_height;
+    }
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
+    if (check) {
+        if (frames) return die("--checksums and --bench exclude each other", NULL);
+        return checksums(&t, depth, png, ppm);
+    }
     mc_view v = mc_view_default();
     v.yaw = mc_host_angle(yaw);
     v.pitch = mc_host_angle(pitch);

@@ -1,0 +1,6 @@
+# mps2-an386: Cortex-M4F, 4 MiB code memory, 4 MiB RAM. The default bake: depth 8 at 320x240, the
+# host benchmark's settings, so instructions per point compare directly.
+mps2-an386.cpu := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16
+mps2-an386.qemu := mps2-an386
+mps2-an386.depth := 8
+mps2-an386.screen := 320x240

@@ -1,0 +1,142 @@
+#!/usr/bin/env python3
+"""Checks a linked firmware ELF against its bake's budget.json and its board; run by `make firmware`.
+
+Promise: prints one line per check, "ok - fw: ..." or "not ok - fw: ...: why", and exits 1 if any
+failed. The checks:
+  1. no heap: arm-none-eabi-nm lists no allocator (malloc, calloc, realloc, free, their _r variants,
+     _sbrk/sbrk) and no __wrap_/__real_ symbol. The link used --wrap=malloc,calloc,realloc,free with
+     no wrapper definitions, so a heap call would not even link; this confirms nothing else pulled one.
+  2. model data exact: every array budget.json lists under flash.arrays is a symbol of exactly that
+     size, and the frame buffers (ram.color_buffer, ram.depth_buffer) are symbols of exactly those sizes.
+  3. ELF against budget totals: flash used (text + data, what arm-none-eabi-size counts) minus
+     budget.json's flash.total, and RAM used (data + bss, without the stack reservation) minus its
+     ram.total, each within a stated margin (see MARGINS below for what the margin covers and why).
+  4. fits the board: flash and RAM used within the board's sizes (from its .ld file); the linker
+     already refuses an image that does not fit, so this only restates it with numbers.
+  5. stack: the static bound from stack_bound.py (-fstack-usage over the call graph) fits the stack
+     reservation in the board's .ld (__stack_size) and the RAM left between .bss and the top of RAM.
+Usage: check_elf.py --elf ELF --budget budget.json --ld BOARD.ld --obj OBJDIR --depth D
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import stack_bound  # noqa: E402
+
+# What the ELF holds besides the model data that budget.json counts (flash.total: masks, colours,
+# palette; ram.total: the colour and depth buffers). Margins are absolute bytes, so a bake whose
+# budget.json starts counting the runtime's code itself (and so lands closer) still passes.
+MARGINS = {
+    # the runtime's code, about 66 KB on Thumb-2: render.c's MC_LEAF_SWITCH=1 leaf switch alone is
+    # ~58 KB (one case per mask value, config.h) and the quarter-wave sine table 4 KB; picolibc's
+    # integer printf, crt0 and the semihosting calls ~4 KB; libgcc's 64-bit division ~1 KB; the model's
+    # descriptors (chunk lists, levels, scene: 8-16 bytes each) and the vector table < 1 KB.
+    # 96 KiB leaves room for a larger switch from another compiler version, not for a second copy.
+    "flash": 96 * 1024,
+    # picolibc's static data (stdout FILE, errno, TLS block) and the front end's command-line buffer
+    # (160 bytes): under 1 KiB. The stack is checked separately (check 5).
+    "ram": 1024,
+}
+
+HEAP = re.compile(r"^(malloc|calloc|realloc|free|reallocarray|aligned_alloc|memalign|posix_memalign|valloc|"
+                  r"pvalloc|_sbrk|sbrk|_malloc_r|_calloc_r|_realloc_r|_free_r|__malloc_.*|__wrap_.*|__real_.*)$")
+
+
+def run(*cmd):
+    return subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+
+
+def ld_symbols(path):
+    vals = {}
+    for m in re.finditer(r"^\s*(__\w+)\s*=\s*(0x[0-9a-fA-F]+|\d+)\s*([KM]?)\s*;", open(path).read(), re.M):
+        v = int(m.group(2), 0) * {"": 1, "K": 1024, "M": 1024 * 1024}[m.group(3)]
+        vals[m.group(1)] = v
+    return vals
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--elf", required=True)
+    ap.add_argument("--budget", required=True)
+    ap.add_argument("--ld", required=True)
+    ap.add_argument("--obj", required=True)
+    ap.add_argument("--depth", type=int, required=True)
+    a = ap.parse_args()
+    fails = 0
+
+    def check(name, problem):
+        nonlocal fails
+        if problem:
+            print(f"not ok - fw: {name}: {problem}")
+            fails += 1
+        else:
+            print(f"ok - fw: {name}")
+
+    budget = json.load(open(a.budget))
+    board = ld_symbols(a.ld)
+    elfname = os.path.basename(a.elf)
+
+    # 1. no heap
+    syms = {}
+    for line in run("arm-none-eabi-nm", "-S", a.elf).splitlines():
+        f = line.split()
+        if len(f) == 4:
+            syms[f[3]] = int(f[1], 16)
+        elif len(f) >= 2:
+            syms.setdefault(f[-1], None)
+    heap = sorted(s for s in syms if HEAP.match(s))
+    check(f"{elfname}: no heap symbols in arm-none-eabi-nm (malloc, free, _sbrk, _malloc_r, __wrap_...)",
+          "found " + " ".join(heap) if heap else "")
+
+    # 2. model data and buffers exact
+    arrays = budget.get("flash", {}).get("arrays", {})
+    bad = [f"{k}: ELF {syms.get(k)} vs budget {v}" for k, v in sorted(arrays.items()) if syms.get(k) != v]
+    check(f"{elfname}: {len(arrays)} model arrays have exactly budget.json's sizes", "; ".join(bad[:5]))
+    model = budget.get("model", "")
+    ram = budget.get("ram", {})
+    bufs = {"color_buffer": f"mc_{model}_color", "depth_buffer": f"mc_{model}_depth"}
+    bad = [f"{sym}: ELF {syms.get(sym)} vs budget {ram.get(k)}" for k, sym in bufs.items()
+           if k in ram and syms.get(sym) != ram[k]]
+    check(f"{elfname}: frame buffers have exactly budget.json's sizes", "; ".join(bad))
+
+    # 3. totals within the margins
+    text, data, bss = (int(x) for x in run("arm-none-eabi-size", "-B", a.elf).splitlines()[1].split()[:3])
+    stack_reserved = board.get("__stack_size", 0)
+    flash_used, ram_used = text + data, data + bss - stack_reserved
+    bf, br = budget["flash"]["total"], budget["ram"]["total"]
+    d = flash_used - bf
+    print(f"# {elfname}: flash {flash_used} bytes (text {text} + data {data}), budget.json flash.total {bf}: "
+          f"{d:+d} (margin {MARGINS['flash']})")
+    check(f"{elfname}: flash used within {MARGINS['flash']} bytes of budget.json's flash.total",
+          "" if abs(d) <= MARGINS["flash"] else f"{flash_used} vs {bf}: {d:+d} bytes")
+    d = ram_used - br
+    print(f"# {elfname}: RAM {ram_used} bytes static (data {data} + bss {bss} - stack reservation "
+          f"{stack_reserved}), budget.json ram.total {br}: {d:+d} (margin {MARGINS['ram']})")
+    check(f"{elfname}: static RAM within {MARGINS['ram']} bytes of budget.json's ram.total",
+          "" if abs(d) <= MARGINS["ram"] else f"{ram_used} vs {br}: {d:+d} bytes")
+
+    # 4. the board
+    fs, rs = board.get("__flash_size"), board.get("__ram_size")
+    check(f"{elfname}: fits the board: flash {flash_used} of {fs}, RAM {ram_used} + stack of {rs}",
+          "" if fs and rs and flash_used <= fs and ram_used + stack_reserved <= rs else "does not fit")
+
+    # 5. stack
+    total, path, indirect = stack_bound.bound(a.elf, a.obj, a.depth)
+    room = rs - ram_used if rs else 0
+    print(f"# {elfname}: stack bound {total} bytes: " + " > ".join(n.split(":")[-1] for _, n in path))
+    if "stack" in budget:
+        print(f"# {elfname}: budget.json stack: {json.dumps(budget['stack'])}")
+    check(f"{elfname}: stack bound {total} fits the reservation __stack_size {stack_reserved} and the "
+          f"{room} bytes of RAM above the static data",
+          "" if total <= stack_reserved and total <= room else f"bound {total} > reservation or room")
+    print(f"firmware {elfname}: flash {flash_used} B, static RAM {ram_used} B, stack bound {total} B, "
+          f"RAM with stack {ram_used + total} B")
+    return 1 if fails else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,67 @@
+/* The firmware front end: renders the fixed view list (views.h) of the model linked in, on a
+ * Cortex-M under QEMU or on a board with a semihosting debugger.
+ *
+ * Promise: for every view, one line on the semihosting console, exactly as the host viewer's
+ * --checksums prints it (frames.h: FNV-1a of the finished colour and depth buffers); the frame of
+ * view MC_FW_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
+ * semihosting argument after the program name (default "frame.ppm"); then the measured stack
+ * high-water mark and the free RAM it may grow into, and "done". Exits (semihosting) with 0, or 1
+ * if a render or the file failed. All buffers are the model's static frame buffers (mc_app_model,
+ * sized by modelc --screen); nothing is allocated.
+ */
+#include <semihost.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <modelc/app.h>
+#include <modelc/modelc.h>
+
+#include "mark.h"   /* defines MC_FW_MARK before frames.h */
+#include "frames.h"
+#include "ppm_out.h"
+#include "stack.h"
+
+/* The output file name: the second word of the semihosting command line. */
+static const char *ppm_path(void)
+{
+    static char cmd[160];
+    if (sys_semihost_get_cmdline(cmd, (int)sizeof cmd) != 0) return "frame.ppm";
+    cmd[sizeof cmd - 1] = 0;
+    char *p = cmd;
+    while (*p && *p != ' ') p++;          /* skip the program name */
+    while (*p == ' ') p++;
+    if (!*p) return "frame.ppm";
+    char *end = p;
+    while (*end && *end != ' ') end++;
+    *end = 0;
+    return p;
+}
+
+int main(void)
+{
+    mc_fw_stack_paint();
+    const mc_scene *scene = mc_app_model.scene;
+    const mc_target t = {mc_app_model.color, mc_app_model.depth, mc_app_model.max_width, mc_app_model.max_height};
+    const unsigned depth = scene->depth;
+    int status = 0;
+    printf("modelc firmware: model %s depth %u size %ux%u views %u\n", scene->name, depth, (unsigned)t.width,
+           (unsigned)t.height, MC_FW_VIEW_COUNT);
+    for (unsigned i = 0; i < MC_FW_VIEW_COUNT; i++) {
+        mc_fw_result r = mc_fw_frame(scene, i, depth, &t);
+        printf(MC_FW_FRAME_LINE, MC_FW_FRAME_ARGS(i, depth, &t, r));
+        if (r.rc != MC_OK) status = 1;
+        if (i == MC_FW_PPM_VIEW) {
+            const char *path = ppm_path();
+            if (mc_fw_write_ppm(path, &t, scene) != 0) {
+                printf("cannot write %s through semihosting\n", path);
+                status = 1;
+            } else {
+                printf("wrote frame %u to %s\n", i, path);
+            }
+        }
+    }
+    printf("stack used %lu of %lu bytes free for it\n", (unsigned long)mc_fw_stack_used(),
+           (unsigned long)mc_fw_stack_room());
+    printf("done\n");
+    return status;
+}
