@@ -1,5 +1,6 @@
 // Emission: see emit.hpp.
 #include "emit.hpp"
+#include "runtime_costs.hpp"
 
 #include <mstch/mstch.hpp>
 #include <nlohmann/json.hpp>
@@ -66,14 +67,24 @@ std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8
     return sizes;
 }
 
-std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
-    const int D = t.depth;
-    const std::string &name = opt.name;
+namespace {
+
+// Every array a bake emits and the chunk lists that point at them.
+struct Plan {
     std::vector<Array> arrays;
     mstch::array lists, levels;
     nlohmann::json budget_arrays = nlohmann::json::object();
-    size_t mask_bytes = 0, color_bytes = 0;
+    std::vector<uint8_t> palette;   // RGB triplets
+    size_t mask_bytes = 0, color_bytes = 0, chunk_entries = 0;
+};
 
+// A monochrome scene (one palette entry) stores no colours: every level's colour list is NULL and
+// the renderer draws palette index 0 (scene.h).
+Plan make_plan(const Octree &t, const EmitOptions &opt) {
+    const int D = t.depth;
+    const std::string &name = opt.name;
+    const bool mono = t.palette.size() == 1;
+    Plan p;
     // One chunk list per level and kind; each chunk its own array.
     auto add_stream = [&](const std::vector<uint8_t> &bytes, const std::vector<uint8_t> *groups,
                           const std::string &kind, int level, const std::string &what) -> std::string {
@@ -82,29 +93,75 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
         size_t at = 0, i = 0;
         for (size_t size : split_chunks(bytes.size(), opt.chunk_bytes, groups)) {
             std::string sym = list + "_" + std::to_string(i++);
-            arrays.push_back({sym, what + " of level " + std::to_string(level) + ", bytes " + std::to_string(at) +
-                                       ".." + std::to_string(at + size - 1), bytes.data() + at, size});
+            p.arrays.push_back({sym, what + " of level " + std::to_string(level) + ", bytes " + std::to_string(at) +
+                                         ".." + std::to_string(at + size - 1), bytes.data() + at, size});
             chunks.push_back(mstch::map{{"symbol", sym}, {"size", std::to_string(size)}});
-            budget_arrays[sym] = size;
+            p.budget_arrays[sym] = size;
             at += size;
         }
-        lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
+        p.chunk_entries += i + 1;   // the chunks and the {0, 0} sentinel
+        p.lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
         return list;
     };
     for (int l = 0; l <= D; l++) {
         std::string masks = "0", colors = "0";
         if (l < D)
             masks = add_stream(t.masks[l], l > 0 ? &t.siblings[l] : nullptr, "m", l, "child masks"),
-            mask_bytes += t.masks[l].size();
-        if (l > 0)
+            p.mask_bytes += t.masks[l].size();
+        if (l > 0 && !mono)
             colors = add_stream(t.colors[l], &t.cousins[l], "c", l, "palette indices"),
-            color_bytes += t.colors[l].size();
-        levels.push_back(mstch::map{{"nodes", std::to_string(t.nodes(l))}, {"masks", masks}, {"colors", colors}});
+            p.color_bytes += t.colors[l].size();
+        p.levels.push_back(mstch::map{{"nodes", std::to_string(t.nodes(l))}, {"masks", masks}, {"colors", colors}});
     }
-    std::vector<uint8_t> palette;
-    for (const auto &c : t.palette) palette.insert(palette.end(), c.begin(), c.end());
-    budget_arrays["mc_" + name + "_palette"] = palette.size();
-    const size_t data_bytes = mask_bytes + color_bytes + palette.size();
+    for (const auto &c : t.palette) p.palette.insert(p.palette.end(), c.begin(), c.end());
+    p.budget_arrays["mc_" + name + "_palette"] = p.palette.size();
+    return p;
+}
+
+Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
+    Budget b;
+    b.masks = p.mask_bytes;
+    b.colors = p.color_bytes;
+    b.palette = p.palette.size();
+    b.descriptors = p.chunk_entries * rt::kChunkBytes + static_cast<size_t>(t.depth + 1) * rt::kLevelBytes +
+                    rt::kSceneBytes + opt.name.size() + 1;
+    b.code = rt::kLibgccDivision;
+    for (const auto &m : rt::kModules) b.code += opt.leaf_switch ? m.bytes : m.bytes_loop;
+    const size_t pixels = static_cast<size_t>(opt.screen_w) * opt.screen_h;
+    b.color_buffer = pixels;
+    b.depth_buffer = 2 * pixels;
+    b.runtime_ram = rt::kRuntimeStaticRam;
+    b.stack = rt::stack_bound(t.depth);
+    return b;
+}
+
+}  // namespace
+
+Budget budget_of(const Octree &t, const EmitOptions &opt) { return budget_of(t, opt, make_plan(t, opt)); }
+
+std::string over_budget(const Budget &b, const Limits &limits) {
+    std::string s;
+    auto item = [&](const char *what, size_t have, size_t limit) {
+        if (!limit || have <= limit) return;
+        if (!s.empty()) s += "; ";
+        s += std::string(what) + " " + std::to_string(have) + " bytes > " + std::to_string(limit) + " (by " +
+             std::to_string(have - limit) + ")";
+    };
+    item("flash", b.flash(), limits.flash);
+    item("ram", b.ram(), limits.ram);
+    item("stack", b.stack, limits.stack);
+    return s;
+}
+
+std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
+    const int D = t.depth;
+    const std::string &name = opt.name;
+    const Plan plan = make_plan(t, opt);
+    const Budget bud = budget_of(t, opt, plan);
+    const std::vector<Array> &arrays = plan.arrays;
+    const std::vector<uint8_t> &palette = plan.palette;
+    const size_t mask_bytes = plan.mask_bytes, color_bytes = plan.color_bytes;
+    const size_t data_bytes = bud.data();
     const size_t points = t.nodes(D);
     const size_t workspace = static_cast<size_t>(opt.screen_w) * opt.screen_h * 3;
 
@@ -142,8 +199,8 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     mstch::array decls;
     for (const Array &a : arrays) decls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
     scene.emplace("arrays", decls);
-    scene.emplace("lists", lists);
-    scene.emplace("levels", levels);
+    scene.emplace("lists", plan.lists);
+    scene.emplace("levels", plan.levels);
     scene.emplace("level_count", std::to_string(D + 1));
     scene.emplace("depth", std::to_string(D));
     scene.emplace("palette_size", std::to_string(t.palette.size()));
@@ -159,9 +216,27 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     header.emplace("screen_w", std::to_string(opt.screen_w));
     header.emplace("screen_h", std::to_string(opt.screen_h));
     header.emplace("workspace_bytes", std::to_string(workspace));
+    header.emplace("lib", opt.lib);
+    header.emplace("mono", t.palette.size() == 1);
+    mstch::array symbols;
+    for (const Array &a : arrays)
+        symbols.push_back(mstch::map{{"symbol", a.symbol}, {"suffix", a.symbol.substr(4 + name.size())}});
+    header.emplace("symbols", symbols);
     out.emplace_back(name + ".h", mstch::render(template_text("model.h"), header));
-    out.emplace_back(name + "_app.c", mstch::render(template_text("app.c"), header));
+    if (!opt.lib) out.emplace_back(name + "_app.c", mstch::render(template_text("app.c"), header));
 
+    // The runtime modules this model needs (it links nothing else) and their estimated code.
+    nlohmann::json modules = nlohmann::json::array(), runtime_code = nlohmann::json::object();
+    for (const auto &m : rt::kModules) {
+        modules.push_back(m.name);
+        runtime_code[m.name] = opt.leaf_switch ? m.bytes : m.bytes_loop;
+    }
+    runtime_code["libgcc"] = rt::kLibgccDivision;
+    runtime_code["leaf_switch"] = opt.leaf_switch;
+    runtime_code["total"] = bud.code;
+    nlohmann::json stack_frames = nlohmann::json::object();
+    for (const auto &f : rt::kFrames) stack_frames[f.function] = f.bytes();
+    stack_frames["walk_frames"] = rt::walk_frames(D);
     nlohmann::json per_level = nlohmann::json::array();
     for (int l = 0; l <= D; l++) per_level.push_back(t.nodes(l));
     nlohmann::json budget = {
@@ -175,23 +250,50 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
         {"palette_entries", t.palette.size()},
         {"chunk_bytes", opt.chunk_bytes},
         {"flash",
-         {{"arrays", budget_arrays},
+         {{"arrays", plan.budget_arrays},
           {"masks", mask_bytes},
           {"colors", color_bytes},
           {"palette", palette.size()},
-          {"total", data_bytes}}},
+          {"total", data_bytes},
+          {"descriptors", bud.descriptors},
+          {"runtime_code", runtime_code},
+          {"image", bud.flash()},
+          {"note", "total: the model's data arrays and palette. image: what --flash-budget checks, total plus "
+                   "descriptors (32-bit layout) plus runtime_code, an estimate of the runtime's text and rodata "
+                   "for Cortex-M4 -O2 (constants in gen/runtime_costs.hpp)"}}},
         {"ram",
-         {{"color_buffer", static_cast<size_t>(opt.screen_w) * opt.screen_h},
-          {"depth_buffer", static_cast<size_t>(opt.screen_w) * opt.screen_h * 2},
-          {"total", workspace}}},
+         {{"color_buffer", bud.color_buffer},
+          {"depth_buffer", bud.depth_buffer},
+          {"total", workspace},
+          {"runtime_static", bud.runtime_ram},
+          {"image", bud.ram()},
+          {"note", std::string(opt.lib ? "--emit lib: the caller provides the buffers; sized here for --screen. "
+                                       : "static buffers of NAME_app.c for --screen. ") +
+                       "image: what --ram-budget checks (buffers plus the runtime's static state)"}}},
+        {"stack",
+         {{"bound", bud.stack},
+          {"depth", D},
+          {"frames", stack_frames},
+          {"note", "bytes of stack mc_render uses at any depth <= the model's, from -fstack-usage (larger of "
+                   "arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -O2 and host gcc -O2) summed over the bounded call "
+                   "graph (gen/runtime_costs.hpp); add the abort callback's own stack"}}},
         {"screen", {opt.screen_w, opt.screen_h}},
+        {"emit", opt.lib ? "lib" : "app"},
         {"bits_per_point",
          {{"geometry", 8.0 * mask_bytes / points},
           {"color", 8.0 * color_bytes / points},
           {"total", 8.0 * data_bytes / points}}},
         {"chunks", chunk_files},
-        {"modules", {"fixed", "trig", "view", "render", "finish"}},
+        {"modules", modules},
     };
+    if (opt.limits.flash || opt.limits.ram || opt.limits.stack) {
+        nlohmann::json lim = nlohmann::json::object();
+        if (opt.limits.flash) lim["flash"] = {{"limit", opt.limits.flash}, {"used", bud.flash()}};
+        if (opt.limits.ram) lim["ram"] = {{"limit", opt.limits.ram}, {"used", bud.ram()}};
+        if (opt.limits.stack) lim["stack"] = {{"limit", opt.limits.stack}, {"used", bud.stack}};
+        budget["budgets"] = lim;
+    }
+    if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     std::string budget_text = budget.dump(2) + "\n";
     out.emplace_back("budget.json", budget_text);
 

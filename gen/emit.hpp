@@ -6,6 +6,11 @@
 
 namespace mc {
 
+// Budgets to meet; 0 = none.
+struct Limits {
+    size_t flash = 0, ram = 0, stack = 0;
+};
+
 struct EmitOptions {
     std::string name;          // C identifier
     std::string source;        // input file name, recorded in comments and budget.json
@@ -13,7 +18,30 @@ struct EmitOptions {
     size_t chunk_bytes = 65536;
     size_t file_bytes = 262144;
     int screen_w = 640, screen_h = 480;
+    bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
+    int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
+    Limits limits;             // recorded in budget.json (checked by the caller)
+    std::string fit_note;      // what --fit chose, recorded in budget.json
 };
+
+// What a bake costs a 32-bit firmware image, computed before anything is written (see
+// runtime_costs.hpp for the runtime's constants and where they come from).
+struct Budget {
+    size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
+    size_t descriptors = 0;                      // chunk lists, levels, scene, name (32-bit layout)
+    size_t code = 0;                             // runtime modules + libgcc helpers
+    size_t flash() const { return masks + colors + palette + descriptors + code; }
+    size_t data() const { return masks + colors + palette; }
+    size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
+    size_t ram() const { return color_buffer + depth_buffer + runtime_ram; }
+    size_t stack = 0;                            // bound for mc_render at the model's depth
+};
+
+Budget budget_of(const Octree &tree, const EmitOptions &opt);
+
+// "" when b is within limits, else "flash 301234 bytes > 262144 (by 39090); ram ..." naming each
+// item over budget.
+std::string over_budget(const Budget &b, const Limits &limits);
 
 // The templates, compiled in from templates/*.mustache (build/gen/templates.cpp).
 const std::string &template_text(const std::string &name);

@@ -11,6 +11,7 @@
 #include "model.hpp"
 #include "octree.hpp"
 #include "progress.hpp"
+#include "runtime_costs.hpp"
 #include "voxel.hpp"
 
 namespace {
@@ -28,6 +29,33 @@ int fail(const std::string &line, int status = 1) {
     return status;
 }
 
+// A budget size: bytes, or with K/KB/KiB (1024) or M/MB/MiB (1048576). Throws on anything else.
+size_t parse_size(const std::string &option, const std::string &text) {
+    std::smatch m;
+    if (!std::regex_match(text, m, std::regex("([0-9]{1,12})\\s*(|[kK]|[kK][bB]|[kK]i[bB]|M|MB|MiB)")))
+        throw std::invalid_argument(option + " " + text + ": expected a size in bytes, e.g. 262144, 256K, 256KiB, 1M");
+    size_t n = std::stoull(m[1]);
+    std::string unit = m[2];
+    if (!unit.empty()) n *= (unit[0] == 'M') ? 1048576 : 1024;
+    if (n == 0) throw std::invalid_argument(option + " " + text + ": a budget must be more than 0 bytes");
+    return n;
+}
+
+// --fit never shrinks the screen below this many pixels on its shorter side (nor below --screen).
+constexpr int kFitMinSide = 32;
+
+// The largest screen of the requested aspect (w shrinks one pixel at a time, h = w * H / W
+// rounded down) whose buffers fit the RAM budget; {0, 0} if none down to kFitMinSide does.
+std::pair<int, int> fit_screen(int W, int H, size_t ram) {
+    const int min_side = std::min(kFitMinSide, std::min(W, H));
+    for (int w = W; w >= 1; w--) {
+        int h = static_cast<int>(static_cast<long long>(w) * H / W);
+        if (std::min(w, h) < min_side) break;
+        if (3ull * w * h + mc::rt::kRuntimeStaticRam <= ram) return {w, h};
+    }
+    return {0, 0};
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -37,8 +65,9 @@ int main(int argc, char **argv) {
     mc::VoxelOptions vox;
     mc::EmitOptions emit;
     int palette = 256;
-    bool quiet = false;
-    std::string up = "y";
+    bool quiet = false, fit = false;
+    std::string up = "y", emit_kind = "app", flash_budget, ram_budget, stack_budget;
+    int min_palette = 16;
     app.add_option("input", input, "model file: .off .obj .ply .stl (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
@@ -55,6 +84,22 @@ int main(int argc, char **argv) {
         ->capture_default_str();
     app.add_option("--up", up, "the model's up axis: y, or z for scans and CAD models that stand on the xy plane")
         ->check(CLI::IsMember({"y", "z"}))->capture_default_str();
+    app.add_option("--emit", emit_kind, "app: the model and NAME_app.c with static frame buffers for a front end; "
+                   "lib: only the model's .c/.h, for an existing firmware project")
+        ->check(CLI::IsMember({"app", "lib"}))->capture_default_str();
+    app.add_option("--flash-budget", flash_budget, "fail (exit 1, no output) unless data, descriptors and the "
+                   "runtime's code fit SIZE bytes (e.g. 262144, 256K, 1M)");
+    app.add_option("--ram-budget", ram_budget, "fail unless the frame buffers for --screen and the runtime's static "
+                   "state fit SIZE bytes");
+    app.add_option("--stack-budget", stack_budget, "fail unless mc_render's stack bound at --depth fits SIZE bytes");
+    app.add_flag("--fit", fit, "with the budgets: bake the finest depth <= --depth, then the largest palette <= "
+                 "--palette (halving, not below --min-palette) and the largest screen of --screen's aspect (not "
+                 "below 32 pixels a side) that fit; prints what it chose in one line");
+    app.add_option("--min-palette", min_palette, "--fit: fewest palette entries to try")
+        ->check(CLI::Range(1, 256))->capture_default_str();
+    app.add_option("--leaf-switch", emit.leaf_switch, "MC_LEAF_SWITCH the runtime is built with (config.h): "
+                   "1 costs about 56 KB more code on Cortex-M, counted in the flash budget")
+        ->check(CLI::Range(0, 1))->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress output even on a terminal");
     app.set_version_flag("--version", "modelc 0.1");
 
@@ -71,6 +116,17 @@ int main(int argc, char **argv) {
     emit.screen_h = std::stoi(m[2]);
     if (emit.screen_w < 1 || emit.screen_h < 1 || emit.screen_w > 4096 || emit.screen_h > 4096)
         return fail("--screen " + screen + ": each side must be in 1..4096", 2);
+    try {
+        if (!flash_budget.empty()) emit.limits.flash = parse_size("--flash-budget", flash_budget);
+        if (!ram_budget.empty()) emit.limits.ram = parse_size("--ram-budget", ram_budget);
+        if (!stack_budget.empty()) emit.limits.stack = parse_size("--stack-budget", stack_budget);
+    } catch (const std::exception &e) {
+        return fail(e.what(), 2);
+    }
+    const mc::Limits &limits = emit.limits;
+    if (fit && !limits.flash && !limits.ram && !limits.stack)
+        return fail("--fit needs at least one of --flash-budget, --ram-budget, --stack-budget", 2);
+    emit.lib = emit_kind == "lib";
     if (name.empty()) name = name_from_path(input);
     if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")))
         return fail("--name " + name + ": must be a C identifier of at most 64 characters", 2);
@@ -82,13 +138,79 @@ int main(int argc, char **argv) {
         if (up == "z") mc::make_z_up_y_up(model);
         mc::Voxels voxels = mc::voxelize(model, input, vox, progress);
         progress.step("building octree");
-        mc::Octree tree = mc::build_octree(voxels, palette);
-        progress.step("writing");
         emit.name = name;
+        mc::Octree tree;
+        if (!fit) {
+            tree = mc::build_octree(voxels, palette);
+            std::string over = mc::over_budget(mc::budget_of(tree, emit), limits);
+            if (!over.empty()) return fail("over budget: " + over);
+        } else {
+            // RAM depends on the screen only, flash on depth and palette, stack on depth only.
+            if (limits.ram) {
+                auto [w, h] = fit_screen(emit.screen_w, emit.screen_h, limits.ram);
+                if (!w) {
+                    int ms = std::min(kFitMinSide, std::min(emit.screen_w, emit.screen_h));
+                    return fail("over budget: ram: no screen of " + screen + "'s aspect with a side of at least " +
+                                std::to_string(ms) + " pixels fits " + std::to_string(limits.ram) + " bytes");
+                }
+                emit.screen_w = w, emit.screen_h = h;
+            }
+            std::vector<int> palettes;
+            for (int p = palette; p >= std::min(min_palette, palette); p /= 2) {
+                palettes.push_back(std::max(p, std::min(min_palette, palette)));
+                if (p <= 1 || p == std::min(min_palette, palette)) break;
+            }
+            palettes.erase(std::unique(palettes.begin(), palettes.end()), palettes.end());
+            const mc::OctreeLevels levels = mc::build_levels(voxels);
+            std::string last;
+            bool found = false;
+            size_t code = mc::rt::kLibgccDivision;
+            for (const auto &mod : mc::rt::kModules) code += emit.leaf_switch ? mod.bytes : mod.bytes_loop;
+            for (int d = levels.depth; d >= 1 && !found; d--) {
+                for (int p : palettes) {
+                    // a lower bound first (no palette, no descriptors), to skip depths far over
+                    size_t bound = code;
+                    for (int l = 0; l < d; l++) bound += levels.nodes(l);
+                    if (p > 1)
+                        for (int l = 1; l <= d; l++) bound += levels.nodes(l);
+                    if (limits.flash && bound > limits.flash && p == palettes.back()) {
+                        last = "flash at least " + std::to_string(bound) + " bytes > " + std::to_string(limits.flash) +
+                               " (by " + std::to_string(bound - limits.flash) + ") at depth " + std::to_string(d);
+                        break;
+                    }
+                    if (limits.flash && bound > limits.flash) continue;
+                    if (limits.stack && mc::rt::stack_bound(d) > limits.stack) {
+                        last = "stack " + std::to_string(mc::rt::stack_bound(d)) + " bytes > " +
+                               std::to_string(limits.stack) + " at depth " + std::to_string(d);
+                        break;
+                    }
+                    mc::Octree t = mc::cut_octree(levels, d, p);
+                    mc::Budget b = mc::budget_of(t, emit);
+                    std::string over = mc::over_budget(b, limits);
+                    if (!over.empty()) {
+                        last = over + " at depth " + std::to_string(d) + ", palette " + std::to_string(p);
+                        continue;
+                    }
+                    tree = std::move(t);
+                    found = true;
+                    char line[400];
+                    std::snprintf(line, sizeof line,
+                                  "fit: depth %d (of %d), palette %zu entries (of at most %d), screen %dx%d (of %s): "
+                                  "flash %zu bytes, ram %zu, stack %zu",
+                                  d, levels.depth, tree.palette.size(), palette, emit.screen_w, emit.screen_h,
+                                  screen.c_str(), b.flash(), b.ram(), b.stack);
+                    emit.fit_note = line;
+                    break;
+                }
+            }
+            if (!found) return fail("over budget at every depth, palette and screen --fit may choose: " + last);
+        }
+        progress.step("writing");
         emit.source = std::filesystem::path(input).filename().string();
         emit.out_dir = out_dir;
         mc::emit_model(tree, voxels, emit);
         progress.finish();
+        if (fit) std::printf("modelc: %s\n", emit.fit_note.c_str());
     } catch (const mc::InputError &e) {
         return fail(e.line());
     } catch (const std::bad_alloc &) {

@@ -93,26 +93,23 @@ std::vector<std::array<uint8_t, 3>> make_palette(const std::vector<std::array<ui
     return palette;
 }
 
-Octree build_octree(const Voxels &v, int max_palette) {
+OctreeLevels build_levels(const Voxels &v) {
     const int D = v.depth;
-    Octree t;
+    OctreeLevels t;
     t.depth = D;
     t.masks.assign(D, {});
-    t.colors.assign(D + 1, {});
     t.siblings.assign(D + 1, {});
     t.cousins.assign(D + 1, {});
+    t.mean.assign(D + 1, {});
 
     // Level by level from the leaves up: a node's key is its leaves' code >> 3 per level climbed.
     std::vector<uint64_t> keys = v.codes;
     std::vector<std::array<double, 3>> sum(v.rgb);    // colour sums of the leaves under each node
     std::vector<double> count(v.codes.size(), 1.0);
-    std::vector<std::vector<std::array<double, 3>>> mean(D + 1);
-    std::vector<std::vector<double>> weight(D + 1);
     for (int l = D; l >= 1; l--) {
-        mean[l].resize(keys.size());
+        t.mean[l].resize(keys.size());
         for (size_t i = 0; i < keys.size(); i++)
-            for (int a = 0; a < 3; a++) mean[l][i][a] = sum[i][a] / count[i];
-        weight[l] = count;
+            for (int a = 0; a < 3; a++) t.mean[l][i][a] = sum[i][a] / count[i];
         std::vector<uint64_t> pkeys;
         std::vector<std::array<double, 3>> psum;
         std::vector<double> pcount;
@@ -143,21 +140,55 @@ Octree build_octree(const Voxels &v, int max_palette) {
             t.cousins[l].push_back(static_cast<uint8_t>(sum));
         }
     }
+    return t;
+}
+
+Octree cut_octree(const OctreeLevels &v, int d, int max_palette) {
+    Octree t;
+    t.depth = d;
+    t.masks.assign(v.masks.begin(), v.masks.begin() + d);
+    t.siblings.assign(v.siblings.begin(), v.siblings.begin() + d + 1);
+    t.cousins.assign(v.cousins.begin(), v.cousins.begin() + d + 1);
+    t.colors.assign(d + 1, {});
+
+    // weight[l][i]: the level-d leaves under node i of level l, summed up the sibling groups
+    std::vector<std::vector<double>> weight(d + 1);
+    weight[d].assign(v.nodes(d), 1.0);
+    for (int l = d - 1; l >= 1; l--) {
+        weight[l].resize(v.nodes(l));
+        size_t child = 0;
+        for (size_t i = 0; i < weight[l].size(); i++) {
+            double s = 0;
+            for (unsigned k = 0; k < v.siblings[l + 1][i]; k++) s += weight[l + 1][child++];
+            weight[l][i] = s;
+        }
+    }
 
     // One palette over every level's colours, each weighted by the leaves it stands for: a level
     // weighs as much as the leaves, so the fine image keeps its colours and coarse levels still count.
     std::vector<std::array<uint8_t, 3>> all;
     std::vector<double> w;
-    for (int l = 1; l <= D; l++)
-        for (size_t i = 0; i < mean[l].size(); i++) all.push_back(to_byte(mean[l][i])), w.push_back(weight[l][i]);
+    for (int l = 1; l <= d; l++)
+        for (size_t i = 0; i < v.mean[l].size(); i++) all.push_back(to_byte(v.mean[l][i])), w.push_back(weight[l][i]);
     std::vector<uint8_t> index;
-    t.palette = make_palette(all, w, max_palette, index);
+    std::vector<std::array<uint8_t, 3>> palette = make_palette(all, w, max_palette, index);
+
+    // Drop entries no node uses (median cut can leave an entry nearest to none of its colours);
+    // the rest keep their order.
+    std::vector<int> remap(palette.size(), -1);
+    for (uint8_t i : index) remap[i] = 0;
+    for (size_t p = 0; p < palette.size(); p++)
+        if (remap[p] == 0) remap[p] = static_cast<int>(t.palette.size()), t.palette.push_back(palette[p]);
+    for (uint8_t &i : index) i = static_cast<uint8_t>(remap[i]);
+
     size_t k = 0;
-    for (int l = 1; l <= D; l++) {
-        t.colors[l].assign(index.begin() + static_cast<long>(k), index.begin() + static_cast<long>(k + mean[l].size()));
-        k += mean[l].size();
+    for (int l = 1; l <= d; l++) {
+        t.colors[l].assign(index.begin() + static_cast<long>(k), index.begin() + static_cast<long>(k + v.mean[l].size()));
+        k += v.mean[l].size();
     }
     return t;
 }
+
+Octree build_octree(const Voxels &v, int max_palette) { return cut_octree(build_levels(v), v.depth, max_palette); }
 
 }  // namespace mc

@@ -22,8 +22,24 @@ struct Octree {
     size_t nodes(int level) const { return level == 0 ? 1 : colors[level].size(); }
 };
 
-// Builds the octree from voxels: coarse nodes get the mean colour of the leaves under them, and all
-// colours share one palette of at most max_palette entries (exact when few enough colours occur).
+// The palette-independent part of an octree of depth D, from which the octree of any depth d <= D
+// is cut without sampling again: the masks, sibling and cousin groups of levels above d are the
+// same whatever d, and a node's colour is the mean of the leaves under it.
+struct OctreeLevels {
+    int depth = 0;
+    std::vector<std::vector<uint8_t>> masks, siblings, cousins;   // as in Octree, for depth D
+    std::vector<std::vector<std::array<double, 3>>> mean;         // mean[l][i]: colour of node i at level l
+    size_t nodes(int level) const { return level == 0 ? 1 : mean[level].size(); }
+};
+
+OctreeLevels build_levels(const Voxels &v);
+
+// The octree of depth d (1..levels.depth): the levels 0..d of `levels`, with one palette of at most
+// max_palette entries over their colours (exact when few enough colours occur), each colour weighted
+// by the level-d leaves under its node. Palette entries no node uses are dropped.
+Octree cut_octree(const OctreeLevels &levels, int d, int max_palette);
+
+// build_levels then cut_octree at the voxels' depth.
 Octree build_octree(const Voxels &v, int max_palette);
 
 // Median-cut quantization: at most max_entries colours; exact (deduplicated, sorted) when the input

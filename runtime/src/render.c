@@ -84,9 +84,20 @@ static void cursor_init(cursor *c, const mc_chunk *chunks)
     c->next = chunks + 1;
 }
 
+/* A monochrome scene stores no colours (levels[l].colors == NULL, scene.h): its colour cursor reads
+ * a run of zeros (palette index 0) and is rewound whenever it reaches MONO_RUN. Between two tests
+ * of p >= end the renderer takes at most one cousin group (64 colours), so it never reads past the
+ * run's second half. The tests are >= rather than == only for this; real chunks are never overrun,
+ * and the hot path costs the same compare. */
+#define MONO_RUN 64
+static const uint8_t mono_zeros[2 * MONO_RUN] = {0};
+static const mc_chunk mono_chunks[2] = {{mono_zeros, MONO_RUN}, {0, 0}};
+#define IS_MONO(c) ((c)->next == mono_chunks + 1)
+
 /* Moves to the next non-empty chunk once the current one is used up. */
 static void cursor_refill(cursor *c)
 {
+    if (IS_MONO(c)) { c->p = mono_zeros; return; }
     while (c->p == c->end && c->next->data) {
         c->p = c->next->data;
         c->end = c->p + c->next->size;
@@ -98,7 +109,7 @@ static void cursor_refill(cursor *c)
  * a group of cousins for colours: see scene.h). */
 ALWAYS_INLINE const uint8_t *cursor_take(cursor *c, uint32_t n)
 {
-    if (c->p == c->end) cursor_refill(c);
+    if (c->p >= c->end) cursor_refill(c);
     const uint8_t *p = c->p;
     c->p += n;
     return p;
@@ -106,6 +117,7 @@ ALWAYS_INLINE const uint8_t *cursor_take(cursor *c, uint32_t n)
 
 static void cursor_skip(cursor *c, uint32_t n)
 {
+    if (IS_MONO(c)) return;   /* zeros: nothing to step over */
     while (n > (uint32_t)(c->end - c->p)) {
         n -= (uint32_t)(c->end - c->p);
         c->p = c->end;
@@ -237,7 +249,7 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
         const int32_t zz2 = z + L[0].z[k3];
         unsigned m2 = *masks2++;
         const uint8_t *masks1 = cursor_take(&c->mask[l3 + 2], popcount8[m2]);
-        if (c->color.p == c->color.end) cursor_refill(&c->color);
+        if (c->color.p >= c->color.end) cursor_refill(&c->color);
         const uint8_t *col = c->color.p, *const first = col;
         for (; m2; m2 &= m2 - 1) {
             const unsigned k2 = lowest_bit(m2);
@@ -273,7 +285,7 @@ static void draw_checked(ctx *c, unsigned l, unsigned m, int32_t x, int32_t y, i
         return;
     }
     const uint8_t *masks = cursor_take(&c->mask[l + 1], popcount8[m]);
-    if (c->color.p == c->color.end) cursor_refill(&c->color);
+    if (c->color.p >= c->color.end) cursor_refill(&c->color);
     for (; m; m &= m - 1) {
         unsigned k = lowest_bit(m);
         unsigned cm = *masks++;
@@ -433,7 +445,7 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     c.points = c.polls = 0;
     c.aborted = 0;
     for (unsigned l = 0; l < depth; l++) cursor_init(&c.mask[l], scene->levels[l].masks);
-    cursor_init(&c.color, scene->levels[depth].colors);
+    cursor_init(&c.color, scene->levels[depth].colors ? scene->levels[depth].colors : mono_chunks);
     setup_vectors(&c, &v);
     c.poll_level = depth >= MC_ABORT_LEVEL + 3 ? MC_ABORT_LEVEL : depth >= 3 ? depth - 3 : 0;
 

@@ -30,7 +30,8 @@ typedef struct mc_chunk {
 typedef struct mc_level {
     uint32_t nodes;          /* nodes at this depth */
     const mc_chunk *masks;   /* child masks, one byte per node; NULL at the deepest level */
-    const mc_chunk *colors;  /* palette index per node; NULL at level 0 */
+    const mc_chunk *colors;  /* palette index per node; NULL at level 0, and at every level of a
+                              * monochrome scene (palette_size 1): every node is entry 0 */
 } mc_level;
 
 typedef struct mc_scene {

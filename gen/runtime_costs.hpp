@@ -1,0 +1,110 @@
+// What the runtime itself costs a firmware image, for the budgets (modelc --flash-budget etc.) and
+// budget.json. Constants, measured; re-measure them when runtime/src changes (the commands are below)
+// — tests/gen/budget.sh checks the stack table against a fresh -fstack-usage build when
+// arm-none-eabi-gcc is installed.
+//
+// Code sizes: text + rodata of each module compiled for the smallest target we budget for,
+//   arm-none-eabi-gcc 12.2 -std=c99 -ffreestanding -mcpu=cortex-m4 -mthumb -O2
+//     -ffunction-sections -fdata-sections -Iruntime/include -c runtime/src/MODULE.c
+//   arm-none-eabi-size MODULE.o
+// once with the default MC_LEAF_SWITCH=1 and once with -DMC_LEAF_SWITCH=0 (config.h). The runtime
+// has no .data and no .bss: its static RAM is 0. 64-bit divisions (view clamp, perspective) pull
+// in libgcc's __aeabi_ldivmod/__aeabi_uldivmod/__udivmoddi4: 960 bytes, from the link map of a
+// Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (render.o 72033 bytes); the budget
+// is for the firmware target.
+//
+// Stack: bytes per function from -fstack-usage (every entry "static", no dynamic frames), compiled
+// as above for Cortex-M4 and with host gcc 12 -O2 (x86-64), taking the larger of the two. Functions
+// the compiler inlines (cursor_*, skip_subtree, setup_vectors, poll_abort, leaves) do not appear;
+// their frames are part of their callers'.
+#pragma once
+#include <cstddef>
+
+namespace mc::rt {
+
+struct ModuleCode {
+    const char *name;
+    size_t bytes;        // MC_LEAF_SWITCH=1 (the default)
+    size_t bytes_loop;   // MC_LEAF_SWITCH=0
+    const char *what;
+};
+
+inline constexpr ModuleCode kModules[] = {
+    {"fixed", 476, 476, "fixed-point helpers (fixed.c)"},
+    {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
+    {"view", 600, 600, "view clamping and rotation matrix (view.c)"},
+    {"render", 62256, 5976, "the octree renderer (render.c); MC_LEAF_SWITCH=1 has one case per mask value"},
+    {"finish", 1352, 1352, "hole filling (finish.c)"},
+};
+inline constexpr size_t kLibgccDivision = 960;
+inline constexpr size_t kRuntimeStaticRam = 0;
+
+// Sizes of the descriptors on a 32-bit target (scene.h): mc_chunk {pointer, uint32}, mc_level
+// {uint32, 2 pointers}, mc_scene {pointer, uint8, uint16, 2 pointers}.
+inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kSceneBytes = 16;
+
+// -fstack-usage of every function of render.c, fixed.c, trig.c and view.c that mc_render can reach.
+struct Frame {
+    const char *function;
+    size_t arm, host;
+    constexpr size_t bytes() const { return arm > host ? arm : host; }
+};
+inline constexpr Frame kFrames[] = {
+    {"mc_render", 2480, 2656},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"visit", 96, 128},
+    {"visit_inside", 56, 80},
+    {"draw_inside", 104, 56},
+    {"draw_checked", 64, 80},
+    {"leaves_perspective", 80, 112},
+    {"leaves_clipped", 48, 48},
+    {"leaves_splat", 48, 64},
+    {"draw_square", 28, 16},
+    {"classify", 8, 8},
+    {"mc_mul_shift64", 24, 8},
+    {"mc_view_clamp", 40, 16},
+    {"mc_view_rotation", 176, 272},
+    {"matmul.constprop", 24, 8},
+    {"mc_sin", 0, 8},
+    {"mc_cos", 0, 8},
+};
+constexpr size_t frame(const char *fn) {
+    for (const Frame &f : kFrames) {
+        const char *a = f.function, *b = fn;
+        while (*a && *a == *b) a++, b++;
+        if (*a == *b) return f.bytes();
+    }
+    return 1u << 30;   // unknown: no bound (a compile-time error where it is used in a constant)
+}
+
+// The bounded call graph of mc_render drawing at depth d (render.c):
+//   mc_render -> mc_view_clamp
+//             -> [setup_vectors] -> mc_view_rotation -> matmul | mc_cos -> mc_sin ; mc_mul_shift64
+//             -> classify
+//             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit recurses
+//                only into children at levels <= d-3, visit_inside likewise), then the deepest of
+//                  draw_inside
+//                  draw_checked -> [leaves] -> leaves_perspective -> mc_mul_shift64 | draw_square
+//                                           | leaves_splat -> draw_square | leaves_clipped
+//                  classify, [skip_subtree]
+//                  [poll_abort] -> the abort callback (the caller's code: add its own stack)
+// [bracketed] functions are inlined into their callers. The bound is mc_render's frame plus the
+// deepest of those paths. mc_clear and mc_finish_* are called by the front end beside mc_render,
+// never inside it, and their frames are smaller than the walk's.
+constexpr size_t max2(size_t a, size_t b) { return a > b ? a : b; }
+constexpr size_t stack_setup() {
+    return max2(frame("mc_view_clamp"),
+                frame("mc_view_rotation") + max2(frame("matmul.constprop"), frame("mc_cos") + frame("mc_sin")));
+}
+constexpr size_t stack_tail() {
+    const size_t leaves = max2(frame("leaves_perspective") + max2(frame("mc_mul_shift64"), frame("draw_square")),
+                               max2(frame("leaves_splat") + frame("draw_square"), frame("leaves_clipped")));
+    return max2(frame("draw_inside"), max2(frame("draw_checked") + leaves, frame("classify")));
+}
+constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }
+constexpr int walk_frames(int depth) { return depth > 3 ? depth - 2 : 1; }
+constexpr size_t stack_bound(int depth) {
+    return frame("mc_render") + max2(stack_setup(), static_cast<size_t>(walk_frames(depth)) * stack_walk_frame() + stack_tail());
+}
+static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is missing from kFrames");
+
+}  // namespace mc::rt
