@@ -23,6 +23,7 @@ suites=(
     tests/render/suite.sh     # renders against the double-precision reference
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
+    tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
 )
 
 pass=0 fail=0

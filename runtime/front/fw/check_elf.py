@@ -8,8 +8,8 @@ failed. The checks:
      no wrapper definitions, so a heap call would not even link; this confirms nothing else pulled one.
   2. model data exact: every array budget.json lists under flash.arrays is a symbol of exactly that
      size, and the frame buffers (ram.color_buffer, ram.depth_buffer) are symbols of exactly those sizes.
-  3. ELF against budget totals: flash used (text + data, what arm-none-eabi-size counts) minus
-     budget.json's flash.total, and RAM used (data + bss, without the stack reservation) minus its
+  3. ELF against budget totals: flash used (the sections arm-none-eabi-size -A places in flash) minus
+     budget.json's flash.total, and RAM used (sections in RAM except the stack reservation) minus its
      ram.total, each within a stated margin (see MARGINS below for what the margin covers and why).
   4. fits the board: flash and RAM used within the board's sizes (from its .ld file); the linker
      already refuses an image that does not fit, so this only restates it with numbers.
@@ -103,24 +103,38 @@ def main():
            if k in ram and syms.get(sym) != ram[k]]
     check(f"{elfname}: frame buffers have exactly budget.json's sizes", "; ".join(bad))
 
-    # 3. totals within the margins
-    text, data, bss = (int(x) for x in run("arm-none-eabi-size", "-B", a.elf).splitlines()[1].split()[:3])
-    stack_reserved = board.get("__stack_size", 0)
-    flash_used, ram_used = text + data, data + bss - stack_reserved
+    # 3. totals within the margins. Sections from arm-none-eabi-size -A: flash holds every allocated
+    # section below the RAM's origin plus the initial values of .data; static RAM is every section in
+    # the RAM region except the stack reservation (.stack).
+    ram0, rs, fs = board.get("__ram", 0x20000000), board.get("__ram_size"), board.get("__flash_size")
+    flash_used = ram_static = stack_reserved = 0
+    for line in run("arm-none-eabi-size", "-A", "-d", a.elf).splitlines()[2:]:
+        f = line.split()
+        if len(f) != 3 or not f[1].isdigit() or f[0].startswith((".debug", ".comment", ".ARM.attr")):
+            continue
+        name, size, addr = f[0], int(f[1]), int(f[2])
+        if addr < ram0:
+            flash_used += size
+        elif name == ".stack":
+            stack_reserved = size
+        else:
+            ram_static += size
+            if name in (".data", ".tdata"):
+                flash_used += size
+    ram_used = ram_static
     bf, br = budget["flash"]["total"], budget["ram"]["total"]
     d = flash_used - bf
-    print(f"# {elfname}: flash {flash_used} bytes (text {text} + data {data}), budget.json flash.total {bf}: "
+    print(f"# {elfname}: flash {flash_used} bytes, budget.json flash.total {bf}: "
           f"{d:+d} (margin {MARGINS['flash']})")
     check(f"{elfname}: flash used within {MARGINS['flash']} bytes of budget.json's flash.total",
           "" if abs(d) <= MARGINS["flash"] else f"{flash_used} vs {bf}: {d:+d} bytes")
     d = ram_used - br
-    print(f"# {elfname}: RAM {ram_used} bytes static (data {data} + bss {bss} - stack reservation "
-          f"{stack_reserved}), budget.json ram.total {br}: {d:+d} (margin {MARGINS['ram']})")
+    print(f"# {elfname}: RAM {ram_used} bytes static (without the stack reservation {stack_reserved}), "
+          f"budget.json ram.total {br}: {d:+d} (margin {MARGINS['ram']})")
     check(f"{elfname}: static RAM within {MARGINS['ram']} bytes of budget.json's ram.total",
           "" if abs(d) <= MARGINS["ram"] else f"{ram_used} vs {br}: {d:+d} bytes")
 
     # 4. the board
-    fs, rs = board.get("__flash_size"), board.get("__ram_size")
     check(f"{elfname}: fits the board: flash {flash_used} of {fs}, RAM {ram_used} + stack of {rs}",
           "" if fs and rs and flash_used <= fs and ram_used + stack_reserved <= rs else "does not fit")
 

@@ -5,7 +5,10 @@
  * --checksums prints it (frames.h: FNV-1a of the finished colour and depth buffers); the frame of
  * view MC_FW_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
  * semihosting argument after the program name (default "frame.ppm"); then the measured stack
- * high-water mark and the free RAM it may grow into, and "done". Exits (semihosting) with 0, or 1
+ * high-water mark and the free RAM it may grow into, and "done". With the word "bench" after the
+ * file name, also a line "cost frame I clear N render N finish N" per frame: the instructions of each
+ * stage counted through SysTick, meaningful under qemu-system-arm -icount shift=0 (counter.h).
+ * Exits (semihosting) with 0, or 1
  * if a render or the file failed. All buffers are the model's static frame buffers (mc_app_model,
  * sized by modelc --screen); nothing is allocated.
  */
@@ -16,30 +19,44 @@
 #include <modelc/app.h>
 #include <modelc/modelc.h>
 
+#include "counter.h"
 #include "mark.h"   /* defines MC_FW_MARK before frames.h */
 #include "frames.h"
 #include "ppm_out.h"
 #include "stack.h"
 
-/* The output file name: the second word of the semihosting command line. */
-static const char *ppm_path(void)
+/* The semihosting command line's words after the program name: the output file name (default
+ * "frame.ppm"), then optionally "bench". */
+static const char *ppm_path = "frame.ppm";
+static int bench;
+
+static void read_cmdline(void)
 {
     static char cmd[160];
-    if (sys_semihost_get_cmdline(cmd, (int)sizeof cmd) != 0) return "frame.ppm";
+    if (sys_semihost_get_cmdline(cmd, (int)sizeof cmd) != 0) return;
     cmd[sizeof cmd - 1] = 0;
     char *p = cmd;
-    while (*p && *p != ' ') p++;          /* skip the program name */
-    while (*p == ' ') p++;
-    if (!*p) return "frame.ppm";
-    char *end = p;
-    while (*end && *end != ' ') end++;
-    *end = 0;
-    return p;
+    for (int word = 0; *p; word++) {
+        while (*p == ' ') p++;
+        if (!*p) break;
+        char *start = p;
+        while (*p && *p != ' ') p++;
+        if (*p) *p++ = 0;
+        if (word == 1) ppm_path = start;
+        if (word == 2 && strcmp(start, "bench") == 0) bench = 1;
+    }
 }
 
 int main(void)
 {
     mc_fw_stack_paint();
+    read_cmdline();
+    if (bench) {
+        mc_fw_counter_start();
+        printf("bench: %lu.%04lu instructions per SysTick tick (calibrated)\n",
+               (unsigned long)(mc_fw_counter_insn_per_tick() >> 16),
+               (unsigned long)(((mc_fw_counter_insn_per_tick() & 0xFFFFu) * 10000u) >> 16));
+    }
     const mc_scene *scene = mc_app_model.scene;
     const mc_target t = {mc_app_model.color, mc_app_model.depth, mc_app_model.max_width, mc_app_model.max_height};
     const unsigned depth = scene->depth;
@@ -50,13 +67,17 @@ int main(void)
         mc_fw_result r = mc_fw_frame(scene, i, depth, &t);
         printf(MC_FW_FRAME_LINE, MC_FW_FRAME_ARGS(i, depth, &t, r));
         if (r.rc != MC_OK) status = 1;
+        if (bench)
+            printf("cost frame %u clear %lu render %lu finish %lu points %lu\n", i,
+                   (unsigned long)mc_fw_counter_insns(mc_fw_marks[0], mc_fw_marks[1]),
+                   (unsigned long)mc_fw_counter_insns(mc_fw_marks[1], mc_fw_marks[2]),
+                   (unsigned long)mc_fw_counter_insns(mc_fw_marks[2], mc_fw_marks[3]), (unsigned long)r.points);
         if (i == MC_FW_PPM_VIEW) {
-            const char *path = ppm_path();
-            if (mc_fw_write_ppm(path, &t, scene) != 0) {
-                printf("cannot write %s through semihosting\n", path);
+            if (mc_fw_write_ppm(ppm_path, &t, scene) != 0) {
+                printf("cannot write %s through semihosting\n", ppm_path);
                 status = 1;
             } else {
-                printf("wrote frame %u to %s\n", i, path);
+                printf("wrote frame %u to %s\n", i, ppm_path);
             }
         }
     }
