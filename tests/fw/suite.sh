@@ -113,7 +113,7 @@ EOF
         "$([ $r1 -eq 0 ] && [ $r2 -eq 0 ] || echo "$(oneline <"$out/heap.txt")")"
 
     # ---- the ELF-versus-budget check fails when budget.json disagrees -----------------------------
-    python3 -c 'import json,sys; b=json.load(open(sys.argv[1])); b["flash"]["total"] += 200000; b["ram"]["total"] -= 4096; json.dump(b, open(sys.argv[2], "w"))' \
+    python3 -c 'import json,sys; b=json.load(open(sys.argv[1])); [b["flash"].__setitem__(k, b["flash"][k] + 200000) for k in ("total", "image") if k in b["flash"]]; [b["ram"].__setitem__(k, b["ram"][k] - 4096) for k in ("total", "image") if k in b["ram"]]; json.dump(b, open(sys.argv[2], "w"))' \
         "$budget" "$out/$b.wrong-budget.json"
     python3 runtime/front/fw/check_elf.py --elf "$elf" --budget "$out/$b.wrong-budget.json" \
         --ld runtime/front/fw/boards/$b.ld --obj $dir/obj --depth "$depth" >"$out/$b.wrong.txt" 2>&1
