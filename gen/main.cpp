@@ -11,6 +11,7 @@
 #include "model.hpp"
 #include "octree.hpp"
 #include "progress.hpp"
+#include "reference.hpp"
 #include "runtime_costs.hpp"
 #include "voxel.hpp"
 
@@ -68,6 +69,7 @@ int main(int argc, char **argv) {
     bool quiet = false, fit = false;
     std::string up = "y", emit_kind = "app", flash_budget, ram_budget, stack_budget;
     int min_palette = 16;
+    std::string dump_reference;  // hidden: tests and benchmarks only
     app.add_option("input", input, "model file: .off .obj .ply .stl (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
@@ -100,6 +102,9 @@ int main(int argc, char **argv) {
     app.add_option("--leaf-switch", emit.leaf_switch, "MC_LEAF_SWITCH the runtime is built with (config.h): "
                    "1 costs about 56 KB more code on Cortex-M, counted in the flash budget")
         ->check(CLI::Range(0, 1))->capture_default_str();
+    app.add_option("--dump-reference", dump_reference, "write the normalised original model for the tests' "
+                   "mesh reference renderer (runtime/ref/mesh_ref.h)")
+        ->group("");
     app.add_flag("-q,--quiet", quiet, "no progress output even on a terminal");
     app.set_version_flag("--version", "modelc 0.1");
 
@@ -137,6 +142,7 @@ int main(int argc, char **argv) {
         mc::Model model = mc::load_model(input);
         if (up == "z") mc::make_z_up_y_up(model);
         mc::Voxels voxels = mc::voxelize(model, input, vox, progress);
+        if (!dump_reference.empty()) mc::dump_reference(model, voxels, dump_reference);
         progress.step("building octree");
         emit.name = name;
         mc::Octree tree;

@@ -24,6 +24,7 @@ suites=(
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
+    tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
 )
 
 pass=0 fail=0
