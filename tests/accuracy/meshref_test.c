@@ -92,7 +92,11 @@ static void octree_image(const mc_scene *s, const mc_view *v, uint8_t *out, uint
     mc_target t = {col, dep, W, H};
     mc_clear(&t);
     mc_render(s, v, s->depth, &t, NULL, NULL, NULL);
+#ifdef MC_DEPTH_FILLED   /* the runtime has selectable fills (finish.h): its default */
     mc_finish(&t, MC_FILL_DEFAULT);
+#else
+    mc_finish_pixel_holes(&t);
+#endif
     for (int i = 0; i < W * H; i++) {
         c[i] = dep[i] != MC_DEPTH_EMPTY;
         for (int k = 0; k < 3; k++) out[3 * i + k] = c[i] ? s->palette[3 * col[i] + k] : 0;
