@@ -48,6 +48,10 @@ typedef struct ctx {
     unsigned zshift;                     /* depth buffer value = z >> zshift (see the top) */
     unsigned poll_level;                 /* level at which the abort callback is polled */
     int perspective;
+    int inside;                          /* 0: every node drawn with checks (perspective, splats) */
+    int32_t splat;                       /* orthographic footprint side, pixels (1: one pixel) */
+    int64_t leaf_side;                   /* perspective zoom splats: leaf side at magnification 1,
+                                          * Q F pixels; 0: one pixel per leaf */
     int32_t cx, cy;                      /* perspective: screen centre plus translation, Q F */
     int64_t eye, near;                   /* perspective: eye distance and near plane, Q F pixels */
     mc_abort_fn abort;
@@ -161,6 +165,47 @@ static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, 
     }
 }
 
+/* An s x s footprint (view.h, MC_SPLAT_ZOOM) centred on (fx, fy), which is on the target, clipped
+ * to the target; each pixel depth tested. */
+static void draw_square(ctx *c, int32_t fx, int32_t fy, int32_t s, uint16_t depth, uint8_t color)
+{
+    int32_t x0 = (fx - ((s - 1) << (F - 1))) >> F, y0 = (fy - ((s - 1) << (F - 1))) >> F;
+    int32_t x1 = x0 + s, y1 = y0 + s;
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > c->w) x1 = c->w;
+    if (y1 > c->h) y1 = c->h;
+    for (int32_t y = y0; y < y1; y++) {
+        uint16_t *zr = c->zb + y * c->w;
+        uint8_t *fr = c->fb + y * c->w;
+        for (int32_t x = x0; x < x1; x++)
+            if (depth < zr[x]) { zr[x] = depth; fr[x] = color; }
+    }
+}
+
+/* Leaves of one level d-1 node, orthographic, with footprints of c->splat pixels: each point checked
+ * (a leaf is drawn when its centre is on the target), its square clipped. */
+static void leaves_splat(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
+{
+    const unsigned l = c->d - 1;
+    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    for (; m; m &= m - 1, col++) {
+        unsigned k = lowest_bit(m);
+        int32_t fx = x + vx[k], fy = y + vy[k];
+        if ((uint32_t)(fx >> F) >= (uint32_t)c->w || (uint32_t)(fy >> F) >= (uint32_t)c->h) continue;
+        c->points++;
+        MC_PLOT_HOOK(fx, fy, col);
+        draw_square(c, fx, fy, c->splat, (uint16_t)(z + vz[k]), *col);
+    }
+}
+
+/* Footprint side in pixels of a leaf of side `side` (Q F pixels): rounded up, 1..MC_SPLAT_MAX. */
+static int32_t footprint(int64_t side)
+{
+    int64_t s = (side + (((int64_t)1 << F) - 1)) >> F;
+    return s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int32_t)s;
+}
+
 /* Leaves of one level d-1 node in perspective: each point divides by its own distance (exact, not
  * linearised, so it lands where the double reference puts it). Points nearer than the near plane
  * (1/64 cube side in front of the eye) are not drawn. */
@@ -182,14 +227,19 @@ static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t
         uint16_t depth = (uint16_t)((uint32_t)zk >> c->zshift);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
+        if (c->leaf_side) {                               /* zoom splats: the leaf's side here */
+            int32_t s = footprint(mc_mul_shift64(c->leaf_side, q, 24));
+            if (s > 1) { draw_square(c, fx, fy, s, depth, *col); continue; }
+        }
         if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
     }
 }
 
-/* One node at level d-1 that may reach off screen, or any node in perspective. */
+/* One node at level d-1 that may reach off screen, or any node in perspective or with footprints. */
 static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     if (c->perspective) leaves_perspective(c, m, x, y, z, col);
+    else if (c->splat > 1) leaves_splat(c, m, x, y, z, col);
     else leaves_clipped(c, m, x, y, z, col);
 }
 
@@ -266,13 +316,13 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
 #undef lz
 }
 
-/* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen, 1 wholly on
- * screen, -1 wholly off screen (orthographic only). */
+/* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen (or drawn with
+ * checks anyway: c->inside is 0), 1 wholly on screen, -1 wholly off screen (orthographic only). */
 static int classify(const ctx *c, int32_t x, int32_t y, unsigned l)
 {
     const int32_t rx = c->reach_x[l], ry = c->reach_y[l];
     if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;
-    return x - rx >= 0 && y - ry >= 0 && x + rx < c->wf && y + ry < c->hf;
+    return c->inside && x - rx >= 0 && y - ry >= 0 && x + rx < c->wf && y + ry < c->hf;
 }
 
 /* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
@@ -400,6 +450,16 @@ static void setup_vectors(ctx *c, const mc_view *v)
     c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
     c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
     if (c->near < 1) c->near = 1;                                    /* tiny views: never divide by 0 */
+    /* footprints, chosen once per frame: a leaf's side on screen is scale / 2^d pixels */
+    c->splat = 1;
+    c->leaf_side = 0;
+    if (v->splat == MC_SPLAT_ZOOM || (v->splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
+        int sh = 16 + (int)c->d - F;
+        int64_t leaf = sh >= 0 ? mc_round_shift(scale, sh) : scale * ((int64_t)1 << -sh);
+        if (c->perspective) c->leaf_side = leaf;
+        else c->splat = footprint(leaf);
+    }
+    c->inside = !c->perspective && c->splat == 1;
 }
 
 void mc_clear(const mc_target *t)

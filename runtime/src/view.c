@@ -4,7 +4,15 @@
 
 mc_view mc_view_default(void)
 {
-    mc_view v = {0, 0, 0, MC_ZOOM_ONE, 0, 0, MC_ORTHOGRAPHIC, 2 * MC_ZOOM_ONE};
+    /* field by field: an aggregate initialiser or copy of this size becomes a memset/memcpy call
+     * at -O0, which a freestanding build does not have */
+    mc_view v;
+    v.yaw = v.pitch = v.roll = 0;
+    v.zoom = MC_ZOOM_ONE;
+    v.tx = v.ty = 0;
+    v.projection = MC_ORTHOGRAPHIC;
+    v.eye = 2 * MC_ZOOM_ONE;
+    v.splat = MC_SPLAT_DEFAULT;
     return v;
 }
 
@@ -12,7 +20,10 @@ static int32_t clamp32(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo :
 
 mc_view mc_view_clamp(const mc_view *v, uint32_t width, uint32_t height)
 {
-    mc_view c = *v;
+    mc_view c;
+    c.yaw = v->yaw;
+    c.pitch = v->pitch;
+    c.roll = v->roll;
     uint32_t side = width < height ? width : height;
     if (side == 0) side = 1;
     /* the cube's screen extent is zoom * side; its bounding sphere (extent * sqrt(3)/2) plus half the
@@ -25,6 +36,7 @@ mc_view mc_view_clamp(const mc_view *v, uint32_t width, uint32_t height)
     c.ty = clamp32(v->ty, -MC_COORD_LIMIT / 4, MC_COORD_LIMIT / 4);
     c.eye = clamp32(v->eye, MC_EYE_MIN, MC_EYE_MAX);
     c.projection = v->projection == MC_PERSPECTIVE ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
+    c.splat = v->splat == MC_SPLAT_PIXEL || v->splat == MC_SPLAT_ZOOM ? v->splat : MC_SPLAT_DEFAULT;
     return c;
 }
 

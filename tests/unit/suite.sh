@@ -85,8 +85,10 @@ for f in 15 8 24; do
     build_and_run "unit: fixed F=$f: " "test_fixed-f$f" -DMC_FRAC_BITS=$f
 done
 build_and_run "unit: trig: " test_trig
+# test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
+# (footprints: tests/finish/ and tests/stress/)
 for f in 15 8 24; do
-    build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f "$hook"
+    build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f -DMC_SPLAT_DEFAULT_MODE=1 "$hook"
 done
 
 # ---- freestanding builds -----------------------------------------------------------------------

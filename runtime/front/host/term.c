@@ -308,6 +308,8 @@ static void put_status(const term_state *s)
 
 /* ---- rendering ----------------------------------------------------------------------------------- */
 
+mc_fill mc_host_fill = MC_FILL_DEFAULT;
+
 static mc_view current_view(const term_state *s)
 {
     mc_view v = s->start;
@@ -340,7 +342,7 @@ static int draw(term_state *s, unsigned depth, mc_abort_fn abort)
         mc_clear(&t);
         mc_render(app->scene, &v, depth, &t, abort, NULL, &st);
         if (st.aborted) return 0;
-        mc_finish_pixel_holes(&t);
+        mc_finish(&t, mc_host_fill);
     }
     s->frame_ms = (now_s() - t0) * 1e3;
     s->drawn_depth = depth;

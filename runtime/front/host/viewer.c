@@ -1,7 +1,7 @@
 /* The host viewer: one binary per model (linked with the model's generated app binding).
  *
  *   NAME-view [--png FILE | --ppm FILE] [--yaw D --pitch D --roll D --zoom Z --depth N --size WxH
- *              --perspective --no-finish]
+ *              --perspective --fill none|pixel|scanline --no-finish --splat 1|zoom]
  *   NAME-view --bench N [...]
  *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
  *   NAME-view            interactive, when stdout is a terminal
@@ -45,12 +45,18 @@ static void usage(FILE *f)
             "  --depth N       octree depth to draw, 1..%d (default %d)\n"
             "  --size WxH      frame size, at most %ux%u (default 320x240)\n"
             "  --perspective   perspective projection, eye 2 cube sides away (default orthographic)\n"
-            "  --no-finish     leave one-pixel holes open\n"
+            "  --fill MODE     hole filling after rendering: none, pixel (one-pixel holes) or scanline\n"
+            "                  (the paper's neighbourhood criterion, hole types 1-4; default %s)\n"
+            "  --no-finish     the same as --fill none\n"
+            "  --splat MODE    pixels per leaf: 1 (one pixel, the paper's) or zoom (a square that grows\n"
+            "                  with the leaf's size on screen; default %s)\n"
             "  --help          this text\n"
             "With no output option and stdout a terminal, runs interactively: arrow keys rotate, + and -\n"
             "zoom, q quits.\n",
             mc_app_model.scene->name, mc_app_model.scene->depth, mc_app_model.scene->depth,
-            mc_app_model.max_width, mc_app_model.max_height);
+            mc_app_model.max_width, mc_app_model.max_height,
+            MC_FILL_DEFAULT_MODE == 2 ? "scanline" : MC_FILL_DEFAULT_MODE == 1 ? "pixel" : "none",
+            MC_SPLAT_DEFAULT_MODE == 2 ? "zoom" : "1");
 }
 
 static int die(const char *msg, const char *arg)
@@ -84,7 +90,7 @@ static int cmp_double(const void *a, const void *b)
 
 int32_t mc_host_angle(double degrees) { return (int32_t)lround(fmod(degrees, 360.0) * MC_ANGLE_FULL / 360.0); }
 
-static int bench(const mc_target *t, mc_view v, unsigned depth, int finish, int frames)
+static int bench(const mc_target *t, mc_view v, unsigned depth, mc_fill fill, int frames)
 {
     static double ms[100000];
     if (frames > 100000) frames = 100000;
@@ -96,7 +102,7 @@ static int bench(const mc_target *t, mc_view v, unsigned depth, int finish, int 
         double t0 = now_ms();
         mc_clear(t);
         mc_render(mc_app_model.scene, &v, depth, t, NULL, NULL, &st);
-        if (finish) mc_finish_pixel_holes(t);
+        mc_finish(t, fill);
         ms[i] = now_ms() - t0;
         points += st.points;
     }
@@ -104,7 +110,7 @@ static int bench(const mc_target *t, mc_view v, unsigned depth, int finish, int 
     double median = frames % 2 ? ms[frames / 2] : (ms[frames / 2 - 1] + ms[frames / 2]) / 2;
     double mean_points = (double)points / frames;
     printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.scene->name, depth, t->width, t->height,
-           frames, finish ? "" : " no-finish");
+           frames, fill == MC_FILL_NONE ? " no-finish" : "");
     printf("ms per frame (median): %.3f\n", median);
     printf("points drawn per frame: %.0f\n", mean_points);
     printf("Mpoints/s: %.2f\n", mean_points / median / 1e3);
@@ -134,7 +140,9 @@ int main(int argc, char **argv)
     const char *png = NULL, *ppm = NULL;
     double yaw = 0, pitch = 0, roll = 0, zoom = 1, dv;
     unsigned depth = scene->depth, w = 320, h = 240;
-    int finish = 1, perspective = 0, check = 0, sized = 0;
+    int perspective = 0, check = 0, sized = 0;
+    mc_fill fill = MC_FILL_DEFAULT;
+    mc_splat splat = MC_SPLAT_DEFAULT;
     long frames = 0;
     static const struct option opts[] = {
         {"png", required_argument, 0, 'P'}, {"ppm", required_argument, 0, 'M'},
@@ -143,7 +151,8 @@ int main(int argc, char **argv)
         {"zoom", required_argument, 0, 'z'}, {"depth", required_argument, 0, 'd'},
         {"size", required_argument, 0, 's'}, {"no-finish", no_argument, 0, 'n'},
         {"perspective", no_argument, 0, 'e'}, {"checksums", no_argument, 0, 'c'},
-        {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+        {"help", no_argument, 0, 'h'}, {"fill", required_argument, 0, 'f'},
+        {"splat", required_argument, 0, 'S'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -170,7 +179,18 @@ int main(int argc, char **argv)
             sized = 1;
             break;
         case 'c': check = 1; break;
-        case 'n': finish = 0; break;
+        case 'n': fill = MC_FILL_NONE; break;
+        case 'f':
+            if (!strcmp(optarg, "none")) fill = MC_FILL_NONE;
+            else if (!strcmp(optarg, "pixel")) fill = MC_FILL_PIXEL;
+            else if (!strcmp(optarg, "scanline")) fill = MC_FILL_SCANLINE;
+            else return die("--fill expects none, pixel or scanline", optarg);
+            break;
+        case 'S':
+            if (!strcmp(optarg, "1") || !strcmp(optarg, "pixel")) splat = MC_SPLAT_PIXEL;
+            else if (!strcmp(optarg, "zoom")) splat = MC_SPLAT_ZOOM;
+            else return die("--splat expects 1 or zoom", optarg);
+            break;
         case 'e': perspective = 1; break;
         case 'h': usage(stdout); return 0;
         default: return die("unknown option (see --help)", argv[optind - 1]);
@@ -193,8 +213,10 @@ int main(int argc, char **argv)
     v.roll = mc_host_angle(roll);
     v.zoom = (int32_t)lround(zoom * MC_ZOOM_ONE);
     v.projection = perspective ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
+    v.splat = splat;
+    mc_host_fill = fill;
 
-    if (frames) return bench(&t, v, depth, finish, (int)frames);
+    if (frames) return bench(&t, v, depth, fill, (int)frames);
     if (!png && !ppm) {
         if (isatty(STDOUT_FILENO)) return mc_host_interactive(&mc_app_model, v);
         return die("stdout is not a terminal: give --png FILE, --ppm FILE or --bench N (see --help)", NULL);
@@ -204,7 +226,7 @@ int main(int argc, char **argv)
     double t0 = now_ms();
     mc_clear(&t);
     int rc = mc_render(scene, &v, depth, &t, NULL, NULL, &st);
-    uint32_t filled = finish ? mc_finish_pixel_holes(&t) : 0;
+    uint32_t filled = mc_finish(&t, fill);
     double ms = now_ms() - t0;
     if (rc != MC_OK) return die("render failed", NULL);
     mc_host_to_rgb(&t, scene->palette, rgb_buffer);

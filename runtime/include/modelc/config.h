@@ -56,6 +56,46 @@
 #define MC_LEAF_SWITCH 1
 #endif
 
+/* MC_SPLAT_DEFAULT_MODE: the leaf footprint of views whose splat is MC_SPLAT_DEFAULT (view.h):
+ *   1 (MC_SPLAT_PIXEL): one pixel per leaf, the source paper's;
+ *   2 (MC_SPLAT_ZOOM, default): a square that grows with the leaf's size on screen. Chosen by
+ *     measurement: at zoom 2 it raises PSNR against the reference by several dB over one-pixel
+ *     splats, finished or not, and at zoom <= 1 (leaves under a pixel) it draws the same pixels on
+ *     the same code path (tests/bench/RESULTS.md, "Hole filling and splats").
+ * MC_SPLAT_MAX: the largest footprint side in pixels (bounds the work per leaf at MC_SPLAT_MAX^2). */
+#ifndef MC_SPLAT_DEFAULT_MODE
+#define MC_SPLAT_DEFAULT_MODE 2
+#endif
+#if MC_SPLAT_DEFAULT_MODE != 1 && MC_SPLAT_DEFAULT_MODE != 2
+#error "MC_SPLAT_DEFAULT_MODE must be 1 (one pixel) or 2 (grows with zoom)"
+#endif
+#ifndef MC_SPLAT_MAX
+#define MC_SPLAT_MAX 16
+#endif
+#if MC_SPLAT_MAX < 1 || MC_SPLAT_MAX > 64
+#error "MC_SPLAT_MAX must be in 1..64"
+#endif
+
+/* MC_FILL_REACH: how far (pixels) the scanline hole filler (finish.h, MC_FILL_SCANLINE) looks along
+ * a row, a column and the two diagonals for a drawn pixel: holes up to MC_FILL_REACH pixels across
+ * are closed. 1 closes only what the four-neighbour criterion sees; 3 (default) closes the holes of
+ * rotated views at zoom up to 2 without joining parts of the model that are really apart. */
+#ifndef MC_FILL_REACH
+#define MC_FILL_REACH 3
+#endif
+#if MC_FILL_REACH < 1 || MC_FILL_REACH > 16
+#error "MC_FILL_REACH must be in 1..16"
+#endif
+
+/* MC_FILL_DEFAULT_MODE: what mc_finish(t, MC_FILL_DEFAULT) does: 0 none, 1 one-pixel holes (the
+ * four-neighbour fill), 2 (default) the source paper's scanline neighbourhood criterion (finish.h). */
+#ifndef MC_FILL_DEFAULT_MODE
+#define MC_FILL_DEFAULT_MODE 2
+#endif
+#if MC_FILL_DEFAULT_MODE < 0 || MC_FILL_DEFAULT_MODE > 2
+#error "MC_FILL_DEFAULT_MODE must be 0, 1 or 2"
+#endif
+
 /* MC_PLOT_HOOK(fx, fy, color_ptr): called for every point that lands on screen, before the depth
  * test, with its screen position in Q MC_FRAC_BITS pixels (int32) and a pointer to its palette index
  * (which identifies the leaf). Empty by default; tests define it to compare each point with a

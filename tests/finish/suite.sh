@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Hole filling and splats (modelc/finish.h, view.h):
+#   - test_holes.c on synthetic images: hole types 1-4 closed, border holes (type 5) left open, the
+#     criterion against a brute-force evaluation, zoom footprints (also under ASan + UBSan)
+#   - psnr.c for bunny00 and nefertiti: every splat and fill against the double-precision reference of
+#     the same model baked one level deeper (bakes into build/finish/NAME_d9 on first use), with the
+#     numbers printed as "#" lines
+# Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+out=build/finish
+mkdir -p "$out"
+status=0
+notok() { echo "not ok - finish: $1: $2"; status=1; }
+oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+CFLAGS_T="-std=c99 -Wall -Wextra -Werror -Iruntime/include"
+
+run() {   # run LABEL PROGRAM ARGS...: passes the check lines through, one failure if it dies silently
+    local label=$1 log
+    shift
+    log="$out/$(basename "$1").log"
+    "$@" >"$log" 2>&1
+    local rc=$?
+    grep -E '^(ok|not ok|#) ' "$log"
+    if [ "$rc" -ne 0 ]; then
+        status=1
+        grep -q '^not ok' "$log" || notok "$label" "exited with status $rc: $(tail -n 3 "$log" | oneline)"
+    fi
+}
+
+# ---- synthetic images -------------------------------------------------------------------------
+# shellcheck disable=SC2086
+if gcc $CFLAGS_T -O2 -g -o "$out/test_holes" tests/finish/test_holes.c runtime/src/*.c >"$out/test_holes.build.log" 2>&1; then
+    run "test_holes" "$out/test_holes"
+else
+    notok "test_holes build" "$(head -n 3 "$out/test_holes.build.log" | oneline)"
+fi
+export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1" UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+# shellcheck disable=SC2086
+if gcc $CFLAGS_T -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
+    -o "$out/test_holes-san" tests/finish/test_holes.c runtime/src/*.c >"$out/test_holes-san.build.log" 2>&1; then
+    "$out/test_holes-san" >"$out/test_holes-san.log" 2>&1
+    rc=$?
+    if [ "$rc" -eq 0 ]; then echo "ok - finish: test_holes under ASan + UBSan: no report, every check passes"
+    else notok "test_holes under ASan + UBSan" "status $rc: $(grep -m1 -E 'runtime error|ERROR:|^not ok' "$out/test_holes-san.log" | oneline)"; fi
+else
+    notok "test_holes build (ASan + UBSan)" "$(head -n 3 "$out/test_holes-san.build.log" | oneline)"
+fi
+
+# ---- PSNR against the reference -----------------------------------------------------------------
+for m in bunny00 nefertiti; do
+    if [ ! -f "build/$m/budget.json" ]; then notok "$m" "not baked (run make views)"; continue; fi
+    ref=$out/${m}_d9
+    src=build/models/$m.off
+    if [ ! -f "$ref/budget.json" ] || [ "$ref/budget.json" -ot build/bin/modelc ]; then
+        rm -rf "$ref"
+        build/bin/modelc "$src" -o "$out" --name "${m}_d9" --depth 9 --screen 64x64 --quiet >"$out/$m-d9.bake.log" 2>&1 ||
+            { notok "$m: reference bake at depth 9" "$(head -n 3 "$out/$m-d9.bake.log" | oneline)"; continue; }
+    fi
+    # shellcheck disable=SC2086,SC2046
+    if gcc $CFLAGS_T -O2 -g -Iruntime/ref -DTEST_SCENE=mc_scene_$m -DREF_SCENE=mc_scene_${m}_d9 -o "$out/psnr-$m" \
+        tests/finish/psnr.c runtime/src/*.c runtime/ref/ref.c $(ls build/$m/*.c | grep -v '_app\.c$') \
+        $(ls "$ref"/*.c | grep -v '_app\.c$') -lm >"$out/psnr-$m.build.log" 2>&1; then
+        run "psnr $m" "$out/psnr-$m"
+    else
+        notok "psnr $m build" "$(head -n 3 "$out/psnr-$m.build.log" | oneline)"
+    fi
+done
+exit $status
