@@ -6,6 +6,7 @@
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
+#   make stress                  10^7 random views against the double-precision reference (about 25 min)
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
@@ -28,7 +29,7 @@ DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo l
   gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: help deps gen models views demo view readme-images test bench clean
+.PHONY: help deps gen models views demo view readme-images test bench stress clean
 help:
 	@sed -n 's/^#   //p' Makefile
 
@@ -133,6 +134,12 @@ test:
 
 bench: $(MODELC) models
 	@tests/bench/run.sh
+
+# 10^7 random views (tests/stress/stress.c), on two processes with their own seeds, plus the F=8/24
+# and ASan + UBSan runs of tests/stress/suite.sh
+STRESS_VIEWS ?= 10000000
+stress: $(MODELC) $(BUILD)/models/bunny00.off
+	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 tests/stress/suite.sh
 
 clean:
 	rm -rf $(BUILD)

@@ -24,8 +24,8 @@ static const uint8_t *next_byte(const mc_chunk **chunk, uint32_t *at)
 
 static void leaf(walk *w, uint32_t ix, uint32_t iy, uint32_t iz)
 {
-    double n = (double)(1u << w->d);
-    double p[3] = {(ix + 0.5) / n - 0.5, (iy + 0.5) / n - 0.5, (iz + 0.5) / n - 0.5};
+    const double inv = 1.0 / (double)(1u << w->d);   /* a power of two: the products are exact */
+    double p[3] = {(ix + 0.5) * inv - 0.5, (iy + 0.5) * inv - 0.5, (iz + 0.5) * inv - 0.5};
     double q[3];
     for (int i = 0; i < 3; i++) q[i] = w->r[i][0] * p[0] + w->r[i][1] * p[1] + w->r[i][2] * p[2];
     mc_ref_point pt;

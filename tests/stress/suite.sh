@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# Numerical stress (tests/stress/stress.c says what is checked and derives the error bound): random
+# views of bunny00 baked at depth 6 into build/stress/ (small chunks, so chunk boundaries are crossed
+# often), rendered by a runtime compiled with the plot hook into the test.
+#   STRESS_VIEWS   views of the optimised run (default 100000)
+#   STRESS_SAN_VIEWS  views of the run under ASan + UBSan (-fno-sanitize-recover=all; default 10000;
+#                  0 skips it)
+#   STRESS_JOBS    processes the optimised run is split into, each with its own seed (default 1)
+#   STRESS_F_VIEWS views of each of two more optimised runs with MC_FRAC_BITS 8 and 24 (default
+#                  STRESS_VIEWS / 10)
+#   STRESS_SEED    first seed (default 1)
+# make stress runs it with 10^7 views on two processes.
+# Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+VIEWS=${STRESS_VIEWS:-100000}
+SAN_VIEWS=${STRESS_SAN_VIEWS:-10000}
+JOBS=${STRESS_JOBS:-1}
+F_VIEWS=${STRESS_F_VIEWS:-$(((VIEWS + 9) / 10))}
+SEED=${STRESS_SEED:-1}
+out=build/stress
+model=bunny00
+bake=$out/$model
+status=0
+ok() { echo "ok - stress: $1"; }
+notok() { echo "not ok - stress: $1: $2"; status=1; }
+oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+mkdir -p "$out"
+
+src=build/models/bunny00.off
+[ -f "$src" ] || make -s "$src" >"$out/models.log" 2>&1
+[ -x build/bin/modelc ] || make -s gen >"$out/gen.log" 2>&1
+if [ ! -f "$bake/budget.json" ] || [ "$bake/budget.json" -ot build/bin/modelc ]; then
+    rm -rf "$bake"
+    if ! build/bin/modelc "$src" -o "$out" --name "$model" --depth 6 --screen 64x64 --chunk-bytes 512 \
+        --file-bytes 65536 --quiet >"$out/bake.log" 2>&1; then
+        notok "bake $model at depth 6" "$(head -n 3 "$out/bake.log" | oneline)"
+        exit 1
+    fi
+fi
+
+build() {   # build OUTPUT FLAGS...
+    local prog=$1
+    shift
+    # shellcheck disable=SC2068
+    gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref \
+        '-DMC_PLOT_HOOK(fx,fy,c)=stress_point(fx,fy,c)' -include tests/stress/hook.h \
+        -o "$prog" tests/stress/stress.c runtime/ref/ref.c runtime/src/*.c "$bake"/*.c -lm >"$prog.log" 2>&1
+}
+
+# ---- optimised, JOBS processes with consecutive seeds ---------------------------------------------
+if build "$out/stress" -O2 -g; then
+    pids=()
+    per=$(((VIEWS + JOBS - 1) / JOBS))
+    t0=$(date +%s.%N)
+    for j in $(seq 0 $((JOBS - 1))); do
+        "$out/stress" "$per" $((SEED + j)) "stress seed $((SEED + j))" >"$out/run.$j.log" 2>&1 &
+        pids+=($!)
+    done
+    rcs=0
+    for p in "${pids[@]}"; do wait "$p" || rcs=1; done
+    t1=$(date +%s.%N)
+    for j in $(seq 0 $((JOBS - 1))); do
+        grep -E '^(ok|not ok) ' "$out/run.$j.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
+        grep '^#' "$out/run.$j.log"
+    done
+    secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
+    echo "# $((per * JOBS)) views in $JOBS process(es): $secs s wall clock"
+    if [ "$rcs" -ne 0 ] && ! grep -q '^not ok' "$out"/run.*.log; then
+        notok "optimised run" "a process failed without reporting: $(tail -n 3 "$out"/run.*.log | oneline)"
+    fi
+    grep -q '^not ok' "$out"/run.*.log && status=1
+else
+    notok "build (-O2)" "$(head -n 5 "$out/stress.log" | oneline)"
+fi
+
+# ---- the extreme fixed-point formats: MC_FRAC_BITS 8 and 24 (targets at most MC_TARGET_MAX, 8x8 at 24) --
+for f in 8 24; do
+    if build "$out/stress-f$f" -O2 -g -DMC_FRAC_BITS=$f; then
+        "$out/stress-f$f" "$F_VIEWS" $((SEED + 100 + f)) "stress F=$f" >"$out/run.f$f.log" 2>&1
+        rc=$?
+        grep -E '^(ok|not ok) ' "$out/run.f$f.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
+        grep '^#' "$out/run.f$f.log"
+        if [ "$rc" -ne 0 ]; then
+            grep -q '^not ok' "$out/run.f$f.log" || notok "F=$f run" "status $rc: $(tail -n 3 "$out/run.f$f.log" | oneline)"
+            status=1
+        fi
+    else
+        notok "build (-DMC_FRAC_BITS=$f)" "$(head -n 5 "$out/stress-f$f.log" | oneline)"
+    fi
+done
+
+# ---- under ASan + UBSan ---------------------------------------------------------------------------
+if [ "$SAN_VIEWS" -gt 0 ]; then
+    export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1"
+    export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+    if build "$out/stress-san" -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer; then
+        "$out/stress-san" "$SAN_VIEWS" $((SEED + 1000)) "stress san" >"$out/run.san.log" 2>&1
+        rc=$?
+        grep -E '^(ok|not ok) ' "$out/run.san.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
+        grep '^#' "$out/run.san.log"
+        rep=$(grep -m1 -E 'runtime error:|ERROR: AddressSanitizer' "$out/run.san.log" | oneline)
+        if [ "$rc" -ne 0 ] || [ -n "$rep" ]; then
+            grep -q '^not ok' "$out/run.san.log" || notok "$SAN_VIEWS views under ASan + UBSan" "status $rc: ${rep:-see $out/run.san.log}"
+            status=1
+        else
+            ok "$SAN_VIEWS views under -fsanitize=address,undefined -fno-sanitize-recover=all: no report"
+        fi
+    else
+        notok "build (ASan + UBSan)" "$(head -n 5 "$out/stress-san.log" | oneline)"
+    fi
+fi
+exit $status
