@@ -219,5 +219,8 @@ done
 # ---- report -----------------------------------------------------------------------------------------
 echo "load_end: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$RES/meta.txt"
 python3 tests/bench/bench_tools.py report "$RES" tests/bench/RESULTS.md
+step "interaction timing and hole filling: sections appended to tests/bench/RESULTS.md"
+INTERACTION_RUNTIME=$SNAP tests/bench/interaction.sh tests/bench/RESULTS.md >"$RES/interaction.md"
+tests/bench/holes.sh tests/bench/RESULTS.md >"$RES/holes.log" || true
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'
