@@ -294,6 +294,7 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
         budget["budgets"] = lim;
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
+    for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);
     std::string budget_text = budget.dump(2) + "\n";
     out.emplace_back("budget.json", budget_text);
 

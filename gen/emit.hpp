@@ -22,6 +22,7 @@ struct EmitOptions {
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
     Limits limits;             // recorded in budget.json (checked by the caller)
     std::string fit_note;      // what --fit chose, recorded in budget.json
+    std::vector<std::pair<std::string, std::string>> budget_extra;  // more budget.json entries: key, JSON text
 };
 
 // What a bake costs a 32-bit firmware image, computed before anything is written (see

@@ -13,6 +13,7 @@
 #include "progress.hpp"
 #include "reference.hpp"
 #include "runtime_costs.hpp"
+#include "visibility.hpp"
 #include "voxel.hpp"
 
 namespace {
@@ -69,6 +70,7 @@ int main(int argc, char **argv) {
     bool quiet = false, fit = false;
     std::string up = "y", emit_kind = "app", flash_budget, ram_budget, stack_budget;
     int min_palette = 16;
+    std::string views = "all";
     std::string dump_reference;  // hidden: tests and benchmarks only
     app.add_option("input", input, "model file: .off .obj .ply .stl (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
@@ -86,6 +88,12 @@ int main(int argc, char **argv) {
         ->capture_default_str();
     app.add_option("--up", up, "the model's up axis: y, or z for scans and CAD models that stand on the xy plane")
         ->check(CLI::IsMember({"y", "z"}))->capture_default_str();
+    app.add_option("--views", views,
+                   "directions the model will be seen from; cells visible from none are removed: all (no "
+                   "pruning), or a comma list of front:DEG (within DEG degrees of the front axis), YAW:PITCH "
+                   "(one view, degrees as the viewer's --yaw --pitch), YAW:PITCH:DEG (a cone around it), "
+                   "each optionally @N directions")
+        ->capture_default_str();
     app.add_option("--emit", emit_kind, "app: the model and NAME_app.c with static frame buffers for a front end; "
                    "lib: only the model's .c/.h, for an existing firmware project")
         ->check(CLI::IsMember({"app", "lib"}))->capture_default_str();
@@ -121,6 +129,12 @@ int main(int argc, char **argv) {
     emit.screen_h = std::stoi(m[2]);
     if (emit.screen_w < 1 || emit.screen_h < 1 || emit.screen_w > 4096 || emit.screen_h > 4096)
         return fail("--screen " + screen + ": each side must be in 1..4096", 2);
+    mc::ViewSpec view_spec;
+    try {
+        view_spec = mc::parse_views(views);
+    } catch (const std::invalid_argument &e) {
+        return fail("--views " + views + ": " + e.what(), 2);
+    }
     try {
         if (!flash_budget.empty()) emit.limits.flash = parse_size("--flash-budget", flash_budget);
         if (!ram_budget.empty()) emit.limits.ram = parse_size("--ram-budget", ram_budget);
@@ -143,11 +157,20 @@ int main(int argc, char **argv) {
         if (up == "z") mc::make_z_up_y_up(model);
         mc::Voxels voxels = mc::voxelize(model, input, vox, progress);
         if (!dump_reference.empty()) mc::dump_reference(model, voxels, dump_reference);
+        // --views: the cells to keep, whatever depth and palette the octree gets (empty: keep all)
+        std::vector<uint8_t> keep;
+        mc::PruneStats pruned;
+        if (!view_spec.all) {
+            progress.step("visibility");
+            keep = mc::visible_cells(model, voxels, mc::view_directions(view_spec), progress, pruned);
+            emit.budget_extra.emplace_back("pruning", mc::pruning_json(view_spec, pruned));
+        }
         progress.step("building octree");
         emit.name = name;
         mc::Octree tree;
         if (!fit) {
             tree = mc::build_octree(voxels, palette);
+            if (!keep.empty()) tree = mc::prune_octree(tree, voxels, keep);
             std::string over = mc::over_budget(mc::budget_of(tree, emit), limits);
             if (!over.empty()) return fail("over budget: " + over);
         } else {
@@ -174,10 +197,11 @@ int main(int argc, char **argv) {
             for (const auto &mod : mc::rt::kModules) code += emit.leaf_switch ? mod.bytes : mod.bytes_loop;
             for (int d = levels.depth; d >= 1 && !found; d--) {
                 for (int p : palettes) {
-                    // a lower bound first (no palette, no descriptors), to skip depths far over
-                    size_t bound = code;
-                    for (int l = 0; l < d; l++) bound += levels.nodes(l);
-                    if (p > 1)
+                    // a lower bound first (no palette, no descriptors), to skip depths far over;
+                    // pruning (--views) removes nodes, so then every candidate is built
+                    size_t bound = keep.empty() ? code : 0;
+                    for (int l = 0; l < d && keep.empty(); l++) bound += levels.nodes(l);
+                    if (p > 1 && keep.empty())
                         for (int l = 1; l <= d; l++) bound += levels.nodes(l);
                     if (limits.flash && bound > limits.flash && p == palettes.back()) {
                         last = "flash at least " + std::to_string(bound) + " bytes > " + std::to_string(limits.flash) +
@@ -191,6 +215,7 @@ int main(int argc, char **argv) {
                         break;
                     }
                     mc::Octree t = mc::cut_octree(levels, d, p);
+                    if (!keep.empty()) t = mc::prune_octree(t, voxels, keep);
                     mc::Budget b = mc::budget_of(t, emit);
                     std::string over = mc::over_budget(b, limits);
                     if (!over.empty()) {
@@ -217,6 +242,7 @@ int main(int argc, char **argv) {
         mc::emit_model(tree, voxels, emit);
         progress.finish();
         if (fit) std::printf("modelc: %s\n", emit.fit_note.c_str());
+        if (!view_spec.all && !quiet) std::fprintf(stderr, "modelc: %s\n", mc::pruning_report(view_spec, pruned).c_str());
     } catch (const mc::InputError &e) {
         return fail(e.line());
     } catch (const std::bad_alloc &) {

@@ -20,6 +20,9 @@ struct Voxels {
     std::vector<uint64_t> codes;      // Morton codes of occupied cells, ascending (bit 0 = x, 1 = y, 2 = z)
     std::vector<std::array<double, 3>> rgb;  // colour per cell, 0..255
     uint64_t samples = 0;             // surface samples (meshes) or input points (point sets)
+    // meshes: one point on the surface per cell (the surface point nearest its samples' centroid),
+    // where visibility rays start; empty for point sets
+    std::vector<std::array<double, 3>> surface;
 };
 
 // Throws InputError (Where::none) when the model cannot be voxelized (e.g. nothing lands in the grid).

@@ -19,6 +19,7 @@ suites=(
     tests/unit/suite.sh       # fixed point, sine table, freestanding builds
     tests/gen/errors.sh       # malformed input: one error line, no output
     tests/gen/suite.sh        # determinism, chunks, budget
+    tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/render/suite.sh     # renders against the double-precision reference
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
