@@ -11,9 +11,11 @@
  * sometimes beyond (0, negative, INT32_MAX: clamped), translations from none to far off screen (up
  * to +-INT32_MAX: clamped to +-MC_COORD_LIMIT/4), orthographic and perspective with the eye anywhere
  * from 1/16 to 256 cube sides (so also inside the model's bounding sphere, with part of the model
- * behind the eye), and out-of-range eyes and projections; targets from 1x1 to 400x300, sometimes one
- * pixel thin; the model's depth D a quarter of the time, else any of 1..D-1; sometimes an abort callback that gives up after a random number
- * of polls; sometimes a second render on top of the first without clearing. Per frame:
+ * behind the eye), and out-of-range eyes and projections; every splat (one pixel, zoom footprints,
+ * default, out of range); targets from 1x1 to 400x300 (at most MC_TARGET_MAX), sometimes one pixel
+ * thin; the model's depth D a quarter of the time, else any of 1..D-1; sometimes an abort callback
+ * that gives up after a random number of polls; sometimes a second render on top of the first
+ * without clearing. Per frame:
  *
  *  1. guard zones: GUARD elements before and after the colour and the depth buffer hold a pattern
  *     that changes every frame; after mc_clear, after mc_render and after each finishing mode
