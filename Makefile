@@ -6,6 +6,7 @@
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
+#   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
 #   make stress                  10^7 random views against the double-precision reference (about 25 min)
 
 SHELL := /bin/bash
@@ -134,6 +135,12 @@ test:
 
 bench: $(MODELC) models
 	@tests/bench/run.sh
+
+# run time against error (issue 3): depth 5..10, MC_FRAC_BITS 8..24 and a double-precision build against
+# the mesh reference: tests/bench/accuracy.{csv,png} and a RESULTS.md section (tests/accuracy/bench.sh)
+.PHONY: bench-accuracy
+bench-accuracy: $(MODELC) models
+	@tests/accuracy/bench.sh
 
 # 10^7 random views (tests/stress/stress.c), on two processes with their own seeds, plus the F=8/24
 # and ASan + UBSan runs of tests/stress/suite.sh

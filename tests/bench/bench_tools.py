@@ -461,11 +461,14 @@ def report(rdir, out_md):
     A("")
     A("</details>")
     A("")
-    # sections other scripts own (make bench-firmware: tests/fw/bench.sh) survive a rerun
+    # sections other scripts own (make bench-firmware: tests/fw/bench.sh, make bench-accuracy:
+    # tests/accuracy/bench.sh) survive a rerun
     keep = ""
     if os.path.exists(out_md):
-        m = re.search(r"<!-- bench-firmware: begin -->.*?<!-- bench-firmware: end -->\n?", open(out_md).read(), re.S)
-        keep = m.group(0) if m else ""
+        text = open(out_md).read()
+        for owner in ("bench-firmware", "bench-accuracy"):
+            m = re.search(r"<!-- %s: begin -->.*?<!-- %s: end -->\n?" % (owner, owner), text, re.S)
+            keep += m.group(0) if m else ""
     with open(out_md, "w") as f:
         f.write("\n".join(L))
         if keep:
