@@ -1,8 +1,9 @@
 /* Checks of the mesh reference renderer (runtime/ref/mesh_ref.c), run by tests/accuracy/suite.sh:
  *
- *   meshref_test BUNNY_REF_DUMP
+ *   meshref_test BUNNY_REF_DUMP KITTEN_REF_DUMP
  *
- * Linked with the bunny00 bake at depth 8 (mc_scene_acc_bunny00) and the runtime. Prints TAP lines.
+ * Linked with the bunny00 bake at depth 8 (mc_scene_acc_bunny00), the kitten bake at depth 7
+ * (mc_scene_acc_kitten) and the runtime. Prints TAP lines.
  *
  * Synthetic meshes with a known image (320x240, zoom 1: the unit cube spans 240 pixels, its centre
  * at pixel (160, 120); model +y up, +z towards the viewer):
@@ -22,6 +23,8 @@
  *   - the outlines agree within one pixel (the same normalisation), and do not when the octree is
  *     moved by two pixels;
  *   - discrimination: the reference of a view 10 degrees off scores below PSNR_MIN.
+ * A point set (kitten, octree at depth 7, mc_scene_acc_kitten): the dump is a point set with a splat
+ * radius, and every pixel the octree draws lies within 2 pixels of the splats' coverage.
  */
 #include <math.h>
 #include <stdio.h>
@@ -31,7 +34,7 @@
 #include <modelc/modelc.h>
 #include "mesh_ref.h"
 
-extern const mc_scene mc_scene_acc_bunny00;
+extern const mc_scene mc_scene_acc_bunny00, mc_scene_acc_kitten;
 
 #define W 320
 #define H 240
@@ -103,16 +106,16 @@ static void octree_image(const mc_scene *s, const mc_view *v, uint8_t *out, uint
     }
 }
 
-/* pixels covered in a with no covered pixel of b within one pixel (8-neighbourhood) */
-static long far_from(const uint8_t *a, const uint8_t *b)
+/* pixels covered in a with no covered pixel of b within r pixels (a (2r+1)^2 square) */
+static long far_from(const uint8_t *a, const uint8_t *b, int r)
 {
     long n = 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             if (!a[y * W + x]) continue;
             int near = 0;
-            for (int dy = -1; dy <= 1 && !near; dy++)
-                for (int dx = -1; dx <= 1 && !near; dx++) {
+            for (int dy = -r; dy <= r && !near; dy++)
+                for (int dx = -r; dx <= r && !near; dx++) {
                     int xx = x + dx, yy = y + dy;
                     near = xx >= 0 && yy >= 0 && xx < W && yy < H && b[yy * W + xx];
                 }
@@ -154,7 +157,7 @@ static long count(const uint8_t *c) { long n = 0; for (int i = 0; i < W * H; i++
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) { fprintf(stderr, "usage: meshref_test BUNNY_REF_DUMP\n"); return 2; }
+    if (argc != 3) { fprintf(stderr, "usage: meshref_test BUNNY_REF_DUMP KITTEN_REF_DUMP\n"); return 2; }
     mc_view v = mc_view_default();
     char name[200];
 
@@ -279,7 +282,7 @@ int main(int argc, char **argv)
         printf("# yaw %d: PSNR %.2f dB, bound %.2f dB\n", yaws[i], p, PSNR_MIN);
         /* the same normalisation: the outlines agree within a pixel (a cell is 0.94 pixels; its centre
          * lies within half a cell of the surface), allowing 0.1 % of the pixels for thin parts */
-        long fo = far_from(ocov, cov), fm = far_from(cov, ocov), lim = count(cov) / 1000;
+        long fo = far_from(ocov, cov, 1), fm = far_from(cov, ocov, 1), lim = count(cov) / 1000;
         snprintf(name, sizeof name, "bunny00 yaw %d: outlines within one pixel (all but %ld pixels)", yaws[i], lim);
         check(fo <= lim && fm <= lim, name, "%g octree and %g mesh pixels farther", (double)fo, (double)fm);
         printf("# farther than a pixel: %ld octree, %ld mesh pixels of %ld\n", fo, fm, count(cov));
@@ -288,7 +291,7 @@ int main(int argc, char **argv)
             moved.tx = 2;
             static uint8_t mrgb[3 * W * H], mcov[W * H];
             octree_image(s, &moved, mrgb, mcov);
-            long a2 = far_from(mcov, cov), b2 = far_from(cov, mcov);
+            long a2 = far_from(mcov, cov, 1), b2 = far_from(cov, mcov, 1);
             check(a2 > lim || b2 > lim, "bunny00: the octree moved by 2 pixels fails the outline check",
                   "%g and %g pixels farther", (double)a2, (double)b2);
             printf("# moved 2 pixels: %ld octree, %ld mesh pixels farther\n", a2, b2);
@@ -304,5 +307,28 @@ int main(int argc, char **argv)
         }
     }
     mc_mesh_ref_free(&b);
+
+    /* ---- a point set: kitten (5210 points with normals), its octree at depth 7 ---------------------
+     * Each point is a disc of 3/4 of the mean spacing to its 6 nearest neighbours. A drawn cell's
+     * centre lies within half a cell diagonal (0.94 * sqrt(3) = 1.6 pixels at depth 7) of a point, so
+     * every pixel the octree draws is within 2 pixels of the reference's coverage (0.1 % allowed). */
+    mc_mesh_ref k;
+    if (mc_mesh_ref_load(argv[2], &k, err, sizeof err) != 0) {
+        printf("not ok - kitten reference: %s\n", err);
+        return 1;
+    }
+    check(k.is_points && k.nverts == 5210 && k.radius > 0 && k.radius < 0.05,
+          "kitten: a point set of 5210 points with a splat radius", "%g points, radius %g", k.nverts, k.radius);
+    const mc_scene *ks = &mc_scene_acc_kitten;
+    mc_view kv = mc_view_default();
+    kv.yaw = MC_ANGLE_FULL / 12;
+    long kn = mc_mesh_ref_render(&k, &kv, W, H, ks->palette, ks->palette_size, rgb, cov, NULL);
+    octree_image(ks, &kv, oct, ocov);
+    long kf = far_from(ocov, cov, 2);
+    check(kn > 10000 && kf <= count(ocov) / 1000, "kitten yaw 30: every octree pixel within 2 pixels of the splats",
+          "%g covered, %g farther", (double)kn, (double)kf);
+    printf("# kitten: %ld pixels covered by the splats, %ld by the octree, %ld of them farther than 2 pixels\n",
+           kn, count(ocov), kf);
+    mc_mesh_ref_free(&k);
     return failures ? 1 : 0;
 }
