@@ -7,7 +7,7 @@
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
-#   make stress                  10^7 random views against the double-precision reference (about 25 min)
+#   make stress                  10^7 random views against the double-precision reference (about 13 min)
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
