@@ -255,8 +255,17 @@ static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const ui
         uint16_t depth_ = (uint16_t)(pz + lz[j]);                                          \
         const uint8_t *col_ = col + popcount8[(n) & ((1u << (j)) - 1u)];                   \
         MC_PLOT_HOOK((int32_t)(p_ >> 32), (int32_t)(uint32_t)p_, col_);                    \
-        if (depth_ < zb[i_]) { zb[i_] = depth_; fb[i_] = *col_; }                          \
+        DEPTH_TEST(i_, depth_, col_)                                                       \
     }
+#if MC_DEPTH_SELECT
+/* both buffers rewritten with the nearer of the two values: conditional moves, no branch */
+#define DEPTH_TEST(i, depth, col)                                                          \
+    { const uint16_t o_ = zb[i]; const uint8_t oc_ = fb[i], nc_ = *(col);                  \
+      const int win_ = (depth) < o_;                                                       \
+      zb[i] = win_ ? (depth) : o_; fb[i] = win_ ? nc_ : oc_; }
+#else
+#define DEPTH_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
+#endif
 #define LEAVES(n) LEAF(n, 0) LEAF(n, 1) LEAF(n, 2) LEAF(n, 3) LEAF(n, 4) LEAF(n, 5) LEAF(n, 6) LEAF(n, 7)
 
 #if MC_LEAF_SWITCH

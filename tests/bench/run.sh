@@ -222,5 +222,7 @@ python3 tests/bench/bench_tools.py report "$RES" tests/bench/RESULTS.md
 step "interaction timing and hole filling: sections appended to tests/bench/RESULTS.md"
 INTERACTION_RUNTIME=$SNAP tests/bench/interaction.sh tests/bench/RESULTS.md >"$RES/interaction.md"
 tests/bench/holes.sh tests/bench/RESULTS.md >"$RES/holes.log" || true
+step "depth test as a branch and as a select, side by side with Mesa: section appended"
+tests/bench/depth_select.sh tests/bench/RESULTS.md "$SNAP" >"$RES/select.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'
