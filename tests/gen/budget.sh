@@ -125,6 +125,16 @@ if $rt_cc -I"$tmp/lib/bunny00" -o "$tmp/example" tests/lib/example.c runtime/src
 else
     nok "the README example builds and runs: $(head -n 3 "$tmp/ex.log" | tr '\n' ' ')"
 fi
+# what a program does not call is not linked: the example draws and fills one-pixel holes only
+if $rt_cc -ffunction-sections -fdata-sections -I"$tmp/lib/bunny00" -o "$tmp/example-gc" tests/lib/example.c \
+    runtime/src/*.c "$tmp/lib/bunny00"/*.c -Wl,--gc-sections 2>"$tmp/gc.log"; then
+    syms=$(nm "$tmp/example-gc")
+    check "--gc-sections: the example links mc_render and mc_finish_pixel_holes but not mc_finish_scanline_holes or mc_finish" \
+        test -n "$(grep ' T mc_render$' <<<"$syms")" -a -n "$(grep ' T mc_finish_pixel_holes$' <<<"$syms")" -a \
+        -z "$(grep ' mc_finish_scanline_holes$\| mc_finish$' <<<"$syms")"
+else
+    nok "--gc-sections build of the example: $(head -n 3 "$tmp/gc.log" | tr '\n' ' ')"
+fi
 over=('-DMC_BUNNY00_SECTION=__attribute__((section(".models")))' '-DMC_BUNNY00_ALIGN=__attribute__((aligned(4)))'
       -DMC_BUNNY00_PREFIX=board_)
 if $rt_cc "${over[@]}" -I"$tmp/lib/bunny00" -o "$tmp/example2" tests/lib/example.c runtime/src/*.c "$tmp/lib/bunny00"/*.c 2>"$tmp/ex2.log"; then
