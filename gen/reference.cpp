@@ -1,6 +1,8 @@
 // --dump-reference (see reference.hpp): what the tests' mesh reference renderer needs.
 #include "reference.hpp"
 
+#include "light.hpp"
+
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
@@ -22,12 +24,7 @@ using Vector = K::Vector_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-// As voxel.cpp's frontal_light (the tests compare the two renders, so keep them equal).
-double frontal_light(const std::array<double, 3> &n) {
-    double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(len > 0)) return 0.6;
-    return 0.15 + 0.85 * std::fabs(n[2] / len);
-}
+double frontal_light(const std::array<double, 3> &n) { return mc::frontal_light(n[0], n[1], n[2]); }
 
 struct Writer {
     std::FILE *f;

@@ -1,6 +1,8 @@
 // Sampling (CGAL sample_triangle_mesh), voxelization and per-cell colour.
 #include "voxel.hpp"
 
+#include "light.hpp"
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -26,13 +28,7 @@ using Vector = K::Vector_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-// The fixed frontal light of the source paper's scans: from the viewer (+z), two-sided so that
-// meshes with inconsistent orientation still shade, with some ambient so grazing surfaces stay visible.
-double frontal_light(const Vector &n) {
-    double len = std::sqrt(n.squared_length());
-    if (!(len > 0)) return 0.6;
-    return 0.15 + 0.85 * std::fabs(n.z() / len);
-}
+double frontal_light(const Vector &n) { return mc::frontal_light(n.x(), n.y(), n.z()); }
 
 struct Cell {
     double sum[3] = {0, 0, 0};  // sample positions (meshes) or colours/normals (point sets)

@@ -1,5 +1,6 @@
 /* Double-precision reference renderer of the original model: see mesh_ref.h. */
 #include "mesh_ref.h"
+#include "ref.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -70,17 +71,7 @@ typedef struct xform {
 static void make_xform(const mc_view *view, unsigned width, unsigned height, xform *x)
 {
     mc_view v = mc_view_clamp(view, width, height);
-    const double turn = 2 * 3.14159265358979323846 / MC_ANGLE_FULL;
-    double sy = sin(v.yaw * turn), cy = cos(v.yaw * turn), sp = sin(v.pitch * turn), cp = cos(v.pitch * turn);
-    double sr = sin(v.roll * turn), cr = cos(v.roll * turn);
-    double ry[3][3] = {{cy, 0, sy}, {0, 1, 0}, {-sy, 0, cy}};
-    double rx[3][3] = {{1, 0, 0}, {0, cp, -sp}, {0, sp, cp}};
-    double rz[3][3] = {{cr, -sr, 0}, {sr, cr, 0}, {0, 0, 1}};
-    double t[3][3];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) t[i][j] = rx[i][0] * ry[0][j] + rx[i][1] * ry[1][j] + rx[i][2] * ry[2][j];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) x->r[i][j] = rz[i][0] * t[0][j] + rz[i][1] * t[1][j] + rz[i][2] * t[2][j];
+    mc_ref_rotation(&v, x->r);
     x->scale = v.zoom / 65536.0 * (width < height ? width : height);
     x->cx = width / 2.0 + v.tx;
     x->cy = height / 2.0 + v.ty;

@@ -55,14 +55,11 @@ static void node(walk *w, unsigned l, uint32_t ix, uint32_t iy, uint32_t iz)
     }
 }
 
-void mc_ref_points(const mc_scene *scene, const mc_view *view, unsigned depth, unsigned width,
-                   unsigned height, mc_ref_fn fn, void *user)
+void mc_ref_rotation(const mc_view *v, double r[3][3])
 {
-    walk w;
-    mc_view v = mc_view_clamp(view, width, height);
     const double turn = 2 * 3.14159265358979323846 / MC_ANGLE_FULL;
-    double sy = sin(v.yaw * turn), cy = cos(v.yaw * turn), sp = sin(v.pitch * turn), cp = cos(v.pitch * turn);
-    double sr = sin(v.roll * turn), cr = cos(v.roll * turn);
+    double sy = sin(v->yaw * turn), cy = cos(v->yaw * turn), sp = sin(v->pitch * turn), cp = cos(v->pitch * turn);
+    double sr = sin(v->roll * turn), cr = cos(v->roll * turn);
     double ry[3][3] = {{cy, 0, sy}, {0, 1, 0}, {-sy, 0, cy}};
     double rx[3][3] = {{1, 0, 0}, {0, cp, -sp}, {0, sp, cp}};
     double rz[3][3] = {{cr, -sr, 0}, {sr, cr, 0}, {0, 0, 1}};
@@ -70,7 +67,15 @@ void mc_ref_points(const mc_scene *scene, const mc_view *view, unsigned depth, u
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) t[i][j] = rx[i][0] * ry[0][j] + rx[i][1] * ry[1][j] + rx[i][2] * ry[2][j];
     for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) w.r[i][j] = rz[i][0] * t[0][j] + rz[i][1] * t[1][j] + rz[i][2] * t[2][j];
+        for (int j = 0; j < 3; j++) r[i][j] = rz[i][0] * t[0][j] + rz[i][1] * t[1][j] + rz[i][2] * t[2][j];
+}
+
+void mc_ref_points(const mc_scene *scene, const mc_view *view, unsigned depth, unsigned width,
+                   unsigned height, mc_ref_fn fn, void *user)
+{
+    walk w;
+    mc_view v = mc_view_clamp(view, width, height);
+    mc_ref_rotation(&v, w.r);
     w.scale = v.zoom / 65536.0 * (width < height ? width : height);
     w.cx = width / 2.0 + v.tx;
     w.cy = height / 2.0 + v.ty;

@@ -16,6 +16,10 @@ typedef struct mc_ref_point {
 
 typedef void (*mc_ref_fn)(const mc_ref_point *p, void *user);
 
+/* The view's rotation R = Rz(roll) * Rx(pitch) * Ry(yaw) (modelc/view.h) in double precision, from
+ * the already clamped view v. Shared by the reference renderers. */
+void mc_ref_rotation(const mc_view *v, double r[3][3]);
+
 /* Calls fn for every leaf at `depth`, in stored order. */
 void mc_ref_points(const mc_scene *scene, const mc_view *view, unsigned depth, unsigned width,
                    unsigned height, mc_ref_fn fn, void *user);
