@@ -1,6 +1,7 @@
 // --dump-reference (see reference.hpp): what the tests' mesh reference renderer needs.
 #include "reference.hpp"
 
+#include "cgal_mesh.hpp"
 #include "light.hpp"
 
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
@@ -17,12 +18,6 @@
 
 namespace mc {
 namespace {
-
-using K = CGAL::Simple_cartesian<double>;
-using Point = K::Point_3;
-using Vector = K::Vector_3;
-using Mesh = CGAL::Surface_mesh<Point>;
-namespace PMP = CGAL::Polygon_mesh_processing;
 
 double frontal_light(const std::array<double, 3> &n) { return mc::frontal_light(n[0], n[1], n[2]); }
 

@@ -56,8 +56,7 @@ inline constexpr Frame kFrames[] = {
     {"draw_inside", 104, 56},
     {"draw_checked", 64, 80},
     {"leaves_perspective", 80, 112},
-    {"leaves_clipped", 48, 48},
-    {"leaves_splat", 48, 64},
+    {"leaves_clipped", 56, 72},
     {"draw_square", 28, 16},
     {"classify", 8, 8},
     {"mc_mul_shift64", 24, 8},
@@ -84,7 +83,7 @@ constexpr size_t frame(const char *fn) {
 //                only into children at levels <= d-3, visit_inside likewise), then the deepest of
 //                  draw_inside
 //                  draw_checked -> [leaves] -> leaves_perspective -> mc_mul_shift64 | draw_square
-//                                           | leaves_splat -> draw_square | leaves_clipped
+//                                           | leaves_clipped -> draw_square
 //                  classify, [skip_subtree]
 //                  [poll_abort] -> the abort callback (the caller's code: add its own stack)
 // [bracketed] functions are inlined into their callers. The bound is mc_render's frame plus the
@@ -97,7 +96,7 @@ constexpr size_t stack_setup() {
 }
 constexpr size_t stack_tail() {
     const size_t leaves = max2(frame("leaves_perspective") + max2(frame("mc_mul_shift64"), frame("draw_square")),
-                               max2(frame("leaves_splat") + frame("draw_square"), frame("leaves_clipped")));
+                               frame("leaves_clipped") + frame("draw_square"));
     return max2(frame("draw_inside"), max2(frame("draw_checked") + leaves, frame("classify")));
 }
 constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }

@@ -1,6 +1,7 @@
 // Sampling (CGAL sample_triangle_mesh), voxelization and per-cell colour.
 #include "voxel.hpp"
 
+#include "cgal_mesh.hpp"
 #include "light.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -21,12 +22,6 @@
 
 namespace mc {
 namespace {
-
-using K = CGAL::Simple_cartesian<double>;
-using Point = K::Point_3;
-using Vector = K::Vector_3;
-using Mesh = CGAL::Surface_mesh<Point>;
-namespace PMP = CGAL::Polygon_mesh_processing;
 
 double frontal_light(const Vector &n) { return mc::frontal_light(n.x(), n.y(), n.z()); }
 

@@ -147,24 +147,6 @@ static void skip_subtree(ctx *c, unsigned l)
     cursor_skip(&c->color, n);
 }
 
-/* Leaves of one level d-1 node that may reach off screen: each point checked. */
-static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
-{
-    const unsigned l = c->d - 1;
-    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
-    for (; m; m &= m - 1, col++) {
-        unsigned k = lowest_bit(m);
-        int32_t fx = x + vx[k], fy = y + vy[k];
-        int32_t px = fx >> F, py = fy >> F;
-        if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
-        uint16_t depth = (uint16_t)(z + vz[k]);
-        int32_t i = py * c->w + px;
-        c->points++;
-        MC_PLOT_HOOK(fx, fy, col);
-        if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
-    }
-}
-
 /* An s x s footprint (view.h, MC_SPLAT_ZOOM) centred on (fx, fy), which is on the target, clipped
  * to the target; each pixel depth tested. */
 static void draw_square(ctx *c, int32_t fx, int32_t fy, int32_t s, uint16_t depth, uint8_t color)
@@ -183,19 +165,27 @@ static void draw_square(ctx *c, int32_t fx, int32_t fy, int32_t s, uint16_t dept
     }
 }
 
-/* Leaves of one level d-1 node, orthographic, with footprints of c->splat pixels: each point checked
- * (a leaf is drawn when its centre is on the target), its square clipped. */
-static void leaves_splat(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
+/* Leaves of one level d-1 node that may reach off screen, orthographic: each point checked (a leaf
+ * is drawn when its centre is on the target), as one pixel or, with footprints above one pixel, as
+ * a c->splat square clipped to the target. */
+static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
     const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
         unsigned k = lowest_bit(m);
         int32_t fx = x + vx[k], fy = y + vy[k];
-        if ((uint32_t)(fx >> F) >= (uint32_t)c->w || (uint32_t)(fy >> F) >= (uint32_t)c->h) continue;
+        int32_t px = fx >> F, py = fy >> F;
+        if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
+        uint16_t depth = (uint16_t)(z + vz[k]);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
-        draw_square(c, fx, fy, c->splat, (uint16_t)(z + vz[k]), *col);
+        if (c->splat > 1) {
+            draw_square(c, fx, fy, c->splat, depth, *col);
+        } else {
+            int32_t i = py * c->w + px;
+            if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
+        }
     }
 }
 
@@ -207,7 +197,7 @@ static int32_t footprint(int64_t side)
 }
 
 /* Leaves of one level d-1 node in perspective: each point divides by its own distance (exact, not
- * linearised, so it lands where the double reference puts it). Points nearer than the near plane
+ * linearised, so it lands where the reference renderer, runtime/ref, puts it). Points nearer than the near plane
  * (1/64 cube side in front of the eye) are not drawn. */
 static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
@@ -239,7 +229,6 @@ static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t
 static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
 {
     if (c->perspective) leaves_perspective(c, m, x, y, z, col);
-    else if (c->splat > 1) leaves_splat(c, m, x, y, z, col);
     else leaves_clipped(c, m, x, y, z, col);
 }
 

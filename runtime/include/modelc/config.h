@@ -111,8 +111,8 @@
 
 /* MC_PLOT_HOOK(fx, fy, color_ptr): called for every point that lands on screen, before the depth
  * test, with its screen position in Q MC_FRAC_BITS pixels (int32) and a pointer to its palette index
- * (which identifies the leaf). Empty by default; tests define it to compare each point with a
- * double-precision reference. */
+ * (which identifies the leaf). Empty by default; tests define it to compare each point with the
+ * reference renderer (runtime/ref, host-only). */
 #ifndef MC_PLOT_HOOK
 #define MC_PLOT_HOOK(fx, fy, color_ptr) ((void)0)
 #endif
