@@ -33,7 +33,7 @@ inline constexpr ModuleCode kModules[] = {
     {"fixed", 476, 476, "fixed-point helpers (fixed.c)"},
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"view", 600, 600, "view clamping and rotation matrix (view.c)"},
-    {"render", 62256, 5976, "the octree renderer (render.c); MC_LEAF_SWITCH=1 has one case per mask value"},
+    {"render", 62108, 5828, "the octree renderer (render.c); MC_LEAF_SWITCH=1 has one case per mask value"},
     {"finish", 1884, 1884, "hole filling (finish.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
@@ -50,7 +50,7 @@ struct Frame {
     constexpr size_t bytes() const { return arm > host ? arm : host; }
 };
 inline constexpr Frame kFrames[] = {
-    {"mc_render", 2480, 2656},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_render", 2480, 2672},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
     {"visit", 96, 128},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 56},

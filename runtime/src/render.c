@@ -1,7 +1,6 @@
 /* Point-octree renderer: see modelc/render.h for what it promises. */
 #include "modelc/render.h"
-
-#define F MC_FRAC_BITS
+#include "pos.h"
 
 /* Depth: offset so the model's bounding sphere spans [0, 2 * radius] and never goes negative. The
  * depth buffer keeps z >> zshift, zshift chosen per frame so that the span fits 16 bits. In
@@ -24,36 +23,40 @@ typedef struct cursor {
     const mc_chunk *next;
 } cursor;
 
-/* Displacement from the centre of a node at one level to that of its child k. xy packs x and y as
- * x * 2^32 + y: on screen both coordinates are non-negative, so one 64-bit addition moves a point
- * in x and y at once. Kept together so that the hot loop reaches all of a level's vectors from one
- * base register. */
+/* Displacement from the centre of a node at one level to that of its child k, as x and y apart and
+ * as one packed pair (pos.h). Kept together so that the hot loop reaches all of a level's vectors
+ * from one base register. */
 typedef struct levelvec {
-    int64_t xy[8];
-    int32_t z[8], x[8], y[8];
+    mc_pos2 xy[8];
+    mc_pos z[8], x[8], y[8];
 } levelvec;
 
 typedef struct ctx {
     cursor mask[MC_MAX_DEPTH];
     cursor color;                        /* colours of the drawn level */
     levelvec v[MC_MAX_DEPTH];            /* level-l node -> child k */
-    int32_t radius;                      /* bounding sphere of the model, Q F pixels */
+    mc_pos radius;                       /* bounding sphere of the model, Q F pixels */
     /* how far the drawn leaves under a level-l node can lie from its centre, per screen axis: the
-     * sum of the largest displacement of each level below, so exact for the fixed-point positions */
-    int32_t reach_x[MC_MAX_DEPTH + 1], reach_y[MC_MAX_DEPTH + 1];
+     * sum of the largest displacement of each level below, so exact for the fixed-point positions
+     * (the float build adds its rounding, setup_vectors) */
+    mc_pos reach_x[MC_MAX_DEPTH + 1], reach_y[MC_MAX_DEPTH + 1];
     uint8_t *fb;
     uint16_t *zb;
-    int32_t w, h, wf, hf;                /* size in pixels and in Q F */
+    int32_t w, h;                        /* size in pixels */
+    mc_pos wf, hf;                       /* size in Q F */
     unsigned d;                          /* drawn level */
     unsigned zshift;                     /* depth buffer value = z >> zshift (see the top) */
     unsigned poll_level;                 /* level at which the abort callback is polled */
     int perspective;
     int inside;                          /* 0: every node drawn with checks (perspective, splats) */
     int32_t splat;                       /* orthographic footprint side, pixels (1: one pixel) */
-    int64_t leaf_side;                   /* perspective zoom splats: leaf side at magnification 1,
+    mc_pos_wide leaf_side;               /* perspective zoom splats: leaf side at magnification 1,
                                           * Q F pixels; 0: one pixel per leaf */
-    int32_t cx, cy;                      /* perspective: screen centre plus translation, Q F */
-    int64_t eye, near;                   /* perspective: eye distance and near plane, Q F pixels */
+    mc_pos cx, cy;                       /* perspective: screen centre plus translation, Q F */
+    mc_pos_wide eye, near;               /* perspective: eye distance and near plane, Q F pixels */
+#if MC_FLOAT
+    float zunit;                         /* perspective: depth-buffer units per pixel */
+#endif
     mc_abort_fn abort;
     void *user;
     uint32_t points, polls;
@@ -149,9 +152,9 @@ static void skip_subtree(ctx *c, unsigned l)
 
 /* An s x s footprint (view.h, MC_SPLAT_ZOOM) centred on (fx, fy), which is on the target, clipped
  * to the target; each pixel depth tested. */
-static void draw_square(ctx *c, int32_t fx, int32_t fy, int32_t s, uint16_t depth, uint8_t color)
+static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth, uint8_t color)
 {
-    int32_t x0 = (fx - ((s - 1) << (F - 1))) >> F, y0 = (fy - ((s - 1) << (F - 1))) >> F;
+    int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(s - 1)), y0 = pos_floor(fy - POS_HALF_PIXELS(s - 1));
     int32_t x1 = x0 + s, y1 = y0 + s;
     if (x0 < 0) x0 = 0;
     if (y0 < 0) y0 = 0;
@@ -168,14 +171,14 @@ static void draw_square(ctx *c, int32_t fx, int32_t fy, int32_t s, uint16_t dept
 /* Leaves of one level d-1 node that may reach off screen, orthographic: each point checked (a leaf
  * is drawn when its centre is on the target), as one pixel or, with footprints above one pixel, as
  * a c->splat square clipped to the target. */
-static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
+static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
-    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
         unsigned k = lowest_bit(m);
-        int32_t fx = x + vx[k], fy = y + vy[k];
-        int32_t px = fx >> F, py = fy >> F;
+        mc_pos fx = x + vx[k], fy = y + vy[k];
+        int32_t px = pos_floor(fx), py = pos_floor(fy);
         if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
         uint16_t depth = (uint16_t)(z + vz[k]);
         c->points++;
@@ -190,35 +193,60 @@ static void leaves_clipped(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, 
 }
 
 /* Footprint side in pixels of a leaf of side `side` (Q F pixels): rounded up, 1..MC_SPLAT_MAX. */
-static int32_t footprint(int64_t side)
+static int32_t footprint(mc_pos_wide side)
 {
+#if MC_FLOAT
+    if (!(side < MC_SPLAT_MAX)) return MC_SPLAT_MAX;     /* before converting: side may be huge */
+    int32_t s = (int32_t)side;
+    s += (float)s < side;
+#else
     int64_t s = (side + (((int64_t)1 << F) - 1)) >> F;
+#endif
     return s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int32_t)s;
 }
 
 /* Leaves of one level d-1 node in perspective: each point divides by its own distance (exact, not
  * linearised, so it lands where the reference renderer, runtime/ref, puts it). Points nearer than the near plane
  * (1/64 cube side in front of the eye) are not drawn. */
-static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
+static void leaves_perspective(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
-    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
         unsigned k = lowest_bit(m);
-        int32_t zk = z + vz[k];
-        int64_t dist = c->eye + zk - c->radius;       /* z carries a +radius offset */
+        mc_pos zk = z + vz[k];
+        mc_pos_wide dist = c->eye + zk - c->radius;   /* z carries a +radius offset */
         if (dist < c->near) continue;
+#if MC_FLOAT
+        float q = c->eye / dist;                          /* magnification */
+        float ox = (x + vx[k]) * q, oy = (y + vy[k]) * q;
+#else
         int64_t q = (c->eye << 24) / dist;                /* magnification, Q24, at most 2^38 */
         /* exact and saturating: near the eye the magnification reaches 2^14 */
         int64_t ox = mc_mul_shift64(x + vx[k], q, 24), oy = mc_mul_shift64(y + vy[k], q, 24);
+#endif
+#if MC_FLOAT
+        /* the sum is tested, not the offset: cx + ox rounds, and may round onto the far edge */
+        mc_pos fx = c->cx + ox, fy = c->cy + oy;
+        if (!(fx >= 0 && fy >= 0 && fx < c->wf && fy < c->hf)) continue;
+#else
         if (ox < -c->cx || oy < -c->cy || ox >= c->wf - c->cx || oy >= c->hf - c->cy) continue;
-        int32_t fx = (int32_t)(c->cx + ox), fy = (int32_t)(c->cy + oy);
-        int32_t i = (fy >> F) * c->w + (fx >> F);
+        mc_pos fx = (mc_pos)(c->cx + ox), fy = (mc_pos)(c->cy + oy);
+#endif
+        int32_t i = pos_floor(fy) * c->w + pos_floor(fx);
+#if MC_FLOAT
+        uint16_t depth = (uint16_t)(zk * c->zunit);
+#else
         uint16_t depth = (uint16_t)((uint32_t)zk >> c->zshift);
+#endif
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
         if (c->leaf_side) {                               /* zoom splats: the leaf's side here */
+#if MC_FLOAT
+            int32_t s = footprint(c->leaf_side * q);
+#else
             int32_t s = footprint(mc_mul_shift64(c->leaf_side, q, 24));
+#endif
             if (s > 1) { draw_square(c, fx, fy, s, depth, *col); continue; }
         }
         if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
@@ -226,7 +254,7 @@ static void leaves_perspective(ctx *c, unsigned m, int32_t x, int32_t y, int32_t
 }
 
 /* One node at level d-1 that may reach off screen, or any node in perspective or with footprints. */
-static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const uint8_t *col)
+static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
     if (c->perspective) leaves_perspective(c, m, x, y, z, col);
     else leaves_clipped(c, m, x, y, z, col);
@@ -239,11 +267,11 @@ static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const ui
  * rank of j among the set bits of n. */
 #define LEAF(n, j)                                                                         \
     if ((n) & (1u << (j))) {                                                               \
-        int64_t p_ = pxy + lv[j];                                                          \
-        intptr_t i_ = (intptr_t)((uint32_t)p_ >> F) * w + (intptr_t)(p_ >> (32 + F));      \
+        const mc_pos2 p_ = POS2_ADD(pxy, lv[j]);                                           \
+        intptr_t i_ = POS2_ROW(p_) * w + POS2_COL(p_);                                     \
         uint16_t depth_ = (uint16_t)(pz + lz[j]);                                          \
         const uint8_t *col_ = col + popcount8[(n) & ((1u << (j)) - 1u)];                   \
-        MC_PLOT_HOOK((int32_t)(p_ >> 32), (int32_t)(uint32_t)p_, col_);                    \
+        MC_PLOT_HOOK(POS2_X(p_), POS2_Y(p_), col_);                                        \
         DEPTH_TEST(i_, depth_, col_)                                                       \
     }
 #if MC_DEPTH_SELECT
@@ -282,7 +310,7 @@ static void leaves(ctx *c, unsigned m, int32_t x, int32_t y, int32_t z, const ui
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((noinline))
 #endif
-static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, int64_t xy, int32_t z)
+static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
 {
     const levelvec *restrict L = &c->v[l3];       /* levels d-3, d-2 (L + 1) and d-1 (L + 2) */
 #define lv (L[2].xy)
@@ -293,16 +321,16 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
     uint32_t points = 0;
     for (; m; m &= m - 1) {
         const unsigned k3 = lowest_bit(m);
-        const int64_t xy2 = xy + L[0].xy[k3];
-        const int32_t zz2 = z + L[0].z[k3];
+        const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);
+        const mc_pos zz2 = z + L[0].z[k3];
         unsigned m2 = *masks2++;
         const uint8_t *masks1 = cursor_take(&c->mask[l3 + 2], popcount8[m2]);
         if (c->color.p >= c->color.end) cursor_refill(&c->color);
         const uint8_t *col = c->color.p, *const first = col;
         for (; m2; m2 &= m2 - 1) {
             const unsigned k2 = lowest_bit(m2);
-            const int64_t pxy = xy2 + L[1].xy[k2];
-            const int32_t pz = zz2 + L[1].z[k2];
+            const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);
+            const mc_pos pz = zz2 + L[1].z[k2];
             const unsigned cm = *masks1++;
             DRAW_LEAVES(cm)
         }
@@ -316,18 +344,18 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
 
 /* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen (or drawn with
  * checks anyway: c->inside is 0), 1 wholly on screen, -1 wholly off screen (orthographic only). */
-static int classify(const ctx *c, int32_t x, int32_t y, unsigned l)
+static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l)
 {
-    const int32_t rx = c->reach_x[l], ry = c->reach_y[l];
+    const mc_pos rx = c->reach_x[l], ry = c->reach_y[l];
     if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;
     return c->inside && x - rx >= 0 && y - ry >= 0 && x + rx < c->wf && y + ry < c->hf;
 }
 
 /* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
  * with checks: it may reach off screen, or the projection is perspective. */
-static void draw_checked(ctx *c, unsigned l, unsigned m, int32_t x, int32_t y, int32_t z)
+static void draw_checked(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
 {
-    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     if (l + 1 == c->d) {                                 /* only when d = 1: the root's leaves */
         leaves(c, m, x, y, z, cursor_take(&c->color, popcount8[m]));
         return;
@@ -353,19 +381,19 @@ static int poll_abort(ctx *c)
 
 /* A node at level l <= d-3 of an orthographic subtree wholly on screen: no checks at all, packed
  * positions. Its level d-3 nodes draw their grandchildren's leaves in one loop (draw_inside). */
-static void visit_inside(ctx *c, unsigned l, int64_t xy, int32_t z)
+static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
     unsigned m = *cursor_take(&c->mask[l], 1);
-    const int64_t *v = c->v[l].xy;
-    const int32_t *vz = c->v[l].z;
+    const mc_pos2 *v = c->v[l].xy;
+    const mc_pos *vz = c->v[l].z;
     if (l + 3 == c->d) {
         draw_inside(c, l, m, cursor_take(&c->mask[l + 1], popcount8[m]), xy, z);
         return;
     }
     for (; m; m &= m - 1) {
         unsigned k = lowest_bit(m);
-        visit_inside(c, l + 1, xy + v[k], z + vz[k]);
+        visit_inside(c, l + 1, POS2_ADD(xy, v[k]), z + vz[k]);
         if (c->aborted) return;
     }
 }
@@ -376,7 +404,7 @@ static void visit_inside(ctx *c, unsigned l, int64_t xy, int32_t z)
  * further calls (the paper's Algorithm 2, taken two levels further).
  * The abort callback is polled on entering a node at level MC_ABORT_LEVEL, or at level d-3 when
  * that is shallower (small depths), below which the walk makes no calls. */
-static void visit(ctx *c, unsigned l, int32_t x, int32_t y, int32_t z)
+static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
     unsigned m = *cursor_take(&c->mask[l], 1);
@@ -384,19 +412,19 @@ static void visit(ctx *c, unsigned l, int32_t x, int32_t y, int32_t z)
         draw_checked(c, l, m, x, y, z);
         return;
     }
-    const int32_t *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1) {
         unsigned k = lowest_bit(m);
-        int32_t cx = x + vx[k], cy = y + vy[k], cz = z + vz[k];
+        mc_pos cx = x + vx[k], cy = y + vy[k], cz = z + vz[k];
         int where = c->perspective ? 0 : classify(c, cx, cy, l + 1);
         if (where < 0) {
             skip_subtree(c, l + 1);
         } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
             const uint8_t *cm = cursor_take(&c->mask[l + 1], 1);
-            if (where > 0) draw_inside(c, l, 1u << k, cm, (int64_t)x * 4294967296 + y, z);
+            if (where > 0) draw_inside(c, l, 1u << k, cm, POS2(x, y), z);
             else draw_checked(c, l + 1, *cm, cx, cy, cz);
         } else if (where > 0) {
-            visit_inside(c, l + 1, (int64_t)cx * 4294967296 + cy, cz);
+            visit_inside(c, l + 1, POS2(cx, cy), cz);
         } else {
             visit(c, l + 1, cx, cy, cz);
         }
@@ -406,19 +434,30 @@ static void visit(ctx *c, unsigned l, int32_t x, int32_t y, int32_t z)
 
 /* Builds the per-level displacement vectors. Each is rounded once from the exact product of the
  * Q30 rotation and the Q16 scale, so a leaf's position is off by at most (d + 1) / 2 units of Q F
- * per axis: the root's rounding plus one per level. */
-static void setup_vectors(ctx *c, const mc_view *v)
+ * per axis: the root's rounding plus one per level. Returns the root's orthographic depth in
+ * depth-buffer units. */
+static int32_t setup_vectors(ctx *c, const mc_view *v)
 {
     int32_t r[3][3];
     mc_view_rotation(v, r);
     uint32_t side = (uint32_t)(c->w < c->h ? c->w : c->h);
     int64_t scale = (int64_t)v->zoom * side;       /* pixels per cube side, Q16 */
-    c->radius = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 - F) + 2 * MC_MAX_DEPTH;
+    const int32_t radius = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 - F) + 2 * MC_MAX_DEPTH;
     c->zshift = 0;
-    while (((uint32_t)(2 * c->radius) >> c->zshift) >= 65000u) c->zshift++;
+    while (((uint32_t)(2 * radius) >> c->zshift) >= 65000u) c->zshift++;
+#if MC_FLOAT
+    /* the same quantities in float pixels; depth-buffer units are the fixed build's, 2^(F - zshift)
+     * per pixel, so that both builds resolve depth alike */
+    const float px = (float)scale * 0x1p-16f;
+    const float zunit = (float)(1u << F) / (float)(1u << c->zshift);
+    c->radius = (float)radius / (float)(1u << F);
+    c->zunit = zunit;
+#else
+    c->radius = radius;
     /* orthographic depth vectors are in depth-buffer units (the shift folded in, one rounding per
      * level); perspective keeps Q F pixels, since it divides by the distance */
     const int zunits = c->perspective ? 0 : (int)c->zshift;
+#endif
     for (unsigned l = 0; l < c->d; l++) {
         for (int k = 0; k < 8; k++) {
             int64_t sx = k & 1 ? 1 : -1, sy = k & 2 ? 1 : -1, sz = k & 4 ? 1 : -1;
@@ -427,37 +466,63 @@ static void setup_vectors(ctx *c, const mc_view *v)
             int64_t ey = sx * r[1][0] + sy * r[1][1] + sz * r[1][2];
             int64_t ez = sx * r[2][0] + sy * r[2][1] + sz * r[2][2];
             levelvec *v = &c->v[l];
+#if MC_FLOAT
+            const float step = px * 0x1p-30f / (float)(1u << (l + 2));
+            v->x[k] = (float)ex * step;
+            v->y[k] = -(float)ey * step;
+            v->z[k] = -(float)ez * step * (c->perspective ? 1.0f : zunit);
+#else
             v->x[k] = (int32_t)mc_mul_shift64(ex, scale, 30 + 16 + (int)l + 2 - F);
             v->y[k] = (int32_t)-mc_mul_shift64(ey, scale, 30 + 16 + (int)l + 2 - F);
             v->z[k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F + zunits);
-            v->xy[k] = (int64_t)v->x[k] * 4294967296 + v->y[k];
+#endif
+            v->xy[k] = POS2(v->x[k], v->y[k]);
         }
     }
     c->reach_x[c->d] = c->reach_y[c->d] = 0;
     for (unsigned l = c->d; l-- > 0;) {
-        int32_t mx = 0, my = 0;
+        mc_pos mx = 0, my = 0;
         for (int k = 0; k < 8; k++) {
-            int32_t ax = c->v[l].x[k] < 0 ? -c->v[l].x[k] : c->v[l].x[k];
-            int32_t ay = c->v[l].y[k] < 0 ? -c->v[l].y[k] : c->v[l].y[k];
+            mc_pos ax = c->v[l].x[k] < 0 ? -c->v[l].x[k] : c->v[l].x[k];
+            mc_pos ay = c->v[l].y[k] < 0 ? -c->v[l].y[k] : c->v[l].y[k];
             mx = ax > mx ? ax : mx;
             my = ay > my ? ay : my;
         }
         c->reach_x[l] = c->reach_x[l + 1] + mx;
         c->reach_y[l] = c->reach_y[l + 1] + my;
     }
+#if MC_FLOAT
+    /* Float sums round: a leaf reached through d additions may lie up to d half-spacings of float
+     * beyond its exact position. Coordinates stay below MC_COORD_LIMIT, where floats are spaced at
+     * most MC_COORD_LIMIT * 2^-23, so widening every reach by MC_MAX_DEPTH + 2 such half-spacings
+     * keeps "wholly on screen" (no bounds checks) true of the computed positions. */
+    for (unsigned l = 0; l <= c->d; l++) {
+        c->reach_x[l] += (MC_MAX_DEPTH + 2) * (float)MC_COORD_LIMIT * 0x1p-24f;
+        c->reach_y[l] += (MC_MAX_DEPTH + 2) * (float)MC_COORD_LIMIT * 0x1p-24f;
+    }
+    c->eye = (float)v->eye * 0x1p-16f * px;                         /* pixels */
+    c->near = px * (1.0f / 64);                                      /* 1/64 cube side */
+    if (c->near < 0x1p-16f) c->near = 0x1p-16f;                      /* tiny views: never divide by 0 */
+#else
     c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
     c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
     if (c->near < 1) c->near = 1;                                    /* tiny views: never divide by 0 */
+#endif
     /* footprints, chosen once per frame: a leaf's side on screen is scale / 2^d pixels */
     c->splat = 1;
     c->leaf_side = 0;
     if (v->splat == MC_SPLAT_ZOOM || (v->splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
+#if MC_FLOAT
+        float leaf = px / (float)(1u << c->d);
+#else
         int sh = 16 + (int)c->d - F;
         int64_t leaf = sh >= 0 ? mc_round_shift(scale, sh) : scale * ((int64_t)1 << -sh);
+#endif
         if (c->perspective) c->leaf_side = leaf;
         else c->splat = footprint(leaf);
     }
     c->inside = !c->perspective && c->splat == 1;
+    return (radius >> c->zshift) + MC_MAX_DEPTH;   /* one depth unit of room per level's rounding */
 }
 
 void mc_clear(const mc_target *t)
@@ -494,8 +559,8 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     c.zb = t->depth;
     c.w = t->width;
     c.h = t->height;
-    c.wf = c.w << F;
-    c.hf = c.h << F;
+    c.wf = POS_PIXELS(c.w);
+    c.hf = POS_PIXELS(c.h);
     c.d = depth;
     c.perspective = v.projection == MC_PERSPECTIVE;
     c.abort = abort;
@@ -504,22 +569,25 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     c.aborted = 0;
     for (unsigned l = 0; l < depth; l++) cursor_init(&c.mask[l], scene->levels[l].masks);
     cursor_init(&c.color, scene->levels[depth].colors ? scene->levels[depth].colors : mono_chunks);
-    setup_vectors(&c, &v);
+    const int32_t zroot = setup_vectors(&c, &v);
     c.poll_level = depth >= MC_ABORT_LEVEL + 3 ? MC_ABORT_LEVEL : depth >= 3 ? depth - 3 : 0;
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis
      * (perspective: projected per point); depth offset by the bounding radius to keep it positive */
+#if MC_FLOAT
+    float centre_x = (float)c.w * 0.5f + (float)v.tx, centre_y = (float)c.h * 0.5f + (float)v.ty;
+#else
     int32_t centre_x = (int32_t)(((int64_t)c.w << (F - 1)) + (int64_t)v.tx * ((int64_t)1 << F));
     int32_t centre_y = (int32_t)(((int64_t)c.h << (F - 1)) + (int64_t)v.ty * ((int64_t)1 << F));
+#endif
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;
         visit(&c, 0, 0, 0, c.radius);
     } else {
         int where = classify(&c, centre_x, centre_y, 0);
-        /* depth units: each level's vector is rounded to them, so leave one unit per level of room */
-        int32_t z = (c.radius >> c.zshift) + MC_MAX_DEPTH;
-        if (where > 0 && depth >= 3) visit_inside(&c, 0, (int64_t)centre_x * 4294967296 + centre_y, z);
+        mc_pos z = (mc_pos)zroot;
+        if (where > 0 && depth >= 3) visit_inside(&c, 0, POS2(centre_x, centre_y), z);
         else if (where >= 0) visit(&c, 0, centre_x, centre_y, z);
     }
     if (stats) {

@@ -3,14 +3,14 @@
  *
  *   acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH] [--dump DIR]
  *
- * Built per setting by tests/accuracy/bench.sh: the runtime (runtime/src, with -DMC_FRAC_BITS=F), one
- * bake of the model at depth D (ACC_SCENE naming its descriptor, mc_scene_NAME),
- * runtime/ref/ref.c and runtime/ref/mesh_ref.c. With -DACC_FLOAT=1 the "float build": the octree is
- * drawn by the double-precision walk of runtime/ref/ref.c (mc_ref_points: every leaf placed exactly
- * from its integer cell coordinates, no fixed point anywhere) with the runtime's footprints and a
- * 16-bit depth buffer, so that the runtime's finishing (mc_finish) runs on it unchanged. It is not an
- * optimised float renderer (a 3x3 matrix product per leaf, in double, through a callback), so its time
- * is an upper bound on what a float build of render.c would cost.
+ * Built per setting by tests/accuracy/bench.sh: the runtime (runtime/src, with -DMC_FRAC_BITS=F, or
+ * with -DMC_FLOAT=1 for the float build of the renderer, config.h), one bake of the model at depth D
+ * (ACC_SCENE naming its descriptor, mc_scene_NAME), runtime/ref/ref.c and runtime/ref/mesh_ref.c.
+ * With -DACC_EXACT=1 the "exact" build: the octree is drawn by the double-precision walk of
+ * runtime/ref/ref.c (mc_ref_points: every leaf placed exactly from its integer cell coordinates) with
+ * the runtime's footprints and a 16-bit depth buffer, so that the runtime's finishing (mc_finish)
+ * runs on it unchanged: the error no number format of the renderer can beat. It is not an optimised
+ * renderer (a 3x3 matrix product per leaf, in double, through a callback): its time is no target.
  *
  * For each view (yaw, pitch in degrees, zoom) x splat (one pixel, zoom footprint when the runtime has
  * them) x fill (none, one-pixel, scanline when the runtime has it), it prints one CSV row:
@@ -40,8 +40,8 @@
 #include "mesh_ref.h"
 #include "ref.h"
 
-#ifndef ACC_FLOAT
-#define ACC_FLOAT 0
+#ifndef ACC_EXACT
+#define ACC_EXACT 0
 #endif
 extern const mc_scene ACC_SCENE;
 static const mc_scene *scene = &ACC_SCENE;
@@ -92,13 +92,13 @@ static mc_view make_view(const view_spec *s, int splat)
     return v;
 }
 
-/* ---- the "float build": exact leaf positions, the runtime's footprints ------------------------- */
-#if ACC_FLOAT
-typedef struct float_ctx { const mc_target *t; int side; } float_ctx;
+/* ---- the "exact" build: exact leaf positions, the runtime's footprints -------------------------- */
+#if ACC_EXACT
+typedef struct exact_ctx { const mc_target *t; int side; } exact_ctx;
 
-static void float_plot(const mc_ref_point *p, void *user)
+static void exact_plot(const mc_ref_point *p, void *user)
 {
-    float_ctx *c = user;
+    exact_ctx *c = user;
     if (!p->on_screen) return;
     double z = p->depth * 30000.0;   /* 1 -+ sqrt(3)/2 cube sides -> 4019..55981 */
     uint16_t d = (uint16_t)(z < 0 ? 0 : z > 65000 ? 65000 : z);
@@ -119,9 +119,9 @@ static void float_plot(const mc_ref_point *p, void *user)
 
 static int render(const mc_view *v, const mc_target *t)
 {
-#if ACC_FLOAT
+#if ACC_EXACT
     mc_view c = mc_view_clamp(v, t->width, t->height);
-    float_ctx fc = {t, 1};
+    exact_ctx fc = {t, 1};
 #if HAVE_SPLATS
     if (c.splat == MC_SPLAT_ZOOM || (c.splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
         double leaf = c.zoom / 65536.0 * (t->width < t->height ? t->width : t->height) / (double)(1u << scene->depth);
@@ -129,7 +129,7 @@ static int render(const mc_view *v, const mc_target *t)
         fc.side = s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int)s;
     }
 #endif
-    mc_ref_points(scene, &c, scene->depth, t->width, t->height, float_plot, &fc);
+    mc_ref_points(scene, &c, scene->depth, t->width, t->height, exact_plot, &fc);
     return MC_OK;
 #else
     return mc_render(scene, v, scene->depth, t, NULL, NULL, NULL);

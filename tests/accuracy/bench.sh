@@ -4,9 +4,10 @@
 # For each model (ACC_MODELS, default "bunny00 nefertiti") it bakes the octree at depths 5..10, dumps
 # the original mesh once (modelc --dump-reference) and builds tests/accuracy/acc.c for each setting:
 #   - fixed point, MC_FRAC_BITS 15 (the default), depth 5..10
-#   - "float": the double-precision octree walk of runtime/ref (mc_ref_points, exact leaf positions)
-#     with the runtime's footprints and finishing, depth 5..10 (acc.c says why this stands in for a
-#     float build of render.c)
+#   - "float": the runtime built with -DMC_FLOAT=1 (config.h: float screen positions, the same walk),
+#     depth 5..10
+#   - "exact": the double-precision octree walk of runtime/ref (mc_ref_points, exact leaf positions)
+#     with the runtime's footprints and finishing, depth 5..10: the error floor (acc.c)
 #   - fixed point, MC_FRAC_BITS 8 10 12 14 16 18 at depth 8, and 8 12 18 at depth 10
 #   - fixed point, MC_FRAC_BITS 19..24 at depth 8: compiled and run, but at 320x240 mc_render refuses
 #     the target (MC_TARGET_MAX = 2^(27 - F) pixels), recorded as status "size"
@@ -43,20 +44,26 @@ DEPTHS="5 6 7 8 9 10"
 FRACS_D8="8 10 12 14 16 18 19 20 21 22 23 24"
 FRACS_D10="8 12 18"
 
-# ---- runtime objects per fraction width (and the references, which include config.h) ------------
+# ---- runtime objects per fraction width or float (and the references, which include config.h) ----
 # rebuilt whenever any runtime source or header changes (others edit the runtime while this runs)
 STAMP=$(cat runtime/src/*.c runtime/src/*.h runtime/include/modelc/*.h runtime/ref/*.c runtime/ref/*.h | sha256sum | cut -c1-16)
-rt_objs() {   # F -> object directory
-    local f=$1 d=$OUT/obj/rt$1
+cfg_flags() {   # F, or "float" -> the runtime's configuration flags
+    if [ "$1" = float ]; then echo "-DMC_FLOAT=1"; else echo "-DMC_FRAC_BITS=$1"; fi
+}
+rt_objs() {   # F or "float" -> object directory
+    local d=$OUT/obj/rt$1 cfg
+    cfg=$(cfg_flags "$1")
     if [ "$(cat "$d/.done" 2>/dev/null)" != "$STAMP" ]; then
         rm -rf "$d"
         mkdir -p "$d"
         for s in runtime/src/*.c; do
-            $CC $OPT -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include -DMC_FRAC_BITS="$f" \
+            # shellcheck disable=SC2086
+            $CC $OPT -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include $cfg \
                 -c -o "$d/$(basename "${s%.c}").o" "$s" || return 1
         done
         for s in runtime/ref/ref.c runtime/ref/mesh_ref.c; do
-            $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -DMC_FRAC_BITS="$f" \
+            # shellcheck disable=SC2086
+            $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include $cfg \
                 -c -o "$d/$(basename "${s%.c}").o" "$s" || return 1
         done
         echo "$STAMP" >"$d/.done"
@@ -111,7 +118,7 @@ done
 # ---- the settings: model depth build frac --------------------------------------------------------
 settings=()
 for m in $MODELS; do
-    for d in $DEPTHS; do settings+=("$m $d fixed 15" "$m $d float 15"); done
+    for d in $DEPTHS; do settings+=("$m $d fixed 15" "$m $d float 15" "$m $d exact 15"); done
     for f in $FRACS_D8; do settings+=("$m 8 fixed $f"); done
     for f in $FRACS_D10; do settings+=("$m 10 fixed $f"); done
 done
@@ -126,14 +133,16 @@ for s in "${settings[@]}"; do
     exe=$OUT/bin/acc-$name-$build-f$f
     tag="$m,$d,$build,$f"
     step "$tag: build"
-    if ! rt=$(rt_objs "$f" 2>"$OUT/log/rt$f.log"); then
+    key=$f exact=0
+    [ "$build" = float ] && key=float
+    [ "$build" = exact ] && exact=1
+    if ! rt=$(rt_objs "$key" 2>"$OUT/log/rt$key.log"); then
         echo "$m,$d,$build,$f,,,,,,,,,,,compile" >>"$OUT/views.csv"
         continue
     fi
-    flt=0
-    [ "$build" = float ] && flt=1
-    $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -DMC_FRAC_BITS="$f" \
-        -DACC_SCENE="mc_scene_$name" -DACC_FLOAT=$flt -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
+    # shellcheck disable=SC2046
+    $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref $(cfg_flags "$key") \
+        -DACC_SCENE="mc_scene_$name" -DACC_EXACT=$exact -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
         "$OUT/obj/$name"/*.o -lm
     step "$tag: render and time 12 views"
     "$exe" "$OUT/bakes/$m.ref" --tag "$tag" --frames "$FRAMES" --size "$SIZE" >>"$OUT/views.csv"

@@ -17,6 +17,16 @@
  *     leaves margin while a real error of a tenth of a pixel would fail it;
  *  3. the z-buffered images agree on at least 99.5 % of the pixels (colour and coverage): points
  *     that move one pixel and depth ties may change a few pixels, not more.
+ *
+ * Built with -DMC_FLOAT=1 it checks the float build of the renderer (config.h) the same way, against
+ * the bound of its own format. A float vector is rounded a few times relative to its size (the
+ * Q30 rotation entry and the scale converted, two products: under 4 * 2^-24 of S for all levels
+ * together), and each of the d additions rounds to half the float spacing at the sum, at most
+ * M * 2^-24 for coordinates below M = max(w, h) + S:
+ *       BOUND = (d + 4) * M * 2^-24 + S * 2^-28, doubled in perspective (the magnification, under 2
+ *       at the tested eye distance, scales the error, and the division rounds once more).
+ * At 320x240 and d = 8 that is 4.0e-4 px, against Q15's 1.5e-4: floats near 320 are spaced
+ * 2^-15 apart, Q15 2^-15 everywhere, and each float sum rounds.
  */
 #include <math.h>
 #include <stdio.h>
@@ -33,11 +43,18 @@ typedef struct rec { const uint8_t *color; double x, y; } rec;
 static rec fixed_pts[MAX_POINTS], ref_pts[MAX_POINTS];
 static size_t n_fixed, n_ref;
 
+#if MC_FLOAT
+void record_point(float fx, float fy, const uint8_t *color)
+{
+    if (n_fixed < MAX_POINTS) fixed_pts[n_fixed++] = (rec){color, fx, fy};
+}
+#else
 void record_point(int32_t fx, int32_t fy, const uint8_t *color)
 {
     if (n_fixed < MAX_POINTS)
         fixed_pts[n_fixed++] = (rec){color, fx / (double)(1 << MC_FRAC_BITS), fy / (double)(1 << MC_FRAC_BITS)};
 }
+#endif
 
 static void record_ref(const mc_ref_point *p, void *user)
 {
@@ -114,7 +131,12 @@ static int run_case(const view_case *vc)
     }
     mc_view cv = mc_view_clamp(&v, t.width, t.height);
     double s = cv.zoom / 65536.0 * (t.width < t.height ? t.width : t.height);
+#if MC_FLOAT
+    double m = (t.width > t.height ? t.width : t.height) + s;
+    double bound = ((depth + 4) * m * ldexp(1, -24) + s * ldexp(1, -28)) * (vc->perspective ? 2 : 1);
+#else
     double bound = (depth + 1) * ldexp(1, -(MC_FRAC_BITS + 1)) + s * ldexp(1, -28) + (vc->perspective ? s * ldexp(1, -23) : 0);
+#endif
     size_t npix = (size_t)t.width * t.height, pix_same = 0;
     for (size_t p = 0; p < npix; p++) {
         int a = t.depth[p] != MC_DEPTH_EMPTY, b = rt.depth[p] != MC_DEPTH_EMPTY;

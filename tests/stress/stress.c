@@ -54,6 +54,15 @@
  *   front of the eye, where dist is smallest): the division cannot be more exact than the depth it
  *   divides by. A point within that depth error of the near plane may be drawn by one renderer and
  *   not the other; that is allowed, and checked to be the reason.
+ *
+ *   The float build (-DMC_FLOAT=1, config.h) is held to its own format. Its positions are float
+ *   sums whose magnitudes stay below M = max(w, h) + |tx| + |ty| + 2 S (+ eye S in perspective), where
+ *   floats are spaced at most M 2^-23 apart: each of the d additions and each vector (a few
+ *   products, rounded relatively) is off by at most half of that, so with u = M 2^-24 in place of
+ *   half a unit of Q F,
+ *       B_ortho = (d + 4) u + S * 2^-27
+ *   and the perspective bound as above with u, and 2^-22 for the float magnification's relative
+ *   error (a division and a product) in place of 2^-24.
  */
 #include <inttypes.h>
 #include <math.h>
@@ -75,17 +84,26 @@
 static uint8_t color_mem[GUARD + MAXW * MAXH + GUARD];
 static uint16_t depth_mem[GUARD + MAXW * MAXH + GUARD];
 
-typedef struct fpt { const uint8_t *color; int32_t fx, fy; } fpt;
+typedef struct fpt { const uint8_t *color; double fx, fy; } fpt;   /* pixels */
 static fpt fixed_pts[MAX_PTS];
 static size_t n_fixed;
 static mc_ref_point ref_pts[MAX_PTS];
 static size_t n_ref;
 
-void stress_point(int32_t fx, int32_t fy, const uint8_t *color)
+#if MC_FLOAT
+void stress_point(float fx, float fy, const uint8_t *color)
 {
     if (n_fixed < MAX_PTS) fixed_pts[n_fixed] = (fpt){color, fx, fy};
     n_fixed++;
 }
+#else
+void stress_point(int32_t fx, int32_t fy, const uint8_t *color)
+{
+    if (n_fixed < MAX_PTS)
+        fixed_pts[n_fixed] = (fpt){color, fx / (double)(1 << MC_FRAC_BITS), fy / (double)(1 << MC_FRAC_BITS)};
+    n_fixed++;
+}
+#endif
 
 static void record_ref(const mc_ref_point *p, void *user)
 {
@@ -271,10 +289,18 @@ static void one_view(const mc_scene *scene, counters *k)
     mc_ref_points(scene, &v, d, w, h, record_ref, NULL);
     if (n_ref > MAX_PTS) { fail(&k->order_fail, "more than %u reference points", MAX_PTS); return; }
     const double S = cv.zoom / 65536.0 * (w < h ? w : h);
-    const double u = ldexp(1, -(MC_FRAC_BITS + 1));                  /* half a unit of Q F */
-    const double b_ortho = (d + 1) * u + S * ldexp(1, -27);
     const int persp = cv.projection == MC_PERSPECTIVE;
     const double eye = cv.eye / 65536.0, cx = w / 2.0 + cv.tx, cy = h / 2.0 + cv.ty;
+#if MC_FLOAT
+    const double m = (w > h ? w : h) + fabs((double)cv.tx) + fabs((double)cv.ty) + 2 * S + (persp ? eye * S : 0);
+    const double u = m * ldexp(1, -24);                               /* half the float spacing */
+    const double b_ortho = (d + 4) * u + S * ldexp(1, -27);
+    const double qrel = ldexp(1, -22);                                /* magnification, relative */
+#else
+    const double u = ldexp(1, -(MC_FRAC_BITS + 1));                  /* half a unit of Q F */
+    const double b_ortho = (d + 1) * u + S * ldexp(1, -27);
+    const double qrel = ldexp(1, -24);
+#endif
     k->persp += persp;
 
     /* 2: each drawn point is the next matching leaf of the reference, within the bound */
@@ -290,7 +316,7 @@ static void one_view(const mc_scene *scene, counters *k)
         }
         const mc_ref_point *p = &ref_pts[j];
         matched[j++] = 1;
-        double fx = fixed_pts[i].fx / (double)(1 << MC_FRAC_BITS), fy = fixed_pts[i].fy / (double)(1 << MC_FRAC_BITS);
+        double fx = fixed_pts[i].fx, fy = fixed_pts[i].fy;
         double bound = b_ortho, dist = 0;
         if (persp) {
             /* exact rotated position from the reference: depth = 1 - z (cube sides) */
@@ -300,7 +326,7 @@ static void one_view(const mc_scene *scene, counters *k)
                 /* the reference put it behind the near plane (its own rounding of dist decides a point
                  * exactly on the plane, and it then gives no projected position): only allowed within
                  * the depth error */
-                if ((1.0 / 64 - dist) * S > b_ortho + u + ldexp(1, -24) * S) {
+                if ((1.0 / 64 - dist) * S > b_ortho + u + qrel * S) {
                     fail(&k->pos_fail, "point %zu drawn %.3g cube sides behind the near plane: %s", i,
                          1.0 / 64 - dist, what);
                 }
@@ -312,8 +338,8 @@ static void one_view(const mc_scene *scene, counters *k)
             double xx = ox / mag, yy = oy / mag;          /* |x|, |y| before the division, pixels */
             double dpx = dist * S - b_ortho - u;          /* dist in pixels, shrunk by its error */
             if (dpx <= 0) dpx = ldexp(1, -30);
-            double bx = xx * ldexp(1, -24) + xx * u / dpx + ox * (b_ortho + u) / dpx + mag * b_ortho + u;
-            double by = yy * ldexp(1, -24) + yy * u / dpx + oy * (b_ortho + u) / dpx + mag * b_ortho + u;
+            double bx = xx * qrel + xx * u / dpx + ox * (b_ortho + u) / dpx + mag * b_ortho + u;
+            double by = yy * qrel + yy * u / dpx + oy * (b_ortho + u) / dpx + mag * b_ortho + u;
             bound = bx > by ? bx : by;
         }
         double ex = fabs(fx - p->sx), ey = fabs(fy - p->sy), e = ex > ey ? ex : ey;
@@ -336,10 +362,10 @@ static void one_view(const mc_scene *scene, counters *k)
             double margin = b_ortho;
             if (persp) {
                 double dist = eye - (1 - p->depth);
-                if ((dist - 1.0 / 64) * S <= b_ortho + u + ldexp(1, -24) * S) { k->near_plane_disagreements++; continue; }
+                if ((dist - 1.0 / 64) * S <= b_ortho + u + qrel * S) { k->near_plane_disagreements++; continue; }
                 double mag = eye / dist;
                 double dpx = dist * S - b_ortho - u;
-                margin = (fabs(p->sx - cx) + fabs(p->sy - cy)) * ((b_ortho + u) / dpx + ldexp(1, -24)) + mag * b_ortho + 2 * u;
+                margin = (fabs(p->sx - cx) + fabs(p->sy - cy)) * ((b_ortho + u) / dpx + qrel) + mag * b_ortho + 2 * u;
             }
             if (p->sx < margin || p->sy < margin || p->sx >= w - margin || p->sy >= h - margin) continue;
             fail(&k->missing_fail, "leaf %zu on screen at (%.6f, %.6f) was not drawn: %s", r, p->sx, p->sy, what);
@@ -390,9 +416,14 @@ int main(int argc, char **argv)
            ") points %" PRIu64 " checked %" PRIu64 " reference on-screen %" PRIu64 " near-plane disagreements %" PRIu64 "\n",
            k.views, k.frames_drawn, k.persp, k.aborted, k.rejected, k.points, k.points_checked, k.ref_on_screen,
            k.near_plane_disagreements);
+#if MC_FLOAT
+    /* the float bound depends on the coordinates' size: quote it for a 320x240 view, S = 240 */
+    const double b240 = (scene->depth + 4) * (320 + 2 * 240) * ldexp(1, -24) + 240 * ldexp(1, -27);
+#else
+    const double b240 = (scene->depth + 1) * ldexp(1, -(MC_FRAC_BITS + 1)) + 240 * ldexp(1, -27);
+#endif
     printf("# max error: orthographic %.3e px (bound at d=%u, S=240: %.3e px), perspective %.3e px; largest error/bound %.3f\n",
-           k.max_err_px, (unsigned)scene->depth, (scene->depth + 1) * ldexp(1, -(MC_FRAC_BITS + 1)) + 240 * ldexp(1, -27),
-           k.max_err_px_persp, k.max_err_ratio);
+           k.max_err_px, (unsigned)scene->depth, b240, k.max_err_px_persp, k.max_err_ratio);
     printf("# seconds %.1f (%.1f us per view)\n", secs, secs * 1e6 / (double)(views ? views : 1));
     return (k.guard_fail | k.order_fail | k.pos_fail | k.missing_fail | k.stats_fail | k.rc_fail) ? 1 : 0;
 }

@@ -6,8 +6,8 @@
 #   STRESS_SAN_VIEWS  views of the run under ASan + UBSan (-fno-sanitize-recover=all; default 10000;
 #                  0 skips it)
 #   STRESS_JOBS    processes the optimised run is split into, each with its own seed (default 1)
-#   STRESS_F_VIEWS views of each of two more optimised runs with MC_FRAC_BITS 8 and 24 (default
-#                  STRESS_VIEWS / 10)
+#   STRESS_F_VIEWS views of each of three more optimised runs: MC_FRAC_BITS 8 and 24, and the float
+#                  build MC_FLOAT 1 (default STRESS_VIEWS / 10)
 #   STRESS_SEED    first seed (default 1)
 # make stress runs it with 10^7 views on two processes.
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
@@ -74,19 +74,21 @@ else
     notok "build (-O2)" "$(head -n 5 "$out/stress.log" | oneline)"
 fi
 
-# ---- the extreme fixed-point formats: MC_FRAC_BITS 8 and 24 (targets at most MC_TARGET_MAX, 8x8 at 24) --
-for f in 8 24; do
-    if build "$out/stress-f$f" -O2 -g -DMC_FRAC_BITS=$f; then
-        "$out/stress-f$f" "$F_VIEWS" $((SEED + 100 + f)) "stress F=$f" >"$out/run.f$f.log" 2>&1
+# ---- the extreme fixed-point formats, MC_FRAC_BITS 8 and 24 (targets at most MC_TARGET_MAX, 8x8 at
+# 24), and the float build (MC_FLOAT 1, held to its own bound: stress.c) -----------------------------
+for variant in "F=8:-DMC_FRAC_BITS=8:108" "F=24:-DMC_FRAC_BITS=24:124" "float:-DMC_FLOAT=1:200"; do
+    IFS=: read -r name flag seed_off <<<"$variant"
+    if build "$out/stress-$name" -O2 -g "$flag"; then
+        "$out/stress-$name" "$F_VIEWS" $((SEED + seed_off)) "stress $name" >"$out/run.$name.log" 2>&1
         rc=$?
-        grep -E '^(ok|not ok) ' "$out/run.f$f.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
-        grep '^#' "$out/run.f$f.log"
+        grep -E '^(ok|not ok) ' "$out/run.$name.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
+        grep '^#' "$out/run.$name.log"
         if [ "$rc" -ne 0 ]; then
-            grep -q '^not ok' "$out/run.f$f.log" || notok "F=$f run" "status $rc: $(tail -n 3 "$out/run.f$f.log" | oneline)"
+            grep -q '^not ok' "$out/run.$name.log" || notok "$name run" "status $rc: $(tail -n 3 "$out/run.$name.log" | oneline)"
             status=1
         fi
     else
-        notok "build (-DMC_FRAC_BITS=$f)" "$(head -n 5 "$out/stress-f$f.log" | oneline)"
+        notok "build ($flag)" "$(head -n 5 "$out/stress-$name.log" | oneline)"
     fi
 done
 
