@@ -4,7 +4,7 @@
 # often), rendered by a runtime compiled with the plot hook into the test.
 #   STRESS_VIEWS   views of the optimised run (default 100000)
 #   STRESS_SAN_VIEWS  views of the run under ASan + UBSan (-fno-sanitize-recover=all; default 10000;
-#                  0 skips it)
+#                  0 skips it), and of the float build's run under them plus float-cast-overflow
 #   STRESS_JOBS    processes the optimised run is split into, each with its own seed (default 1)
 #   STRESS_F_VIEWS views of each of three more optimised runs: MC_FRAC_BITS 8 and 24, and the float
 #                  build MC_FLOAT 1 (default STRESS_VIEWS / 10)
@@ -92,24 +92,34 @@ for variant in "F=8:-DMC_FRAC_BITS=8:108" "F=24:-DMC_FRAC_BITS=24:124" "float:-D
     fi
 done
 
-# ---- under ASan + UBSan ---------------------------------------------------------------------------
+# ---- under sanitizers -----------------------------------------------------------------------------
+# san_run NAME SEED_OFFSET WHAT SANITIZERS [FLAGS...]: builds and runs SAN_VIEWS views under the given
+# -fsanitize list, halting on the first report
+san_run() {
+    local name=$1 seed_off=$2 what=$3 san=$4
+    shift 4
+    # shellcheck disable=SC2068
+    if build "$out/stress-$name" -O1 -g "$@" -fsanitize="$san" -fno-sanitize-recover=all -fno-omit-frame-pointer; then
+        "$out/stress-$name" "$SAN_VIEWS" $((SEED + seed_off)) "stress $name" >"$out/run.$name.log" 2>&1
+        local rc=$? rep
+        grep -E '^(ok|not ok) ' "$out/run.$name.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
+        grep '^#' "$out/run.$name.log"
+        rep=$(grep -m1 -E 'runtime error:|ERROR: AddressSanitizer' "$out/run.$name.log" | oneline)
+        if [ "$rc" -ne 0 ] || [ -n "$rep" ]; then
+            grep -q '^not ok' "$out/run.$name.log" || notok "$SAN_VIEWS views of $what under $san" "status $rc: ${rep:-see $out/run.$name.log}"
+            status=1
+        else
+            ok "$SAN_VIEWS views of $what under -fsanitize=$san -fno-sanitize-recover=all: no report"
+        fi
+    else
+        notok "build ($what, sanitizers)" "$(head -n 5 "$out/stress-$name.log" | oneline)"
+    fi
+}
 if [ "$SAN_VIEWS" -gt 0 ]; then
     export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1"
     export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-    if build "$out/stress-san" -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer; then
-        "$out/stress-san" "$SAN_VIEWS" $((SEED + 1000)) "stress san" >"$out/run.san.log" 2>&1
-        rc=$?
-        grep -E '^(ok|not ok) ' "$out/run.san.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
-        grep '^#' "$out/run.san.log"
-        rep=$(grep -m1 -E 'runtime error:|ERROR: AddressSanitizer' "$out/run.san.log" | oneline)
-        if [ "$rc" -ne 0 ] || [ -n "$rep" ]; then
-            grep -q '^not ok' "$out/run.san.log" || notok "$SAN_VIEWS views under ASan + UBSan" "status $rc: ${rep:-see $out/run.san.log}"
-            status=1
-        else
-            ok "$SAN_VIEWS views under -fsanitize=address,undefined -fno-sanitize-recover=all: no report"
-        fi
-    else
-        notok "build (ASan + UBSan)" "$(head -n 5 "$out/stress-san.log" | oneline)"
-    fi
+    san_run san 1000 "the runtime" address,undefined
+    # the float build, with float-to-integer conversions out of range and divisions by zero trapped too
+    san_run fsan 2000 "the float build" address,undefined,float-cast-overflow,float-divide-by-zero -DMC_FLOAT=1
 fi
 exit $status
