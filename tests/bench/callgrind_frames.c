@@ -24,6 +24,7 @@
 
 #include <modelc/app.h>
 #include <modelc/modelc.h>
+#include "timing.h"   /* runtime/front/host: clocks, medians */
 
 static long covered(const mc_target *t)
 {
@@ -50,25 +51,6 @@ static int write_image(const char *path, const mc_target *t, const uint8_t *pale
     return fclose(f);
 }
 
-static double clock_ms(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median_of(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof v[0], cmp_double);
-    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
 /* The viewer's --bench loop, timed with both clocks. */
 static int time_frames(const mc_target *t, int frames, int finish)
 {
@@ -80,17 +62,17 @@ static int time_frames(const mc_target *t, int frames, int finish)
     for (int i = 0; i < frames; i++) {
         v.yaw = (int32_t)((int64_t)MC_ANGLE_FULL * i / frames);
         mc_stats st;
-        double t0 = clock_ms(CLOCK_MONOTONIC), c0 = clock_ms(CLOCK_PROCESS_CPUTIME_ID);
+        double t0 = mc_host_clock_ms(CLOCK_MONOTONIC), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
         mc_clear(t);
         mc_render(scene, &v, scene->depth, t, NULL, NULL, &st);
         if (finish) mc_finish_pixel_holes(t);
-        ms[i] = clock_ms(CLOCK_MONOTONIC) - t0;
-        cpu[i] = clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
+        ms[i] = mc_host_clock_ms(CLOCK_MONOTONIC) - t0;
+        cpu[i] = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
         points += st.points;
     }
     printf("frames: %d%s\n", frames, finish ? "" : " no-finish");
-    printf("ms per frame (median): %.3f\n", median_of(ms, frames));
-    printf("cpu ms per frame (median): %.3f\n", median_of(cpu, frames));
+    printf("ms per frame (median): %.3f\n", mc_host_median(ms, (size_t)frames));
+    printf("cpu ms per frame (median): %.3f\n", mc_host_median(cpu, (size_t)frames));
     printf("points drawn per frame: %.0f\n", (double)points / frames);
     free(ms);
     free(cpu);

@@ -20,7 +20,7 @@ for s in 0 1; do
     run gcc -O2 -g -std=c99 -ffreestanding -Wall -Wextra -DMC_DEPTH_SELECT=$s -I"$rt/include" -c -o "$out/render$s.o" "$rt/src/render.c"
     others=()
     for f in "$rt"/src/*.c; do [ "$(basename "$f")" = render.c ] || others+=("$f"); done
-    run gcc -O2 -g -std=c99 -Wall -Wextra -I"$rt/include" -o "$out/frames$s" tests/bench/callgrind_frames.c \
+    run gcc -O2 -g -std=c99 -Wall -Wextra -I"$rt/include" -I"$rt/front/host" -o "$out/frames$s" tests/bench/callgrind_frames.c \
         "$bake"/*.c "$out/render$s.o" "${others[@]}" -lm
     run valgrind --tool=callgrind --toggle-collect=mc_render --callgrind-out-file="$out/cg$s.out" \
         "$out/frames$s" 20 --size "$size" >"$out/cg$s.txt" 2>"$out/cg$s.log"

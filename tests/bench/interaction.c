@@ -25,25 +25,13 @@
 
 #include <modelc/app.h>
 #include <modelc/modelc.h>
+#include "timing.h"   /* runtime/front/host: clocks, medians */
 
-static double clock_ms(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-static double now_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 typedef struct summary { double median, p95, max; } summary;
 static summary summarize(double *v, int n)
 {
-    qsort(v, (size_t)n, sizeof v[0], cmp_double);
+    mc_host_sort(v, (size_t)n);
     summary s = {v[n / 2], v[(int)(0.95 * (n - 1))], v[n - 1]};
     return s;
 }
@@ -53,7 +41,7 @@ static int key_pressed(void *user)
 {
     key *k = user;
     k->polls++;
-    return clock_ms(k->clock) >= k->at;
+    return mc_host_clock_ms(k->clock) >= k->at;
 }
 
 static uint64_t rng = 0x9E3779B97F4A7C15ull;
@@ -101,11 +89,11 @@ int main(int argc, char **argv)
         for (int i = -frames / 10; i < frames; i++) {   /* the first tenth warms up, untimed */
             v.yaw = (int32_t)((int64_t)MC_ANGLE_FULL * (i < 0 ? -i : i) / frames);
             mc_stats st;
-            double w0 = now_ms(), c0 = clock_ms(CLOCK_THREAD_CPUTIME_ID);
+            double w0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_THREAD_CPUTIME_ID);
             mc_clear(&t);
             mc_render(scene, &v, depths[d], &t, NULL, NULL, &st);
             mc_finish(&t, MC_FILL_DEFAULT);
-            double w1 = now_ms(), c1 = clock_ms(CLOCK_THREAD_CPUTIME_ID);
+            double w1 = mc_host_now_ms(), c1 = mc_host_clock_ms(CLOCK_THREAD_CPUTIME_ID);
             if (i < 0) continue;
             wall[i] = w1 - w0;
             cpu[i] = c1 - c0;
@@ -140,10 +128,10 @@ int main(int argc, char **argv)
             mc_clear(&t);
             key k = {0, 0, clk};
             mc_stats st;
-            double t0 = clock_ms(clk);
+            double t0 = mc_host_clock_ms(clk);
             k.at = t0 + rnd_unit() * (pass ? sc[1].median : sw[1].median);
             mc_render(scene, &v, fine, &t, key_pressed, &k, &st);
-            double t1 = clock_ms(clk);
+            double t1 = mc_host_clock_ms(clk);
             if (!st.aborted) { fin++; continue; }
             wall[m++] = (t1 - k.at) * 1e3;   /* microseconds */
             if (!pass) polls_aborted += st.polls;

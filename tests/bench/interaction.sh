@@ -11,7 +11,7 @@ rt=${INTERACTION_RUNTIME:-runtime}
 out=build/bench/interaction
 mkdir -p "$out"
 make -s build/bunny00/budget.json >/dev/null
-gcc -std=c99 -O2 -g -Wall -Wextra -I"$rt/include" -o "$out/interaction" tests/bench/interaction.c "$rt"/src/*.c \
+gcc -std=c99 -O2 -g -Wall -Wextra -I"$rt/include" -I"$rt/front/host" -o "$out/interaction" tests/bench/interaction.c "$rt"/src/*.c \
     build/bunny00/*.c
 # an earlier copy of this section (between its markers) is replaced, not repeated
 drop_section() { [ -f "$1" ] && sed -i '/^<!-- interaction: begin -->$/,/^<!-- interaction: end -->$/d' "$1"; true; }

@@ -36,6 +36,7 @@
 
 #include <modelc/app.h>
 #include "cells.h"
+#include "timing.h"   /* runtime/front/host: clocks, medians */
 
 #define ANGLE_FULL 4096
 
@@ -43,27 +44,6 @@ typedef struct vertex {
     float x, y, z;
     uint8_t r, g, b, a;
 } vertex;
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double clock_ms(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-static double now_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
-static double cpu_ms(void) { return clock_ms(CLOCK_PROCESS_CPUTIME_ID); }
-
-static double median_of(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof v[0], cmp_double);
-    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
 
 static int w = 320, h = 240;
 static GLsizei npoints;
@@ -216,12 +196,12 @@ int main(int argc, char **argv)
         if (!ms || !cpu) return 1;
         for (int i = 0; i < frames; i++) {
             int32_t yaw = (int32_t)((int64_t)ANGLE_FULL * i / frames);
-            double t0 = now_ms(), c0 = cpu_ms();
+            double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
             draw_frame(yaw);
-            ms[i] = now_ms() - t0;
-            cpu[i] = cpu_ms() - c0;
+            ms[i] = mc_host_now_ms() - t0;
+            cpu[i] = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
         }
-        double median = median_of(ms, frames), cpu_median = median_of(cpu, frames);
+        double median = mc_host_median(ms, (size_t)frames), cpu_median = mc_host_median(cpu, (size_t)frames);
         printf("frames: %d size %dx%d\n", frames, w, h);
         printf("ms per frame (median): %.3f\n", median);
         printf("cpu ms per frame (median): %.3f\n", cpu_median);

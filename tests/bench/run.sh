@@ -102,7 +102,7 @@ pkgver() { dpkg-query -W -f='${Package} ${Version}' "$1" 2>/dev/null || echo "$1
 step "runtime snapshot and objects"
 cp -r runtime/include runtime/src runtime/front "$SNAP/"
 echo "render_sha: $(sha256sum "$SNAP/src/render.c" | cut -c1-16)" >>"$RES/meta.txt"
-INC="-I$SNAP/include"
+INC="-I$SNAP/include -I$SNAP/front/host"
 for f in "$SNAP"/src/*.c; do
     run $CC $OPT $RT_FLAGS $INC -c -o "$OBJ/rt/$(basename "${f%.c}").o" "$f"
 done

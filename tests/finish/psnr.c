@@ -28,6 +28,7 @@
 
 #include <modelc/modelc.h>
 #include "ref.h"
+#include "timing.h"   /* runtime/front/host: clocks, medians */
 
 extern const mc_scene TEST_SCENE, REF_SCENE;
 
@@ -37,19 +38,6 @@ extern const mc_scene TEST_SCENE, REF_SCENE;
 static uint8_t color[W * H], ref_color[W * H];
 static uint16_t depth[W * H], ref_depth[W * H];
 static double ref_z[W * H];
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 static void rgb(const mc_scene *s, uint8_t c, uint16_t z, int out[3])
 {
@@ -103,13 +91,13 @@ int main(int argc, char **argv)
                 uint32_t filled = 0;
                 int n = frames > 101 ? 101 : frames;
                 for (int f = 0; f < n; f++) {
-                    double t0 = now_ms();
+                    double t0 = mc_host_now_ms();
                     mc_clear(&t);
                     mc_render(&TEST_SCENE, &v, TEST_SCENE.depth, &t, NULL, NULL, NULL);
                     filled = mc_finish(&t, fills[fi].fill);
-                    ms[f] = now_ms() - t0;
+                    ms[f] = mc_host_now_ms() - t0;
                 }
-                qsort(ms, (size_t)n, sizeof ms[0], cmp_double);
+                mc_host_sort(ms, (size_t)n);
                 double cov;
                 p[fi] = psnr(&cov);
                 printf("# %-12s %-6s %-9s %8.2f %10.2f %9u %8.3f\n", views[vi].name, splats[si].name, fills[fi].name,

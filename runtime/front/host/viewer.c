@@ -23,6 +23,7 @@
 
 #include "image.h"
 #include "term.h"
+#include "timing.h"
 #include "../fw/frames.h"   /* the firmware's view list and frame checksum: --checksums */
 
 static uint8_t rgb_buffer[4096 * 4096 * 3];
@@ -75,19 +76,6 @@ static int parse_double(const char *s, double lo, double hi, double *out)
     return 0;
 }
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 int32_t mc_host_angle(double degrees) { return (int32_t)lround(fmod(degrees, 360.0) * MC_ANGLE_FULL / 360.0); }
 
 static int bench(const mc_target *t, mc_view v, unsigned depth, mc_fill fill, int frames)
@@ -99,15 +87,14 @@ static int bench(const mc_target *t, mc_view v, unsigned depth, mc_fill fill, in
     for (int i = 0; i < frames; i++) {
         v.yaw = yaw0 + (int32_t)((int64_t)MC_ANGLE_FULL * i / frames);
         mc_stats st;
-        double t0 = now_ms();
+        double t0 = mc_host_now_ms();
         mc_clear(t);
         mc_render(mc_app_model.scene, &v, depth, t, NULL, NULL, &st);
         mc_finish(t, fill);
-        ms[i] = now_ms() - t0;
+        ms[i] = mc_host_now_ms() - t0;
         points += st.points;
     }
-    qsort(ms, (size_t)frames, sizeof ms[0], cmp_double);
-    double median = frames % 2 ? ms[frames / 2] : (ms[frames / 2 - 1] + ms[frames / 2]) / 2;
+    double median = mc_host_median(ms, (size_t)frames);
     double mean_points = (double)points / frames;
     printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.scene->name, depth, t->width, t->height,
            frames, fill == MC_FILL_NONE ? " no-finish" : "");
@@ -223,11 +210,11 @@ int main(int argc, char **argv)
     }
 
     mc_stats st;
-    double t0 = now_ms();
+    double t0 = mc_host_now_ms();
     mc_clear(&t);
     int rc = mc_render(scene, &v, depth, &t, NULL, NULL, &st);
     uint32_t filled = mc_finish(&t, fill);
-    double ms = now_ms() - t0;
+    double ms = mc_host_now_ms() - t0;
     if (rc != MC_OK) return die("render failed", NULL);
     mc_host_to_rgb(&t, scene->palette, rgb_buffer);
     if (png && mc_host_write_png(png, rgb_buffer, (int)w, (int)h)) return die("cannot write PNG", png);
