@@ -120,7 +120,7 @@ def main():
     models = sorted({r["model"] for r in out}, key=lambda m: (m != "bunny00", m))
     series = [("fixed F15", lambda r: r["build"] == "fixed" and r["frac"] == 15, 7, "#1f77b4"),
               ("fixed, other F", lambda r: r["build"] == "fixed" and r["frac"] != 15, 1, "#999999"),
-              ("float (MC_FLOAT 1)", lambda r: r["build"] == "float", 9, "#2ca02c"),
+              ("float build", lambda r: r["build"] == "float", 9, "#2ca02c"),
               ("exact (double walk)", lambda r: r["build"] == "exact", 13, "#9467bd")]
     for m in models:
         for i, (_, sel, _, _) in enumerate(series):
