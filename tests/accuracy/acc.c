@@ -39,6 +39,7 @@
 #include <modelc/modelc.h>
 #include "mesh_ref.h"
 #include "ref.h"
+#include "timing.h"   /* runtime/front/host: clocks, medians */
 
 #ifndef ACC_EXACT
 #define ACC_EXACT 0
@@ -225,37 +226,22 @@ static double coverage_diff(const uint8_t *a, const uint8_t *b, size_t n)
 }
 
 /* ---- timing -------------------------------------------------------------------------------------- */
-static double clock_ms(clockid_t id)
-{
-    struct timespec ts;
-    clock_gettime(id, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 static void time_frames(const mc_view *v, const mc_target *t, int fill, int frames, double *ms, double *cpu)
 {
     static double wall[400], thr[400];
     int n = 0;
     double total = 0;
     while (n < 400 && (n < frames || total < 40.0)) {
-        double w0 = clock_ms(CLOCK_MONOTONIC), c0 = clock_ms(CLOCK_THREAD_CPUTIME_ID);
+        double w0 = mc_host_clock_ms(CLOCK_MONOTONIC), c0 = mc_host_clock_ms(CLOCK_THREAD_CPUTIME_ID);
         mc_clear(t);
         render(v, t);
         finish(t, fill);
-        double c1 = clock_ms(CLOCK_THREAD_CPUTIME_ID), w1 = clock_ms(CLOCK_MONOTONIC);
+        double c1 = mc_host_clock_ms(CLOCK_THREAD_CPUTIME_ID), w1 = mc_host_clock_ms(CLOCK_MONOTONIC);
         wall[n] = w1 - w0, thr[n] = c1 - c0;
         total += wall[n++];
     }
-    qsort(wall, (size_t)n, sizeof(double), cmp_double);
-    qsort(thr, (size_t)n, sizeof(double), cmp_double);
-    *ms = n % 2 ? wall[n / 2] : (wall[n / 2 - 1] + wall[n / 2]) / 2;
-    *cpu = n % 2 ? thr[n / 2] : (thr[n / 2 - 1] + thr[n / 2]) / 2;
+    *ms = mc_host_median(wall, (size_t)n);
+    *cpu = mc_host_median(thr, (size_t)n);
 }
 
 /* ---- callgrind mode: one function per counted part ----------------------------------------------- */

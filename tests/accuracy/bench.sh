@@ -141,7 +141,7 @@ for s in "${settings[@]}"; do
         continue
     fi
     # shellcheck disable=SC2046
-    $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref $(cfg_flags "$key") \
+    $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -Iruntime/front/host $(cfg_flags "$key") \
         -DACC_SCENE="mc_scene_$name" -DACC_EXACT=$exact -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
         "$OUT/obj/$name"/*.o -lm
     step "$tag: render and time 12 views"
