@@ -25,15 +25,19 @@ for m in $models; do
     fi
     "$out/compare-$m" || status=1
 done
-# the depth test's other form (config.h MC_DEPTH_SELECT): the same comparison, names prefixed "select"
+# both forms of the depth test (config.h MC_DEPTH_SELECT; the default depends on the CPU): the same
+# comparison, names prefixed "branch" and "select"
 m=bunny00
-if gcc -std=c99 $flags -Wall -Wextra -Werror -DMC_DEPTH_SELECT=1 -Iruntime/include -Iruntime/ref \
-    '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \
-    -o "$out/compare-select-$m" tests/render/compare.c runtime/ref/ref.c runtime/src/*.c "build/$m"/*.c -lm \
-    2>"$out/compare-select-$m.log"; then
-    "$out/compare-select-$m" | sed -E 's/^(ok|not ok) - /\1 - select: /'
-    [ "${PIPESTATUS[0]}" = 0 ] || status=1
-else
-    echo "not ok - select: $m: test build failed: $(head -n 3 "$out/compare-select-$m.log" | tr '\n' ' ')"; status=1
-fi
+for form in 0:branch 1:select; do
+    s=${form%%:*} name=${form#*:}
+    if gcc -std=c99 $flags -Wall -Wextra -Werror -DMC_DEPTH_SELECT=$s -Iruntime/include -Iruntime/ref \
+        '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \
+        -o "$out/compare-$name-$m" tests/render/compare.c runtime/ref/ref.c runtime/src/*.c "build/$m"/*.c -lm \
+        2>"$out/compare-$name-$m.log"; then
+        "$out/compare-$name-$m" | sed -E "s/^(ok|not ok) - /\1 - $name: /"
+        [ "${PIPESTATUS[0]}" = 0 ] || status=1
+    else
+        echo "not ok - $name: $m: test build failed: $(head -n 3 "$out/compare-$name-$m.log" | tr '\n' ' ')"; status=1
+    fi
+done
 exit $status
