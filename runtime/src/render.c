@@ -275,11 +275,20 @@ static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8
         DEPTH_TEST(i_, depth_, col_)                                                       \
     }
 #if MC_DEPTH_SELECT
-/* both buffers rewritten with the nearer of the two values: conditional moves, no branch */
+/* No branch: the leaf's depth and colour are written either to its pixel, when it is nearer, or to
+ * a spare pixel that no leaf of this draw_inside call lands on and whose values draw_inside puts
+ * back at the end (spare_pixel): one conditional move of an index, no reads of the old values. */
 #define DEPTH_TEST(i, depth, col)                                                          \
-    { const uint16_t o_ = zb[i]; const uint8_t oc_ = fb[i], nc_ = *(col);                  \
-      const int win_ = (depth) < o_;                                                       \
-      zb[i] = win_ ? (depth) : o_; fb[i] = win_ ? nc_ : oc_; }
+    { intptr_t t_ = (depth) < zb[i] ? (i) : spare;                                         \
+      OPAQUE_INDEX(t_);                                                                    \
+      zb[t_] = (depth); fb[t_] = *(col); }
+#if defined(__GNUC__) && !defined(__clang__)
+/* Hides the selected index from GCC's optimiser: otherwise it selects the two buffer addresses
+ * instead (tree PRE), with a branch. Clang selects the index without it. */
+#define OPAQUE_INDEX(v) __asm__("" : "+r"(v))
+#else
+#define OPAQUE_INDEX(v) ((void)0)
+#endif
 #else
 #define DEPTH_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
 #endif
@@ -302,11 +311,29 @@ static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8
 #define DRAW_LEAVES(cm) LEAVES(cm) col += popcount8[cm];
 #endif
 
+#if MC_DEPTH_SELECT
+/* A pixel none of the leaves under the level-l node centred at xy can land on: a corner of the
+ * target outside the node's reach. There is one: setup_vectors sets c->inside only when a level
+ * d-3 node's reach spans less than the target's width or height. */
+static intptr_t spare_pixel(const ctx *c, unsigned l, mc_pos2 xy)
+{
+#if MC_FLOAT
+    const mc_pos x = POS2_X(xy), y = POS2_Y(xy);
+#else
+    const int32_t y = (int32_t)(uint32_t)xy, x = (int32_t)((xy - y) >> 32);   /* y may be negative */
+#endif
+    if (pos_floor(x - c->reach_x[l]) > 0 || pos_floor(y - c->reach_y[l]) > 0) return 0;
+    if (pos_floor(x + c->reach_x[l]) < c->w - 1) return c->w - 1;
+    return (intptr_t)(c->h - 1) * c->w;
+}
+#endif
+
 /* Nodes at level d-2 wholly on screen, orthographic: the children of one node at level d-3 whose
  * mask is m (or just one of them: m = its child bit). Masks of level d-1 come one sibling group per
  * d-2 node and colours one cousin group per d-2 node, each from one chunk (scene.h). Everything the
- * loops touch is in locals, so nothing is reloaded after each pixel store. Not inlined: there is
- * one copy of the leaf code however many callers. */
+ * loops touch is in locals, so nothing is reloaded after each pixel store: the two cursors too,
+ * written back before a refill and at the end (a colour store may alias any field of *c). Not
+ * inlined: there is one copy of the leaf code however many callers. */
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((noinline))
 #endif
@@ -318,15 +345,30 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
     uint8_t *restrict fb = c->fb;
     uint16_t *restrict zb = c->zb;
     const intptr_t w = c->w;
+#if MC_DEPTH_SELECT
+    const intptr_t spare = spare_pixel(c, l3, xy);
+    const uint16_t spare_depth = zb[spare];
+    const uint8_t spare_color = fb[spare];
+#endif
+    cursor *const mc = &c->mask[l3 + 2];
+    const uint8_t *mp = mc->p, *mend = mc->end;
+    const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;
     uint32_t points = 0;
     for (; m; m &= m - 1) {
         const unsigned k3 = lowest_bit(m);
         const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);
         const mc_pos zz2 = z + L[0].z[k3];
         unsigned m2 = *masks2++;
-        const uint8_t *masks1 = cursor_take(&c->mask[l3 + 2], popcount8[m2]);
-        if (c->color.p >= c->color.end) cursor_refill(&c->color);
-        const uint8_t *col = c->color.p, *const first = col;
+        if (mp >= mend) { mc->p = mp; cursor_refill(mc); mp = mc->p; mend = mc->end; }
+        const uint8_t *masks1 = mp;
+        mp += popcount8[m2];
+        if (col >= cend) {
+            points += (uint32_t)(col - first);
+            c->color.p = col;
+            cursor_refill(&c->color);
+            col = first = c->color.p;
+            cend = c->color.end;
+        }
         for (; m2; m2 &= m2 - 1) {
             const unsigned k2 = lowest_bit(m2);
             const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);
@@ -334,10 +376,15 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
             const unsigned cm = *masks1++;
             DRAW_LEAVES(cm)
         }
-        points += (uint32_t)(col - first);   /* every leaf here is on screen */
-        c->color.p = col;
     }
+    points += (uint32_t)(col - first);   /* every leaf here is on screen */
+    mc->p = mp;
+    c->color.p = col;
     c->points += points;
+#if MC_DEPTH_SELECT
+    zb[spare] = spare_depth;
+    fb[spare] = spare_color;
+#endif
 #undef lv
 #undef lz
 }
@@ -522,6 +569,16 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
         else c->splat = footprint(leaf);
     }
     c->inside = !c->perspective && c->splat == 1;
+#if MC_DEPTH_SELECT
+    /* draw_inside needs a pixel outside the reach of each level d-3 node (spare_pixel): on targets
+     * so small that a node's reach spans both their width and height, every node is checked */
+    if (c->d >= 3) {
+        const unsigned l = c->d - 3;
+        const mc_pos_wide one = POS_PIXELS(1);
+        if (2 * ((mc_pos_wide)c->reach_x[l] + one) >= (mc_pos_wide)POS_PIXELS(c->w) &&
+            2 * ((mc_pos_wide)c->reach_y[l] + one) >= (mc_pos_wide)POS_PIXELS(c->h)) c->inside = 0;
+    }
+#endif
     return (radius >> c->zshift) + MC_MAX_DEPTH;   /* one depth unit of room per level's rounding */
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The hot loop's depth test as a branch (MC_DEPTH_SELECT 0, the default) and as a select (1), side by
+# The hot loop's depth test as a branch (MC_DEPTH_SELECT 0) and as a select (1, the default on x86-64), side by
 # side with Mesa in one run: CPU ms per frame (median of rounds, each round branch / select / Mesa on
 # the same 200-frame turn) and callgrind instructions per drawn point. Appends (replacing an earlier copy)
 # a marked section to RESULTS.md. Run by tests/bench/run.sh after its own bakes (make bench):
@@ -50,13 +50,13 @@ ir0, ir1 = ir(0), ir(1)
 print("## Depth test: branch or select\n")
 print(f"`tests/bench/depth_select.sh` (`make bench`): bunny00 at depth {d}, {size}, the {frames}-frame turn of section 1, "
       f"`callgrind_frames --time` (mc_clear + mc_render, no finishing) with the runtime built with `-DMC_DEPTH_SELECT=0` "
-      f"(a branch per leaf, the default) and `=1` (conditional moves), and Mesa as in section 3; {rounds} rounds of "
+      f"(a branch per leaf) and `=1` (a conditional move of the written pixel's index, the default on x86-64), and Mesa as in section 3; {rounds} rounds of "
       f"branch, select, Mesa; CPU ms = median over rounds of each round's median. Instructions: callgrind, 20-view turn, "
       f"mc_render only. Same pixels in both builds: **{same}**.\n")
 print("| depth test | Ir per drawn point | CPU ms per frame | Mesa CPU ms | ratio (median over rounds) |")
 print("|---|---:|---:|---:|---:|")
-print(f"| branch (MC_DEPTH_SELECT 0, default) | {ir0:.2f} | {med(0):.3f} | {med(2):.3f} | {ratio(0):.1f}x |")
-print(f"| select (MC_DEPTH_SELECT 1) | {ir1:.2f} | {med(1):.3f} | {med(2):.3f} | {ratio(1):.1f}x |")
+print(f"| branch (MC_DEPTH_SELECT 0) | {ir0:.2f} | {med(0):.3f} | {med(2):.3f} | {ratio(0):.1f}x |")
+print(f"| select (MC_DEPTH_SELECT 1, default on x86-64) | {ir1:.2f} | {med(1):.3f} | {med(2):.3f} | {ratio(1):.1f}x |")
 print()
 print("Per round (branch / select / Mesa ms): " + "; ".join(" / ".join(f"{v:.3f}" for v in r) for r in rows) + ".")
 print(f"Load average at the end: {load}.")

@@ -25,10 +25,11 @@ for m in $models; do
     fi
     "$out/compare-$m" || status=1
 done
-# the other builds of the renderer (config.h): the depth test as a select, and float positions; the
-# same comparison (the float build against its own bound, compare.c), names prefixed with the build
+# every form of the renderer (config.h): the depth test as a branch and as a select (the default
+# depends on the CPU), and float positions (measurement only; compare.c holds it to its own bound):
+# the same comparison, names prefixed with the form
 m=bunny00
-for variant in select:-DMC_DEPTH_SELECT=1 float:-DMC_FLOAT=1; do
+for variant in branch:-DMC_DEPTH_SELECT=0 select:-DMC_DEPTH_SELECT=1 float:-DMC_FLOAT=1; do
     name=${variant%%:*} flag=${variant#*:}
     if gcc -std=c99 $flags -Wall -Wextra -Werror "$flag" -Iruntime/include -Iruntime/ref \
         '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \

@@ -26,7 +26,12 @@
  *  3. every leaf the reference puts on screen further than BOUND from the target's edges (and, in
  *     perspective, clearly in front of the near plane) is drawn, unless the frame was aborted;
  *  4. mc_stats.points equals the number of points the hook saw, and mc_render returns MC_OK (or
- *     MC_ERR_SIZE for a target over MC_TARGET_MAX, then writing nothing).
+ *     MC_ERR_SIZE for a target over MC_TARGET_MAX, then writing nothing);
+ *  5. with -DSTRESS_ALT=1 (tests/stress/suite.sh links a second copy of render.c built with the other
+ *     form of the depth test, MC_DEPTH_SELECT, its entry points renamed mc_render_alt/mc_clear_alt):
+ *     the other form, drawing the same frames into a second target, leaves both buffers byte for byte
+ *     equal to this one's. The select form parks losing leaves on a spare pixel and puts it back, so
+ *     a wrong spare would show here as one changed pixel, which the reference checks cannot see.
  *
  * The bound, per axis, in pixels (S = the clamped zoom times the shorter target side: the cube's
  * screen side; d = drawn depth; F = MC_FRAC_BITS):
@@ -83,6 +88,14 @@
 
 static uint8_t color_mem[GUARD + MAXW * MAXH + GUARD];
 static uint16_t depth_mem[GUARD + MAXW * MAXH + GUARD];
+#if STRESS_ALT
+/* the other depth-test form (check 5) */
+void mc_clear_alt(const mc_target *t);
+int mc_render_alt(const mc_scene *scene, const mc_view *view, unsigned depth, const mc_target *t,
+                  mc_abort_fn abort, void *user, mc_stats *stats);
+static uint8_t alt_color[MAXW * MAXH];
+static uint16_t alt_depth[MAXW * MAXH];
+#endif
 
 typedef struct fpt { const uint8_t *color; double fx, fy; } fpt;   /* pixels */
 static fpt fixed_pts[MAX_PTS];
@@ -163,6 +176,7 @@ static int abort_after(void *user)
 typedef struct counters {
     uint64_t views, frames_drawn, points, points_checked, ref_on_screen, near_plane_disagreements;
     uint64_t aborted, rejected, persp, guard_fail, pos_fail, order_fail, missing_fail, stats_fail, rc_fail;
+    uint64_t alt_fail, alt_frames;
     double max_err_ratio;          /* largest |error| / bound seen */
     double max_err_px;             /* largest |error| in pixels, orthographic */
     double max_err_px_persp;       /* largest |error| in pixels, perspective */
@@ -279,6 +293,22 @@ static void one_view(const mc_scene *scene, counters *k)
         if (st.points != n_fixed) fail(&k->stats_fail, "stats.points %" PRIu32 " but %zu points plotted: %s", st.points, n_fixed, what);
     }
     k->frames_drawn += (uint64_t)repeat;
+#if STRESS_ALT
+    {
+        /* 5: the other form of the depth test, the same frames (the same polls, so the same aborts) */
+        mc_target at = {alt_color, alt_depth, (uint16_t)w, (uint16_t)h};
+        abort_state ab2 = {0, ab.give_up_after};
+        mc_clear_alt(&at);
+        for (int r = 0; r < repeat; r++)
+            mc_render_alt(scene, &v, d, &at, use_abort ? abort_after : NULL, &ab2, NULL);
+        if (memcmp(at.color, t.color, n) || memcmp(at.depth, t.depth, n * sizeof at.depth[0])) {
+            size_t p = 0;
+            while (p < n && at.color[p] == t.color[p] && at.depth[p] == t.depth[p]) p++;
+            fail(&k->alt_fail, "the other depth-test form differs at pixel %zu (%zu, %zu): %s", p, p % w, p / w, what);
+        }
+        k->alt_frames++;
+    }
+#endif
     k->aborted += st.aborted != 0;
     if (n_fixed > MAX_PTS) { fail(&k->order_fail, "more than %u points", MAX_PTS); return; }
     k->points += n_fixed;
@@ -412,6 +442,10 @@ int main(int argc, char **argv)
     REPORT(!k.missing_fail, "every leaf clearly on screen is drawn", k.missing_fail);
     REPORT(!k.stats_fail, "mc_stats.points equals the points plotted", k.stats_fail);
     REPORT(!k.rc_fail, "mc_render returns MC_OK, and MC_ERR_SIZE for targets over MC_TARGET_MAX", k.rc_fail);
+#if STRESS_ALT
+    REPORT(!k.alt_fail && k.alt_frames == k.views,
+           "the other depth-test form (MC_DEPTH_SELECT) draws byte-identical colour and depth buffers", k.alt_fail);
+#endif
     printf("# views %" PRIu64 " frames %" PRIu64 " (perspective %" PRIu64 ", aborted %" PRIu64 ", oversize refused %" PRIu64
            ") points %" PRIu64 " checked %" PRIu64 " reference on-screen %" PRIu64 " near-plane disagreements %" PRIu64 "\n",
            k.views, k.frames_drawn, k.persp, k.aborted, k.rejected, k.points, k.points_checked, k.ref_on_screen,
@@ -425,5 +459,5 @@ int main(int argc, char **argv)
     printf("# max error: orthographic %.3e px (bound at d=%u, S=240: %.3e px), perspective %.3e px; largest error/bound %.3f\n",
            k.max_err_px, (unsigned)scene->depth, b240, k.max_err_px_persp, k.max_err_ratio);
     printf("# seconds %.1f (%.1f us per view)\n", secs, secs * 1e6 / (double)(views ? views : 1));
-    return (k.guard_fail | k.order_fail | k.pos_fail | k.missing_fail | k.stats_fail | k.rc_fail) ? 1 : 0;
+    return (k.guard_fail | k.order_fail | k.pos_fail | k.missing_fail | k.stats_fail | k.rc_fail | k.alt_fail) ? 1 : 0;
 }
