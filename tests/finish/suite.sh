@@ -10,9 +10,8 @@ set -u
 cd "$(dirname "$0")/../.." || exit 1
 out=build/finish
 mkdir -p "$out"
-status=0
-notok() { echo "not ok - finish: $1: $2"; status=1; }
-oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+TAP_PREFIX="finish: "
+. tests/tap.sh
 CFLAGS_T="-std=c99 -Wall -Wextra -Werror -Iruntime/include"
 
 run() {   # run LABEL PROGRAM ARGS...: passes the check lines through, one failure if it dies silently

@@ -19,11 +19,9 @@ cd "$(dirname "$0")/../.." || exit 1
 out=build/tests/fw
 rm -rf "$out"
 mkdir -p "$out"
-status=0
-ok() { echo "ok - fw: $1"; }
-notok() { echo "not ok - fw: $1: $2"; status=1; }
-check() { if [ -z "$2" ]; then ok "$1"; else notok "$1" "$2"; fi; }
-oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+TAP_PREFIX="fw: "
+. tests/tap.sh
+check() { check_problems "$@"; }   # check NAME PROBLEMS
 mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1" "${@:2}"; }
 model=bunny00
 

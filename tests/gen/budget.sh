@@ -10,10 +10,10 @@ cd "$(dirname "$0")/../.."
 modelc=${1:-build/bin/modelc}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fails=0
-ok() { echo "ok - budget: $1"; }
-nok() { echo "not ok - budget: $1"; fails=$((fails + 1)); }
-check() { local name=$1; shift; if "$@"; then ok "$name"; else nok "$name"; fi; }
+TAP_PREFIX="budget: "
+. tests/tap.sh
+nok() { notok "$1"; }
+check() { check_cmd "$@"; }   # check NAME COMMAND...
 json() { python3 -c "import json,sys; b=json.load(open(sys.argv[1])); print($2)" "$1"; }
 bunny=build/models/bunny00.off
 rt_cc="gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include"

@@ -6,10 +6,10 @@ cd "$(dirname "$0")/../.."
 modelc=${1:-build/bin/modelc}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-fails=0
-ok() { echo "ok - gen: $1"; }
-nok() { echo "not ok - gen: $1"; fails=$((fails + 1)); }
-check() { local name=$1; shift; if "$@"; then ok "$name"; else nok "$name"; fi; }
+TAP_PREFIX="gen: "
+. tests/tap.sh
+nok() { notok "$1"; }
+check() { check_cmd "$@"; }   # check NAME COMMAND...
 
 src=build/models/nefertiti.off
 pts=build/models/kitten.xyz

@@ -8,10 +8,10 @@ modelc=${1:-build/bin/modelc}
 out=build/views-test
 rm -rf "$out"
 mkdir -p "$out"
-fails=0
-ok() { echo "ok - views: $1"; }
-nok() { echo "not ok - views: $1"; fails=$((fails + 1)); }
-check() { local name=$1; shift; if "$@"; then ok "$name"; else nok "$name"; fi; }
+TAP_PREFIX="views: "
+. tests/tap.sh
+nok() { notok "$1"; }
+check() { check_cmd "$@"; }   # check NAME COMMAND...
 
 # bad specs: one error line, exit status 2, nothing written
 for spec in "" "front" "front:abc" "front:200" "front:-5" "all,front:30" "front:60@0" "1:2:3:4" "yaw:10" "front:60,"; do

@@ -13,11 +13,9 @@ cd "$(dirname "$0")/../.." || exit 1
 out=build/tests/host
 rm -rf "$out"
 mkdir -p "$out"
-status=0
-ok() { echo "ok - host: $1"; }
-notok() { echo "not ok - host: $1: $2"; status=1; }
-check() { if [ -z "$2" ]; then ok "$1"; else notok "$1" "$2"; fi; }   # check NAME PROBLEMS
-oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+TAP_PREFIX="host: "
+. tests/tap.sh
+check() { check_problems "$@"; }   # check NAME PROBLEMS
 
 # Makefile variables, read from the Makefile itself so the re-link below is the real one
 mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1"; }

@@ -17,11 +17,9 @@ mkdir -p "$san/bin" "$san/gen" "$san/viewer"
 SAN_FLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-status=0
-ok() { echo "ok - san: $1"; }
-notok() { echo "not ok - san: $1: $2"; status=1; }
-check() { if [ -z "$2" ]; then ok "$1"; else notok "$1" "$2"; fi; }
-oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+TAP_PREFIX="san: "
+. tests/tap.sh
+check() { check_problems "$@"; }   # check NAME PROBLEMS
 sanitizer_report() {   # the first line of a sanitizer report in file $1, if any
     grep -m1 -E 'runtime error:|ERROR: AddressSanitizer|ERROR: LeakSanitizer|SUMMARY: (Address|Undefined|Leak)' "$1" | oneline
 }

@@ -21,10 +21,8 @@ SEED=${STRESS_SEED:-1}
 out=build/stress
 model=bunny00
 bake=$out/$model
-status=0
-ok() { echo "ok - stress: $1"; }
-notok() { echo "not ok - stress: $1: $2"; status=1; }
-oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+TAP_PREFIX="stress: "
+. tests/tap.sh
 mkdir -p "$out"
 
 src=build/models/bunny00.off

@@ -18,10 +18,8 @@ if [ "${SANITIZE:-0}" = 1 ]; then
 fi
 mkdir -p "$out"
 CC_UNIT=${CC_UNIT:-gcc}
-status=0
-ok() { echo "ok - $1"; }
-notok() { echo "not ok - $1: $2"; status=1; }
-oneline() { tr '\n' ' ' | sed 's/  */ /g; s/ $//' | cut -c1-400; }
+TAP_PREFIX=""
+. tests/tap.sh
 
 # ---- cmocka programs ---------------------------------------------------------------------------
 # The runtime is compiled into each test program. test_view's copy reports every plotted point to
