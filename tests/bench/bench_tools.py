@@ -347,6 +347,11 @@ def report(rdir, out_md):
         A(f"| {d} | {fmt_int(n / r['cg_turn_frames'])} | {ipp:.2f} | {fmt_int(ipf)} | {fpp:.2f} | {fmt_int(fpf)} | "
           f"{bc:.2f} | {bcm:.3f} | {bi:.2f} | {bim:.3f} | {bcm + bim:.3f} |")
     A("")
+    A("Depths 6 and 7 cost more per point because their leaves are larger than a pixel at this size (a cell of "
+      "depth d spans 240 / 2^d pixels: 3.75 at depth 6, 1.9 at depth 7): the default zoom footprint (config.h "
+      "MC_SPLAT_DEFAULT_MODE) draws each leaf as a 4x4 or 2x2 square through the checked leaf path, and a point "
+      "here is a leaf, not a pixel. Depths 8 and 9 draw one pixel per leaf on the unchecked path.")
+    A("")
     clear_ir = num(kv(os.path.join(rdir, "clear.cg.total")).get("Ir"))
     if clear_ir == clear_ir:
         A(f"Not counted above: mc_clear costs {fmt_int(clear_ir)} Ir per {size} frame "
