@@ -136,7 +136,7 @@ test:
 bench: $(MODELC) models
 	@tests/bench/run.sh
 
-# run time against error (issue 3): depth 5..10, MC_FRAC_BITS 8..24, the float build (MC_FLOAT 1) and
+# run time against error (issue 3): depth 5..10, MC_FRAC_BITS 8..24, the float build (tests/accuracy/pos_single.h) and
 # exact double-precision positions against the mesh reference: tests/bench/accuracy.{csv,png} and a RESULTS.md section (tests/accuracy/bench.sh)
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models

@@ -1,64 +1,92 @@
 /* Screen positions of the renderer (render.c): the one place that knows their number type.
  *
  * The renderer moves points by adding displacement vectors and reads a pixel off each position.
- * By default (MC_FLOAT 0) a position is Q MC_FRAC_BITS fixed point in an int32, and the hot loop
- * packs x and y into one int64 (x * 2^32 + y: on screen both are non-negative, so one 64-bit
- * addition moves a point in both axes). With MC_FLOAT 1 (config.h) positions are single-precision
- * floats in pixels and x, y a pair: the same walk, culling, depth test and footprints, built only so
- * that make bench-accuracy can set fixed point against float. Viewers and firmware never use it.
+ * A position is Q MC_FRAC_BITS fixed point in an int32, and the hot loop packs x and y into one
+ * int64 (x * 2^32 + y: on screen both are non-negative, so one 64-bit addition moves a point in
+ * both axes). render.c uses positions only through the types and operations below, so that the
+ * accuracy benchmark can build the same renderer with another number type: config.h's
+ * MC_POS_HEADER names a header that replaces this one with the same interface
+ * (tests/accuracy/pos_single.h). Viewers, libraries and firmware never set it.
  *
- * Depths go through the same type: orthographic depths are kept in depth-buffer units and stored as
- * they are (a conversion to uint16_t, which truncates a float as it does nothing to an integer).
+ * Depths go through the same type: orthographic depths are kept in depth-buffer units and stored
+ * with a conversion to uint16_t.
  */
 #ifndef MODELC_POS_H
 #define MODELC_POS_H
 
 #include <stdint.h>
 #include "modelc/config.h"
+#include "modelc/fixed.h"
 
 #define F MC_FRAC_BITS
 
-#if MC_FLOAT
-
-typedef float mc_pos;                      /* pixels */
-typedef float mc_pos_wide;                 /* products and distances: the same float */
-typedef struct mc_pos2 { float x, y; } mc_pos2;
-
-#define POS2(x, y) ((mc_pos2){(x), (y)})
-#define POS2_ADD(a, b) ((mc_pos2){(a).x + (b).x, (a).y + (b).y})
-#define POS2_X(p) ((p).x)
-#define POS2_Y(p) ((p).y)
-/* pixel column / row of a position known to be on screen (non-negative: truncation is the floor) */
-#define POS2_COL(p) ((intptr_t)(p).x)
-#define POS2_ROW(p) ((intptr_t)(p).y)
-/* n pixels, and n half pixels, as a position */
-#define POS_PIXELS(n) ((float)(n))
-#define POS_HALF_PIXELS(n) ((float)(n) * 0.5f)
-
-/* The pixel a position falls in, rounded toward minus infinity. Positions stay within
- * MC_COORD_LIMIT (views are clamped, view.h), so the conversion is always defined. */
-static inline int32_t pos_floor(mc_pos v)
-{
-    int32_t i = (int32_t)v;
-    return i - (v < (float)i);
-}
-
+#ifdef MC_POS_HEADER
+#include MC_POS_HEADER
 #else
 
 typedef int32_t mc_pos;                    /* Q F pixels */
 typedef int64_t mc_pos_wide;               /* Q F pixels, with room for products */
 typedef int64_t mc_pos2;                   /* x * 2^32 + y, each Q F */
+typedef int64_t mc_pos_mag;                /* a perspective magnification, Q24 */
+
+/* Fraction bits a position's value carries: a position is its length in pixels times 2^POS_FRAC. */
+#define POS_FRAC F
+/* The smallest positive distance (perspective: the near plane is never closer) */
+#define POS_EPSILON 1
+/* How far a computed sum of vectors may lie from the exact one beyond what the reaches cover: the
+ * sums of integers are exact, so nothing. */
+#define POS_REACH_SLACK 0
 
 #define POS2(x, y) ((int64_t)(x) * 4294967296 + (y))
 #define POS2_ADD(a, b) ((a) + (b))
-#define POS2_X(p) ((int32_t)((p) >> 32))
 #define POS2_Y(p) ((int32_t)(uint32_t)(p))
+#define POS2_X(p) ((int32_t)(((p) - POS2_Y(p)) >> 32))   /* exact for a negative y too */
+/* pixel column / row of a position known to be on screen (non-negative) */
 #define POS2_COL(p) ((intptr_t)((p) >> (32 + F)))
 #define POS2_ROW(p) ((intptr_t)((uint32_t)(p) >> F))
+/* n pixels, and n half pixels, as a position */
 #define POS_PIXELS(n) ((int32_t)(n) << F)
 #define POS_HALF_PIXELS(n) ((int32_t)(n) << (F - 1))
 
+/* The pixel a position falls in, rounded toward minus infinity. */
 static inline int32_t pos_floor(mc_pos v) { return v >> F; }
+
+/* a * b / 2^s in units of the position type, rounded to nearest (s may be negative): builds
+ * vectors, depths and distances once per frame from the Q30 rotation and the Q16 scale. */
+static inline mc_pos_wide pos_units(int64_t a, int64_t b, int s)
+{
+    return s >= 0 ? mc_mul_shift64(a, b, s) : mc_mul_shift64(a, b * ((int64_t)1 << -s), 0);
+}
+
+/* The root's centre on screen: the middle of `size` pixels plus a translation of t pixels. */
+static inline mc_pos pos_centre(int32_t size, int32_t t)
+{
+    return (int32_t)(((int64_t)size << (F - 1)) + (int64_t)t * ((int64_t)1 << F));
+}
+
+/* Footprint side in pixels of a leaf of side `side`: rounded up, 1..MC_SPLAT_MAX. */
+static inline int32_t pos_footprint(mc_pos_wide side)
+{
+    int64_t s = (side + (((int64_t)1 << F) - 1)) >> F;
+    return s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int32_t)s;
+}
+
+/* Perspective: the magnification eye / dist (dist >= the near plane), and v magnified by it,
+ * exact and saturating (near the eye the magnification reaches 2^14). */
+static inline mc_pos_mag pos_magnification(mc_pos_wide eye, mc_pos_wide dist) { return (eye << 24) / dist; }
+static inline mc_pos_wide pos_magnify(mc_pos_wide v, mc_pos_mag q) { return mc_mul_shift64(v, q, 24); }
+
+/* Perspective: the screen position centre + offset in *out, if it lies in [0, size); tested before
+ * the sum, which could overflow. */
+static inline int pos_place(mc_pos centre, mc_pos_wide offset, mc_pos size, mc_pos *out)
+{
+    if (offset < -centre || offset >= size - centre) return 0;
+    *out = (mc_pos)(centre + offset);
+    return 1;
+}
+
+/* Perspective: the depth-buffer value of a depth kept as a position (Q F pixels). */
+static inline uint16_t pos_depth(mc_pos z, unsigned zshift) { return (uint16_t)((uint32_t)z >> zshift); }
 
 #endif
 

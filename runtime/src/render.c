@@ -38,7 +38,7 @@ typedef struct ctx {
     mc_pos radius;                       /* bounding sphere of the model, Q F pixels */
     /* how far the drawn leaves under a level-l node can lie from its centre, per screen axis: the
      * sum of the largest displacement of each level below, so exact for the fixed-point positions
-     * (the float build adds its rounding, setup_vectors) */
+     * (plus POS_REACH_SLACK where sums round, pos.h) */
     mc_pos reach_x[MC_MAX_DEPTH + 1], reach_y[MC_MAX_DEPTH + 1];
     uint8_t *fb;
     uint16_t *zb;
@@ -54,9 +54,6 @@ typedef struct ctx {
                                           * Q F pixels; 0: one pixel per leaf */
     mc_pos cx, cy;                       /* perspective: screen centre plus translation, Q F */
     mc_pos_wide eye, near;               /* perspective: eye distance and near plane, Q F pixels */
-#if MC_FLOAT
-    float zunit;                         /* perspective: depth-buffer units per pixel */
-#endif
     mc_abort_fn abort;
     void *user;
     uint32_t points, polls;
@@ -192,19 +189,6 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
     }
 }
 
-/* Footprint side in pixels of a leaf of side `side` (Q F pixels): rounded up, 1..MC_SPLAT_MAX. */
-static int32_t footprint(mc_pos_wide side)
-{
-#if MC_FLOAT
-    if (!(side < MC_SPLAT_MAX)) return MC_SPLAT_MAX;     /* before converting: side may be huge */
-    int32_t s = (int32_t)side;
-    s += (float)s < side;
-#else
-    int64_t s = (side + (((int64_t)1 << F) - 1)) >> F;
-#endif
-    return s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int32_t)s;
-}
-
 /* Leaves of one level d-1 node in perspective: each point divides by its own distance (exact, not
  * linearised, so it lands where the reference renderer, runtime/ref, puts it). Points nearer than the near plane
  * (1/64 cube side in front of the eye) are not drawn. */
@@ -217,36 +201,16 @@ static void leaves_perspective(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z,
         mc_pos zk = z + vz[k];
         mc_pos_wide dist = c->eye + zk - c->radius;   /* z carries a +radius offset */
         if (dist < c->near) continue;
-#if MC_FLOAT
-        float q = c->eye / dist;                          /* magnification */
-        float ox = (x + vx[k]) * q, oy = (y + vy[k]) * q;
-#else
-        int64_t q = (c->eye << 24) / dist;                /* magnification, Q24, at most 2^38 */
-        /* exact and saturating: near the eye the magnification reaches 2^14 */
-        int64_t ox = mc_mul_shift64(x + vx[k], q, 24), oy = mc_mul_shift64(y + vy[k], q, 24);
-#endif
-#if MC_FLOAT
-        /* the sum is tested, not the offset: cx + ox rounds, and may round onto the far edge */
-        mc_pos fx = c->cx + ox, fy = c->cy + oy;
-        if (!(fx >= 0 && fy >= 0 && fx < c->wf && fy < c->hf)) continue;
-#else
-        if (ox < -c->cx || oy < -c->cy || ox >= c->wf - c->cx || oy >= c->hf - c->cy) continue;
-        mc_pos fx = (mc_pos)(c->cx + ox), fy = (mc_pos)(c->cy + oy);
-#endif
+        const mc_pos_mag q = pos_magnification(c->eye, dist);
+        mc_pos fx, fy;
+        if (!pos_place(c->cx, pos_magnify(x + vx[k], q), c->wf, &fx) ||
+            !pos_place(c->cy, pos_magnify(y + vy[k], q), c->hf, &fy)) continue;
         int32_t i = pos_floor(fy) * c->w + pos_floor(fx);
-#if MC_FLOAT
-        uint16_t depth = (uint16_t)(zk * c->zunit);
-#else
-        uint16_t depth = (uint16_t)((uint32_t)zk >> c->zshift);
-#endif
+        uint16_t depth = pos_depth(zk, c->zshift);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
         if (c->leaf_side) {                               /* zoom splats: the leaf's side here */
-#if MC_FLOAT
-            int32_t s = footprint(c->leaf_side * q);
-#else
-            int32_t s = footprint(mc_mul_shift64(c->leaf_side, q, 24));
-#endif
+            int32_t s = pos_footprint(pos_magnify(c->leaf_side, q));
             if (s > 1) { draw_square(c, fx, fy, s, depth, *col); continue; }
         }
         if (depth < c->zb[i]) { c->zb[i] = depth; c->fb[i] = *col; }
@@ -317,11 +281,7 @@ static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8
  * d-3 node's reach spans less than the target's width or height. */
 static intptr_t spare_pixel(const ctx *c, unsigned l, mc_pos2 xy)
 {
-#if MC_FLOAT
     const mc_pos x = POS2_X(xy), y = POS2_Y(xy);
-#else
-    const int32_t y = (int32_t)(uint32_t)xy, x = (int32_t)((xy - y) >> 32);   /* y may be negative */
-#endif
     if (pos_floor(x - c->reach_x[l]) > 0 || pos_floor(y - c->reach_y[l]) > 0) return 0;
     if (pos_floor(x + c->reach_x[l]) < c->w - 1) return c->w - 1;
     return (intptr_t)(c->h - 1) * c->w;
@@ -492,19 +452,9 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
     const int32_t radius = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 - F) + 2 * MC_MAX_DEPTH;
     c->zshift = 0;
     while (((uint32_t)(2 * radius) >> c->zshift) >= 65000u) c->zshift++;
-#if MC_FLOAT
-    /* the same quantities in float pixels; depth-buffer units are the fixed build's, 2^(F - zshift)
-     * per pixel, so that both builds resolve depth alike */
-    const float px = (float)scale * 0x1p-16f;
-    const float zunit = (float)(1u << F) / (float)(1u << c->zshift);
-    c->radius = (float)radius / (float)(1u << F);
-    c->zunit = zunit;
-#else
-    c->radius = radius;
+    c->radius = (mc_pos)pos_units(radius, 1, F - POS_FRAC);
     /* orthographic depth vectors are in depth-buffer units (the shift folded in, one rounding per
-     * level); perspective keeps Q F pixels, since it divides by the distance */
-    const int zunits = c->perspective ? 0 : (int)c->zshift;
-#endif
+     * level); perspective keeps positions, since it divides by the distance */
     for (unsigned l = 0; l < c->d; l++) {
         for (int k = 0; k < 8; k++) {
             int64_t sx = k & 1 ? 1 : -1, sy = k & 2 ? 1 : -1, sz = k & 4 ? 1 : -1;
@@ -513,16 +463,11 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
             int64_t ey = sx * r[1][0] + sy * r[1][1] + sz * r[1][2];
             int64_t ez = sx * r[2][0] + sy * r[2][1] + sz * r[2][2];
             levelvec *v = &c->v[l];
-#if MC_FLOAT
-            const float step = px * 0x1p-30f / (float)(1u << (l + 2));
-            v->x[k] = (float)ex * step;
-            v->y[k] = -(float)ey * step;
-            v->z[k] = -(float)ez * step * (c->perspective ? 1.0f : zunit);
-#else
-            v->x[k] = (int32_t)mc_mul_shift64(ex, scale, 30 + 16 + (int)l + 2 - F);
-            v->y[k] = (int32_t)-mc_mul_shift64(ey, scale, 30 + 16 + (int)l + 2 - F);
-            v->z[k] = (int32_t)-mc_mul_shift64(ez, scale, 30 + 16 + (int)l + 2 - F + zunits);
-#endif
+            const int sh = 30 + 16 + (int)l + 2;          /* Q30 rotation * Q16 scale * 2^-(l+2) */
+            v->x[k] = (mc_pos)pos_units(ex, scale, sh - POS_FRAC);
+            v->y[k] = (mc_pos)-pos_units(ey, scale, sh - POS_FRAC);
+            v->z[k] = (mc_pos)-(c->perspective ? pos_units(ez, scale, sh - POS_FRAC)
+                                               : pos_units(ez, scale, sh - F + (int)c->zshift));
             v->xy[k] = POS2(v->x[k], v->y[k]);
         }
     }
@@ -538,35 +483,20 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
         c->reach_x[l] = c->reach_x[l + 1] + mx;
         c->reach_y[l] = c->reach_y[l + 1] + my;
     }
-#if MC_FLOAT
-    /* Float sums round: a leaf reached through d additions may lie up to d half-spacings of float
-     * beyond its exact position. Coordinates stay below MC_COORD_LIMIT, where floats are spaced at
-     * most MC_COORD_LIMIT * 2^-23, so widening every reach by MC_MAX_DEPTH + 2 such half-spacings
-     * keeps "wholly on screen" (no bounds checks) true of the computed positions. */
-    for (unsigned l = 0; l <= c->d; l++) {
-        c->reach_x[l] += (MC_MAX_DEPTH + 2) * (float)MC_COORD_LIMIT * 0x1p-24f;
-        c->reach_y[l] += (MC_MAX_DEPTH + 2) * (float)MC_COORD_LIMIT * 0x1p-24f;
+    for (unsigned l = 0; l <= c->d; l++) {     /* nothing to add unless sums round (pos.h) */
+        c->reach_x[l] += POS_REACH_SLACK;
+        c->reach_y[l] += POS_REACH_SLACK;
     }
-    c->eye = (float)v->eye * 0x1p-16f * px;                         /* pixels */
-    c->near = px * (1.0f / 64);                                      /* 1/64 cube side */
-    if (c->near < 0x1p-16f) c->near = 0x1p-16f;                      /* tiny views: never divide by 0 */
-#else
-    c->eye = mc_mul_shift64(v->eye, scale, 32 - F);                 /* Q16 sides * Q16 px -> Q F px */
-    c->near = mc_mul_shift64(scale, (int64_t)1 << F, 16 + 6);        /* 1/64 cube side, Q F px */
-    if (c->near < 1) c->near = 1;                                    /* tiny views: never divide by 0 */
-#endif
+    c->eye = pos_units(v->eye, scale, 32 - POS_FRAC);              /* Q16 sides * Q16 px */
+    c->near = pos_units(scale, 1, 16 + 6 - POS_FRAC);               /* 1/64 cube side */
+    if (c->near < POS_EPSILON) c->near = POS_EPSILON;                /* tiny views: never divide by 0 */
     /* footprints, chosen once per frame: a leaf's side on screen is scale / 2^d pixels */
     c->splat = 1;
     c->leaf_side = 0;
     if (v->splat == MC_SPLAT_ZOOM || (v->splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
-#if MC_FLOAT
-        float leaf = px / (float)(1u << c->d);
-#else
-        int sh = 16 + (int)c->d - F;
-        int64_t leaf = sh >= 0 ? mc_round_shift(scale, sh) : scale * ((int64_t)1 << -sh);
-#endif
+        const mc_pos_wide leaf = pos_units(scale, 1, 16 + (int)c->d - POS_FRAC);
         if (c->perspective) c->leaf_side = leaf;
-        else c->splat = footprint(leaf);
+        else c->splat = pos_footprint(leaf);
     }
     c->inside = !c->perspective && c->splat == 1;
 #if MC_DEPTH_SELECT
@@ -631,12 +561,7 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis
      * (perspective: projected per point); depth offset by the bounding radius to keep it positive */
-#if MC_FLOAT
-    float centre_x = (float)c.w * 0.5f + (float)v.tx, centre_y = (float)c.h * 0.5f + (float)v.ty;
-#else
-    int32_t centre_x = (int32_t)(((int64_t)c.w << (F - 1)) + (int64_t)v.tx * ((int64_t)1 << F));
-    int32_t centre_y = (int32_t)(((int64_t)c.h << (F - 1)) + (int64_t)v.ty * ((int64_t)1 << F));
-#endif
+    const mc_pos centre_x = pos_centre(c.w, v.tx), centre_y = pos_centre(c.h, v.ty);
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;

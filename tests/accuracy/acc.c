@@ -4,7 +4,7 @@
  *   acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH] [--dump DIR]
  *
  * Built per setting by tests/accuracy/bench.sh: the runtime (runtime/src, with -DMC_FRAC_BITS=F, or
- * with -DMC_FLOAT=1 for the float build of the renderer, config.h), one bake of the model at depth D
+ * with tests/accuracy/pos_single.h for the float build of the renderer, config.h MC_POS_HEADER), one bake of the model at depth D
  * (ACC_SCENE naming its descriptor, mc_scene_NAME), runtime/ref/ref.c and runtime/ref/mesh_ref.c.
  * With -DACC_EXACT=1 the "exact" build: the octree is drawn by the double-precision walk of
  * runtime/ref/ref.c (mc_ref_points: every leaf placed exactly from its integer cell coordinates) with

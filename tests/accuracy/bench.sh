@@ -4,7 +4,8 @@
 # For each model (ACC_MODELS, default "bunny00 nefertiti") it bakes the octree at depths 5..10, dumps
 # the original mesh once (modelc --dump-reference) and builds tests/accuracy/acc.c for each setting:
 #   - fixed point, MC_FRAC_BITS 15 (the default), depth 5..10
-#   - "float": the runtime built with -DMC_FLOAT=1 (config.h: float screen positions, the same walk),
+#   - "float": the runtime built with tests/accuracy/pos_single.h for its positions (config.h
+#     MC_POS_HEADER: single-precision screen positions, the same walk),
 #     depth 5..10
 #   - "exact": the double-precision octree walk of runtime/ref (mc_ref_points, exact leaf positions)
 #     with the runtime's footprints and finishing, depth 5..10: the error floor (acc.c)
@@ -48,7 +49,7 @@ FRACS_D10="8 12 18"
 # rebuilt whenever any runtime source or header changes (others edit the runtime while this runs)
 STAMP=$(cat runtime/src/*.c runtime/src/*.h runtime/include/modelc/*.h runtime/ref/*.c runtime/ref/*.h | sha256sum | cut -c1-16)
 cfg_flags() {   # F, or "float" -> the runtime's configuration flags
-    if [ "$1" = float ]; then echo "-DMC_FLOAT=1"; else echo "-DMC_FRAC_BITS=$1"; fi
+    if [ "$1" = float ]; then echo "-DMC_FLOAT=1 -DMC_POS_HEADER=\"pos_single.h\" -Itests/accuracy"; else echo "-DMC_FRAC_BITS=$1"; fi
 }
 rt_objs() {   # F or "float" -> object directory
     local d=$OUT/obj/rt$1 cfg

@@ -189,7 +189,7 @@ def main():
              "other processes take the core) and instruction counts. The machine is shared (2 cores, other builds running): times are noisy by 10-30 %, "
              "instruction counts are exact.")
     L.append("- Builds: `fixed` is the runtime compiled with -DMC_FRAC_BITS=F. `float` is the same runtime compiled "
-             "with -DMC_FLOAT=1 (config.h, `runtime/src/pos.h`): single-precision screen positions in the same walk, "
+             "with `tests/accuracy/pos_single.h` in place of `runtime/src/pos.h` (config.h MC_POS_HEADER): single-precision screen positions in the same walk, "
              "culling, depth test, footprints and finishing. `exact` is the double-precision octree walk of "
              "`runtime/ref/ref.c` (exact leaf positions from integer cell coordinates) with the runtime's "
              "footprints, a 16-bit depth buffer and the runtime's finishing: the error floor no number format of the "

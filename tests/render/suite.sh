@@ -29,9 +29,15 @@ done
 # depends on the CPU), and float positions (measurement only; compare.c holds it to its own bound):
 # the same comparison, names prefixed with the form
 m=bunny00
-for variant in branch:-DMC_DEPTH_SELECT=0 select:-DMC_DEPTH_SELECT=1 float:-DMC_FLOAT=1; do
-    name=${variant%%:*} flag=${variant#*:}
-    if gcc -std=c99 $flags -Wall -Wextra -Werror "$flag" -Iruntime/include -Iruntime/ref \
+# (the float build: tests/accuracy/pos_single.h in place of runtime/src/pos.h, MC_FLOAT for the test)
+float_flags=(-DMC_FLOAT=1 '-DMC_POS_HEADER="pos_single.h"' -Itests/accuracy)
+for name in branch select float; do
+    case $name in
+        branch) vflags=(-DMC_DEPTH_SELECT=0) ;;
+        select) vflags=(-DMC_DEPTH_SELECT=1) ;;
+        float) vflags=("${float_flags[@]}") ;;
+    esac
+    if gcc -std=c99 $flags -Wall -Wextra -Werror "${vflags[@]}" -Iruntime/include -Iruntime/ref \
         '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \
         -o "$out/compare-$name-$m" tests/render/compare.c runtime/ref/ref.c runtime/src/*.c "build/$m"/*.c -lm \
         2>"$out/compare-$name-$m.log"; then

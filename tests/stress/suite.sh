@@ -7,7 +7,7 @@
 #                  0 skips it), and of the float build's run under them plus float-cast-overflow
 #   STRESS_JOBS    processes the optimised run is split into, each with its own seed (default 1)
 #   STRESS_F_VIEWS views of each of three more optimised runs: MC_FRAC_BITS 8 and 24, and the float
-#                  build MC_FLOAT 1 (default STRESS_VIEWS / 10)
+#                  build (tests/accuracy/pos_single.h; default STRESS_VIEWS / 10)
 #   STRESS_SEED    first seed (default 1)
 # make stress runs it with 10^7 views on two processes.
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
@@ -78,10 +78,16 @@ else
 fi
 
 # ---- the extreme fixed-point formats, MC_FRAC_BITS 8 and 24 (targets at most MC_TARGET_MAX, 8x8 at
-# 24), and the float build (MC_FLOAT 1, held to its own bound: stress.c) -----------------------------
-for variant in "F=8:-DMC_FRAC_BITS=8:108" "F=24:-DMC_FRAC_BITS=24:124" "float:-DMC_FLOAT=1:200"; do
-    IFS=: read -r name flag seed_off <<<"$variant"
-    if build "$out/stress-$name" -O2 -g "$flag"; then
+# 24), and the float build (tests/accuracy/pos_single.h, held to its own bound: stress.c) ------------
+float_flags=(-DMC_FLOAT=1 '-DMC_POS_HEADER="pos_single.h"' -Itests/accuracy)
+for name in F=8 F=24 float; do
+    case $name in
+        F=8) vflags=(-DMC_FRAC_BITS=8) seed_off=108 ;;
+        F=24) vflags=(-DMC_FRAC_BITS=24) seed_off=124 ;;
+        float) vflags=("${float_flags[@]}") seed_off=200 ;;
+    esac
+    flag="${vflags[*]}"
+    if build "$out/stress-$name" -O2 -g "${vflags[@]}"; then
         "$out/stress-$name" "$F_VIEWS" $((SEED + seed_off)) "stress $name" >"$out/run.$name.log" 2>&1
         rc=$?
         grep -E '^(ok|not ok) ' "$out/run.$name.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
@@ -123,6 +129,6 @@ if [ "$SAN_VIEWS" -gt 0 ]; then
     export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
     san_run san 1000 "the runtime" address,undefined
     # the float build, with float-to-integer conversions out of range and divisions by zero trapped too
-    san_run fsan 2000 "the float build" address,undefined,float-cast-overflow,float-divide-by-zero -DMC_FLOAT=1
+    san_run fsan 2000 "the float build" address,undefined,float-cast-overflow,float-divide-by-zero "${float_flags[@]}"
 fi
 exit $status

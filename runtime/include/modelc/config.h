@@ -22,18 +22,10 @@
 #error "MC_FRAC_BITS must be in 8..24: below 8 points land off by whole pixels, above 24 the screen range is under 64 pixels"
 #endif
 
-/* MC_FLOAT: the number type of the renderer's screen positions (runtime/src/pos.h).
- *   0 (default): Q MC_FRAC_BITS fixed point, the source paper's; no floating point anywhere.
- *   1: single-precision float, for measurement only: make bench-accuracy sets it against fixed
- *     point (tests/bench/RESULTS.md). The same walk, culling, depth test and footprints; views are
- *     still clamped to MC_COORD_LIMIT, the plot hook receives float pixels. Needs a float unit (or
- *     a compiler's soft-float library); viewers, libraries and firmware are never built with it. */
-#ifndef MC_FLOAT
-#define MC_FLOAT 0
-#endif
-#if MC_FLOAT != 0 && MC_FLOAT != 1
-#error "MC_FLOAT must be 0 (fixed point) or 1 (float, for measurement)"
-#endif
+/* MC_POS_HEADER: a header replacing the renderer's screen-position arithmetic (runtime/src/pos.h,
+ * Q MC_FRAC_BITS fixed point) with another number type through the same interface. Unset by
+ * default and in every viewer, library and firmware build; the accuracy benchmark sets it to
+ * measure fixed point against another format (tests/accuracy/pos_single.h). */
 
 /* MC_MAX_DEPTH: deepest octree the runtime can decode. Sizes per-level tables on the stack
  * (about 110 bytes per level). The generator refuses deeper models. */
@@ -129,8 +121,8 @@
 #endif
 
 /* MC_PLOT_HOOK(fx, fy, color_ptr): called for every point that lands on screen, before the depth
- * test, with its screen position in Q MC_FRAC_BITS pixels (int32; float pixels when MC_FLOAT is 1)
- * and a pointer to its palette index (which identifies the leaf). Empty by default; tests define it
+ * test, with its screen position in Q MC_FRAC_BITS pixels (int32; pixels in MC_POS_HEADER's type
+ * when that is set) and a pointer to its palette index (which identifies the leaf). Empty by default; tests define it
  * to compare each point with the reference renderer (runtime/ref, host-only). */
 #ifndef MC_PLOT_HOOK
 #define MC_PLOT_HOOK(fx, fy, color_ptr) ((void)0)

@@ -7,10 +7,10 @@
  * tested. Subtrees whose bounding sphere lies wholly off screen are skipped (their data is stepped
  * over, not decoded); subtrees wholly on screen are drawn without per-point bounds checks.
  *
- * No heap, no floating point (but in the float build, MC_FLOAT 1, made only for measurement), no
- * recursion deeper than the drawn depth (at most MC_MAX_DEPTH frames of mc_render's internal node
- * function). Buffers belong to the caller; while mc_render runs they may hold values it puts back
- * before returning (the select form of the depth test parks losing leaves on a spare pixel).
+ * No heap, no floating point, no recursion deeper than the drawn depth (at most MC_MAX_DEPTH frames
+ * of mc_render's internal node function). Buffers belong to the caller; while mc_render runs they
+ * may hold values it puts back before returning (the select form of the depth test parks losing
+ * leaves on a spare pixel).
  */
 #ifndef MODELC_RENDER_H
 #define MODELC_RENDER_H
