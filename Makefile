@@ -42,7 +42,9 @@ deps:
 	else echo "deps: all installed"; fi
 
 # ---- generator -------------------------------------------------------------------------------
-GEN_SRC := $(wildcard gen/*.cpp)
+# gen/*.cpp and one level of subfolders (gen/input/, ...); objects mirror the tree under build/gen/
+GEN_SRC := $(wildcard gen/*.cpp gen/*/*.cpp)
+GEN_HDR := $(wildcard gen/*.hpp gen/*/*.hpp)
 GEN_OBJ := $(patsubst gen/%.cpp,$(BUILD)/gen/%.o,$(GEN_SRC)) $(BUILD)/gen/templates.o
 TEMPLATES := $(wildcard templates/*.mustache)
 MODELC := $(BUILD)/bin/modelc
@@ -51,7 +53,7 @@ gen: $(MODELC)
 $(MODELC): $(GEN_OBJ)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) -o $@ $^ $(GEN_LIBS)
-$(BUILD)/gen/%.o: gen/%.cpp $(wildcard gen/*.hpp)
+$(BUILD)/gen/%.o: gen/%.cpp $(GEN_HDR)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(GEN_CXXFLAGS) -c -o $@ $<
 # the templates are compiled into the generator, so build/bin/modelc runs from anywhere
