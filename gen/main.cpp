@@ -9,6 +9,7 @@
 
 #include "emit.hpp"
 #include "model.hpp"
+#include "normalize.hpp"
 #include "octree.hpp"
 #include "progress.hpp"
 #include "reference.hpp"
@@ -154,8 +155,8 @@ int main(int argc, char **argv) {
         mc::Progress progress(quiet);
         progress.step("loading");
         mc::Model model = mc::load_model(input);
-        if (up == "z") mc::make_z_up_y_up(model);
-        mc::Voxels voxels = mc::voxelize(model, input, vox, progress);
+        const mc::GridCube cube = mc::normalize(model, up == "z" ? mc::UpAxis::z : mc::UpAxis::y);
+        mc::Voxels voxels = mc::voxelize(model, cube, input, vox, progress);
         if (!dump_reference.empty()) mc::dump_reference(model, voxels, dump_reference);
         // --views: the cells to keep, whatever depth and palette the octree gets (empty: keep all)
         std::vector<uint8_t> keep;

@@ -37,11 +37,4 @@ struct Model {
 // Loads and validates FILE. Throws InputError for anything wrong with it.
 Model load_model(const std::string &path);
 
-// Turns a model whose up axis is +z so that it stands along +y, as the runtime's views expect:
-// (x, y, z) -> (x, z, -y), for points and normals alike (a rotation, so orientation is kept).
-inline void make_z_up_y_up(Model &m) {
-    for (auto *v : {&m.points, &m.normals})
-        for (auto &p : *v) p = {p[0], p[2], -p[1]};
-}
-
 }  // namespace mc

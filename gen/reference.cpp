@@ -33,11 +33,9 @@ struct Writer {
 }  // namespace
 
 void dump_reference(const Model &m, const Voxels &vox, const std::string &file) {
-    const double side = vox.cell * static_cast<double>(1u << vox.depth);
-    auto norm = [&](const std::array<double, 3> &p) {
-        return std::array<double, 3>{(p[0] - vox.origin[0]) / side - 0.5, (p[1] - vox.origin[1]) / side - 0.5,
-                                     (p[2] - vox.origin[2]) / side - 0.5};
-    };
+    const GridCube cube = vox.cube();
+    const double side = cube.side;
+    auto norm = [&](const std::array<double, 3> &p) { return cube.to_unit(p); };
     std::vector<std::array<double, 3>> pos, nrm, rgb;
     std::vector<std::array<uint32_t, 3>> tris;
     uint32_t shade = 0;

@@ -11,8 +11,8 @@ namespace mc {
 // voxelizer's CGAL mesh keeps, with its per-vertex normals or the file's per-vertex colours) or points
 // (point sets: each point's colour, from the file or the same frontal light of its normal as the
 // voxelizer's, and one splat radius), every position mapped into the unit cube [-1/2, 1/2]^3 by the
-// voxels' grid: p' = (p - origin) / side - 1/2, side = cell * 2^depth. Throws std::runtime_error when
-// the file cannot be written (nothing is left behind).
+// voxels' grid cube (GridCube::to_unit). Throws std::runtime_error when the file cannot be written
+// (nothing is left behind).
 void dump_reference(const Model &model, const Voxels &voxels, const std::string &file);
 
 }  // namespace mc

@@ -32,17 +32,11 @@ struct Cell {
     uint32_t count = 0;
 };
 
+// The 2^D grid over the model's grid cube (normalize.hpp): a model-space point to its cell.
 class Grid {
 public:
-    Grid(const Model &m, int depth) : depth_(depth), n_(1u << depth) {
-        std::array<double, 3> lo = m.points[0], hi = m.points[0];
-        for (const auto &p : m.points)
-            for (int a = 0; a < 3; a++) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-        double ext = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-        side_ = ext * (1 + 1e-9);  // keeps the max corner inside the last cell
-        cell_ = side_ / n_;
-        for (int a = 0; a < 3; a++) origin_[a] = (lo[a] + hi[a]) / 2 - side_ / 2;
-    }
+    Grid(const GridCube &cube, int depth)
+        : depth_(depth), n_(1u << depth), cell_(cube.cell(depth)), origin_(cube.origin) {}
     uint64_t code(double x, double y, double z) const {
         return morton_encode(index(x, 0), index(y, 1), index(z, 2), depth_);
     }
@@ -56,7 +50,7 @@ private:
     }
     int depth_;
     uint32_t n_;
-    double side_, cell_;
+    double cell_;
     std::array<double, 3> origin_;
 };
 
@@ -184,8 +178,9 @@ std::array<uint32_t, 3> morton_decode(uint64_t code, int depth) {
     return c;
 }
 
-Voxels voxelize(const Model &model, const std::string &file, const VoxelOptions &opt, Progress &progress) {
-    Grid grid(model, opt.depth);
+Voxels voxelize(const Model &model, const GridCube &cube, const std::string &file, const VoxelOptions &opt,
+                Progress &progress) {
+    Grid grid(cube, opt.depth);
     std::unordered_map<uint64_t, Cell> cells;
     Voxels out;
     out.depth = opt.depth;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 #include "model.hpp"
+#include "normalize.hpp"
 #include "progress.hpp"
 
 namespace mc {
@@ -15,18 +16,27 @@ struct VoxelOptions {
 
 struct Voxels {
     int depth = 0;
-    std::array<double, 3> origin{};   // model-space corner of the grid cube
-    double cell = 0;                  // model-space side of one cell
+    std::array<double, 3> origin{};   // model-space corner of the grid cube (GridCube::origin)
+    double cell = 0;                  // model-space side of one cell (GridCube::cell(depth))
     std::vector<uint64_t> codes;      // Morton codes of occupied cells, ascending (bit 0 = x, 1 = y, 2 = z)
     std::vector<std::array<double, 3>> rgb;  // colour per cell, 0..255
     uint64_t samples = 0;             // surface samples (meshes) or input points (point sets)
     // meshes: one point on the surface per cell (the surface point nearest its samples' centroid),
     // where visibility rays start; empty for point sets
     std::vector<std::array<double, 3>> surface;
+    // The grid cube the cells divide (origin and cell are all it takes).
+    GridCube cube() const {
+        GridCube c;
+        c.origin = origin;
+        c.side = cell * static_cast<double>(1u << depth);
+        return c;
+    }
 };
 
-// Throws InputError (Where::none) when the model cannot be voxelized (e.g. nothing lands in the grid).
-Voxels voxelize(const Model &model, const std::string &file, const VoxelOptions &opt, Progress &progress);
+// The cells of cube's 2^opt.depth grid that model occupies. Throws InputError (Where::none) when the
+// model cannot be voxelized (e.g. nothing lands in the grid).
+Voxels voxelize(const Model &model, const GridCube &cube, const std::string &file, const VoxelOptions &opt,
+                Progress &progress);
 
 // Morton helpers shared with the octree builder and the tests.
 uint64_t morton_encode(uint32_t x, uint32_t y, uint32_t z, int depth);
