@@ -119,39 +119,21 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
 }
 
 Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
-    Budget b;
-    b.masks = p.mask_bytes;
-    b.colors = p.color_bytes;
-    b.palette = p.palette.size();
-    b.descriptors = p.chunk_entries * rt::kChunkBytes + static_cast<size_t>(t.depth + 1) * rt::kLevelBytes +
-                    rt::kSceneBytes + opt.name.size() + 1;
-    b.code = rt::kLibgccDivision;
-    for (const auto &m : rt::kModules) b.code += opt.leaf_switch ? m.bytes : m.bytes_loop;
-    const size_t pixels = static_cast<size_t>(opt.screen_w) * opt.screen_h;
-    b.color_buffer = pixels;
-    b.depth_buffer = 2 * pixels;
-    b.runtime_ram = rt::kRuntimeStaticRam;
-    b.stack = rt::stack_bound(t.depth);
-    return b;
+    BakeSize s;
+    s.depth = t.depth;
+    s.masks = p.mask_bytes;
+    s.colors = p.color_bytes;
+    s.palette = p.palette.size();
+    s.chunk_entries = p.chunk_entries;
+    s.name_bytes = opt.name.size() + 1;
+    s.screen_w = opt.screen_w, s.screen_h = opt.screen_h;
+    s.leaf_switch = opt.leaf_switch;
+    return budget_of(s);
 }
 
 }  // namespace
 
 Budget budget_of(const Octree &t, const EmitOptions &opt) { return budget_of(t, opt, make_plan(t, opt)); }
-
-std::string over_budget(const Budget &b, const Limits &limits) {
-    std::string s;
-    auto item = [&](const char *what, size_t have, size_t limit) {
-        if (!limit || have <= limit) return;
-        if (!s.empty()) s += "; ";
-        s += std::string(what) + " " + std::to_string(have) + " bytes > " + std::to_string(limit) + " (by " +
-             std::to_string(have - limit) + ")";
-    };
-    item("flash", b.flash(), limits.flash);
-    item("ram", b.ram(), limits.ram);
-    item("stack", b.stack, limits.stack);
-    return s;
-}
 
 std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
     const int D = t.depth;
@@ -163,7 +145,7 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     const size_t mask_bytes = plan.mask_bytes, color_bytes = plan.color_bytes;
     const size_t data_bytes = bud.data();
     const size_t points = t.nodes(D);
-    const size_t workspace = static_cast<size_t>(opt.screen_w) * opt.screen_h * 3;
+    const size_t workspace = bud.frame_buffers();
 
     // Data files: arrays in order, a new file once the current one holds file_bytes.
     std::vector<std::vector<const Array *>> files(1);

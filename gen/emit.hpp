@@ -2,14 +2,12 @@
 // the templates in templates/, into a directory that appears whole or not at all.
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
+#include "budget.hpp"
 #include "octree.hpp"
 
 namespace mc {
-
-// Budgets to meet; 0 = none.
-struct Limits {
-    size_t flash = 0, ram = 0, stack = 0;
-};
 
 struct EmitOptions {
     std::string name;          // C identifier
@@ -25,24 +23,9 @@ struct EmitOptions {
     std::vector<std::pair<std::string, std::string>> budget_extra;  // more budget.json entries: key, JSON text
 };
 
-// What a bake costs a 32-bit firmware image, computed before anything is written (see
-// runtime_costs.hpp for the runtime's constants and where they come from).
-struct Budget {
-    size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
-    size_t descriptors = 0;                      // chunk lists, levels, scene, name (32-bit layout)
-    size_t code = 0;                             // runtime modules + libgcc helpers
-    size_t flash() const { return masks + colors + palette + descriptors + code; }
-    size_t data() const { return masks + colors + palette; }
-    size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
-    size_t ram() const { return color_buffer + depth_buffer + runtime_ram; }
-    size_t stack = 0;                            // bound for mc_render at the model's depth
-};
-
+// The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where
+// they are laid out; the cost rules are budget.hpp's).
 Budget budget_of(const Octree &tree, const EmitOptions &opt);
-
-// "" when b is within limits, else "flash 301234 bytes > 262144 (by 39090); ram ..." naming each
-// item over budget.
-std::string over_budget(const Budget &b, const Limits &limits);
 
 // The templates, compiled in from templates/*.mustache (build/gen/templates.cpp).
 const std::string &template_text(const std::string &name);

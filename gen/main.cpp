@@ -7,13 +7,14 @@
 #include <iostream>
 #include <regex>
 
+#include "budget.hpp"
 #include "emit.hpp"
+#include "fit.hpp"
 #include "model.hpp"
 #include "normalize.hpp"
 #include "octree.hpp"
 #include "progress.hpp"
 #include "reference.hpp"
-#include "runtime_costs.hpp"
 #include "visibility.hpp"
 #include "voxel.hpp"
 
@@ -30,33 +31,6 @@ std::string name_from_path(const std::string &path) {
 int fail(const std::string &line, int status = 1) {
     std::fprintf(stderr, "modelc: %s\n", line.c_str());
     return status;
-}
-
-// A budget size: bytes, or with K/KB/KiB (1024) or M/MB/MiB (1048576). Throws on anything else.
-size_t parse_size(const std::string &option, const std::string &text) {
-    std::smatch m;
-    if (!std::regex_match(text, m, std::regex("([0-9]{1,12})\\s*(|[kK]|[kK][bB]|[kK]i[bB]|M|MB|MiB)")))
-        throw std::invalid_argument(option + " " + text + ": expected a size in bytes, e.g. 262144, 256K, 256KiB, 1M");
-    size_t n = std::stoull(m[1]);
-    std::string unit = m[2];
-    if (!unit.empty()) n *= (unit[0] == 'M') ? 1048576 : 1024;
-    if (n == 0) throw std::invalid_argument(option + " " + text + ": a budget must be more than 0 bytes");
-    return n;
-}
-
-// --fit never shrinks the screen below this many pixels on its shorter side (nor below --screen).
-constexpr int kFitMinSide = 32;
-
-// The largest screen of the requested aspect (w shrinks one pixel at a time, h = w * H / W
-// rounded down) whose buffers fit the RAM budget; {0, 0} if none down to kFitMinSide does.
-std::pair<int, int> fit_screen(int W, int H, size_t ram) {
-    const int min_side = std::min(kFitMinSide, std::min(W, H));
-    for (int w = W; w >= 1; w--) {
-        int h = static_cast<int>(static_cast<long long>(w) * H / W);
-        if (std::min(w, h) < min_side) break;
-        if (3ull * w * h + mc::rt::kRuntimeStaticRam <= ram) return {w, h};
-    }
-    return {0, 0};
 }
 
 }  // namespace
@@ -105,7 +79,7 @@ int main(int argc, char **argv) {
     app.add_option("--stack-budget", stack_budget, "fail unless mc_render's stack bound at --depth fits SIZE bytes");
     app.add_flag("--fit", fit, "with the budgets: bake the finest depth <= --depth, then the largest palette <= "
                  "--palette (halving, not below --min-palette) and the largest screen of --screen's aspect (not "
-                 "below 32 pixels a side) that fit; prints what it chose in one line");
+                 "below " + std::to_string(mc::kFitMinSide) + " pixels a side) that fit; prints what it chose in one line");
     app.add_option("--min-palette", min_palette, "--fit: fewest palette entries to try")
         ->check(CLI::Range(1, 256))->capture_default_str();
     app.add_option("--leaf-switch", emit.leaf_switch, "MC_LEAF_SWITCH the runtime is built with (config.h): "
@@ -137,9 +111,9 @@ int main(int argc, char **argv) {
         return fail("--views " + views + ": " + e.what(), 2);
     }
     try {
-        if (!flash_budget.empty()) emit.limits.flash = parse_size("--flash-budget", flash_budget);
-        if (!ram_budget.empty()) emit.limits.ram = parse_size("--ram-budget", ram_budget);
-        if (!stack_budget.empty()) emit.limits.stack = parse_size("--stack-budget", stack_budget);
+        if (!flash_budget.empty()) emit.limits.flash = mc::parse_size("--flash-budget", flash_budget);
+        if (!ram_budget.empty()) emit.limits.ram = mc::parse_size("--ram-budget", ram_budget);
+        if (!stack_budget.empty()) emit.limits.stack = mc::parse_size("--stack-budget", stack_budget);
     } catch (const std::exception &e) {
         return fail(e.what(), 2);
     }
@@ -173,69 +147,12 @@ int main(int argc, char **argv) {
             tree = mc::build_octree(voxels, palette);
             if (!keep.empty()) tree = mc::prune_octree(tree, voxels, keep);
             std::string over = mc::over_budget(mc::budget_of(tree, emit), limits);
-            if (!over.empty()) return fail("over budget: " + over);
+            if (!over.empty()) throw mc::BudgetError("over budget: " + over);
         } else {
-            // RAM depends on the screen only, flash on depth and palette, stack on depth only.
-            if (limits.ram) {
-                auto [w, h] = fit_screen(emit.screen_w, emit.screen_h, limits.ram);
-                if (!w) {
-                    int ms = std::min(kFitMinSide, std::min(emit.screen_w, emit.screen_h));
-                    return fail("over budget: ram: no screen of " + screen + "'s aspect with a side of at least " +
-                                std::to_string(ms) + " pixels fits " + std::to_string(limits.ram) + " bytes");
-                }
-                emit.screen_w = w, emit.screen_h = h;
-            }
-            std::vector<int> palettes;
-            for (int p = palette; p >= std::min(min_palette, palette); p /= 2) {
-                palettes.push_back(std::max(p, std::min(min_palette, palette)));
-                if (p <= 1 || p == std::min(min_palette, palette)) break;
-            }
-            palettes.erase(std::unique(palettes.begin(), palettes.end()), palettes.end());
-            const mc::OctreeLevels levels = mc::build_levels(voxels);
-            std::string last;
-            bool found = false;
-            size_t code = mc::rt::kLibgccDivision;
-            for (const auto &mod : mc::rt::kModules) code += emit.leaf_switch ? mod.bytes : mod.bytes_loop;
-            for (int d = levels.depth; d >= 1 && !found; d--) {
-                for (int p : palettes) {
-                    // a lower bound first (no palette, no descriptors), to skip depths far over;
-                    // pruning (--views) removes nodes, so then every candidate is built
-                    size_t bound = keep.empty() ? code : 0;
-                    for (int l = 0; l < d && keep.empty(); l++) bound += levels.nodes(l);
-                    if (p > 1 && keep.empty())
-                        for (int l = 1; l <= d; l++) bound += levels.nodes(l);
-                    if (limits.flash && bound > limits.flash && p == palettes.back()) {
-                        last = "flash at least " + std::to_string(bound) + " bytes > " + std::to_string(limits.flash) +
-                               " (by " + std::to_string(bound - limits.flash) + ") at depth " + std::to_string(d);
-                        break;
-                    }
-                    if (limits.flash && bound > limits.flash) continue;
-                    if (limits.stack && mc::rt::stack_bound(d) > limits.stack) {
-                        last = "stack " + std::to_string(mc::rt::stack_bound(d)) + " bytes > " +
-                               std::to_string(limits.stack) + " at depth " + std::to_string(d);
-                        break;
-                    }
-                    mc::Octree t = mc::cut_octree(levels, d, p);
-                    if (!keep.empty()) t = mc::prune_octree(t, voxels, keep);
-                    mc::Budget b = mc::budget_of(t, emit);
-                    std::string over = mc::over_budget(b, limits);
-                    if (!over.empty()) {
-                        last = over + " at depth " + std::to_string(d) + ", palette " + std::to_string(p);
-                        continue;
-                    }
-                    tree = std::move(t);
-                    found = true;
-                    char line[400];
-                    std::snprintf(line, sizeof line,
-                                  "fit: depth %d (of %d), palette %zu entries (of at most %d), screen %dx%d (of %s): "
-                                  "flash %zu bytes, ram %zu, stack %zu",
-                                  d, levels.depth, tree.palette.size(), palette, emit.screen_w, emit.screen_h,
-                                  screen.c_str(), b.flash(), b.ram(), b.stack);
-                    emit.fit_note = line;
-                    break;
-                }
-            }
-            if (!found) return fail("over budget at every depth, palette and screen --fit may choose: " + last);
+            mc::FitChoice choice = mc::fit(voxels, keep, emit, {palette, min_palette, screen});
+            tree = std::move(choice.tree);
+            emit.screen_w = choice.screen_w, emit.screen_h = choice.screen_h;
+            emit.fit_note = choice.note;
         }
         progress.step("writing");
         emit.source = std::filesystem::path(input).filename().string();
@@ -246,6 +163,8 @@ int main(int argc, char **argv) {
         if (!view_spec.all && !quiet) std::fprintf(stderr, "modelc: %s\n", mc::pruning_report(view_spec, pruned).c_str());
     } catch (const mc::InputError &e) {
         return fail(e.line());
+    } catch (const mc::BudgetError &e) {
+        return fail(e.what());
     } catch (const std::bad_alloc &) {
         return fail(input + ": out of memory (try a smaller --depth)");
     } catch (const std::exception &e) {

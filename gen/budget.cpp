@@ -1,0 +1,67 @@
+// Budgets: see budget.hpp.
+#include "budget.hpp"
+#include "runtime_costs.hpp"
+
+#include <regex>
+
+namespace mc {
+
+size_t parse_size(const std::string &option, const std::string &text) {
+    std::smatch m;
+    if (!std::regex_match(text, m, std::regex("([0-9]{1,12})\\s*(|[kK]|[kK][bB]|[kK]i[bB]|M|MB|MiB)")))
+        throw std::invalid_argument(option + " " + text + ": expected a size in bytes, e.g. 262144, 256K, 256KiB, 1M");
+    size_t n = std::stoull(m[1]);
+    std::string unit = m[2];
+    if (!unit.empty()) n *= (unit[0] == 'M') ? 1048576 : 1024;
+    if (n == 0) throw std::invalid_argument(option + " " + text + ": a budget must be more than 0 bytes");
+    return n;
+}
+
+size_t runtime_code_bytes(int leaf_switch) {
+    size_t code = rt::kLibgccDivision;
+    for (const auto &m : rt::kModules) code += leaf_switch ? m.bytes : m.bytes_loop;
+    return code;
+}
+
+size_t color_buffer_bytes(int w, int h) { return static_cast<size_t>(w) * static_cast<size_t>(h); }
+size_t depth_buffer_bytes(int w, int h) { return 2 * color_buffer_bytes(w, h); }
+size_t ram_bytes(int w, int h) { return color_buffer_bytes(w, h) + depth_buffer_bytes(w, h) + rt::kRuntimeStaticRam; }
+
+size_t stack_bytes(int depth) { return rt::stack_bound(depth); }
+
+// The descriptors in a 32-bit image (scene.h): the chunk lists, one level record per level, the scene
+// and the name string.
+static size_t descriptor_bytes(const BakeSize &s) {
+    return s.chunk_entries * rt::kChunkBytes + static_cast<size_t>(s.depth + 1) * rt::kLevelBytes +
+           rt::kSceneBytes + s.name_bytes;
+}
+
+Budget budget_of(const BakeSize &s) {
+    Budget b;
+    b.masks = s.masks;
+    b.colors = s.colors;
+    b.palette = s.palette;
+    b.descriptors = descriptor_bytes(s);
+    b.code = runtime_code_bytes(s.leaf_switch);
+    b.color_buffer = color_buffer_bytes(s.screen_w, s.screen_h);
+    b.depth_buffer = depth_buffer_bytes(s.screen_w, s.screen_h);
+    b.runtime_ram = rt::kRuntimeStaticRam;
+    b.stack = stack_bytes(s.depth);
+    return b;
+}
+
+std::string over_budget(const Budget &b, const Limits &limits) {
+    std::string s;
+    auto item = [&](const char *what, size_t have, size_t limit) {
+        if (!limit || have <= limit) return;
+        if (!s.empty()) s += "; ";
+        s += std::string(what) + " " + std::to_string(have) + " bytes > " + std::to_string(limit) + " (by " +
+             std::to_string(have - limit) + ")";
+    };
+    item("flash", b.flash(), limits.flash);
+    item("ram", b.ram(), limits.ram);
+    item("stack", b.stack, limits.stack);
+    return s;
+}
+
+}  // namespace mc

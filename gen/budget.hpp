@@ -1,0 +1,70 @@
+// Budgets: what a bake costs a 32-bit firmware image, and the limits it must meet.
+//
+// Promise: every cost rule is written here once: the runtime's code (its modules and libgcc
+// helpers), the descriptors' 32-bit layout, the frame buffers (one colour byte and a 16-bit depth
+// per pixel), the runtime's static RAM and mc_render's stack bound. The runtime's measured constants
+// (code sizes, stack frames, descriptor sizes) come from runtime_costs.hpp; the sizes of the model's
+// own arrays and chunk lists come from emit's layout (emit.hpp budget_of), which alone decides them.
+#pragma once
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace mc {
+
+// Budgets to meet; 0 = none.
+struct Limits {
+    size_t flash = 0, ram = 0, stack = 0;
+};
+
+// A budget size: bytes, or with K/KB/KiB (1024) or M/MB/MiB (1048576). Throws std::invalid_argument
+// with the whole message ("OPTION TEXT: ...") on anything else or 0.
+size_t parse_size(const std::string &option, const std::string &text);
+
+struct Budget {
+    size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
+    size_t descriptors = 0;                      // chunk lists, levels, scene, name (32-bit layout)
+    size_t code = 0;                             // runtime modules + libgcc helpers
+    size_t flash() const { return masks + colors + palette + descriptors + code; }
+    size_t data() const { return masks + colors + palette; }
+    size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
+    size_t ram() const { return color_buffer + depth_buffer + runtime_ram; }
+    size_t frame_buffers() const { return color_buffer + depth_buffer; }
+    size_t stack = 0;                            // bound for mc_render at the model's depth
+};
+
+// What a bake emits, as the budget counts it.
+struct BakeSize {
+    int depth = 0;
+    size_t masks = 0, colors = 0, palette = 0;   // bytes of the model's arrays
+    size_t chunk_entries = 0;                    // entries of every chunk list, sentinels included
+    size_t name_bytes = 0;                       // the model's name as a C string, NUL included
+    int screen_w = 0, screen_h = 0;              // the frame the buffers are sized for
+    int leaf_switch = 1;                         // the MC_LEAF_SWITCH the runtime is built with
+};
+
+Budget budget_of(const BakeSize &s);
+
+// The runtime's code: every module it links plus the libgcc division helpers.
+size_t runtime_code_bytes(int leaf_switch);
+
+// The frame buffers of a w x h screen: one palette-index byte and one 16-bit depth per pixel.
+size_t color_buffer_bytes(int w, int h);
+size_t depth_buffer_bytes(int w, int h);
+
+// What --ram-budget checks for a w x h screen: its buffers and the runtime's static state.
+size_t ram_bytes(int w, int h);
+
+// mc_render's stack bound drawing an octree of this depth.
+size_t stack_bytes(int depth);
+
+// "" when b is within limits, else "flash 301234 bytes > 262144 (by 39090); ram ..." naming each
+// item over budget.
+std::string over_budget(const Budget &b, const Limits &limits);
+
+// A bake over its budget: what() is the whole error line (without "modelc: ").
+struct BudgetError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+}  // namespace mc
