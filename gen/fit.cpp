@@ -1,6 +1,5 @@
 // --fit: see fit.hpp.
 #include "fit.hpp"
-#include "visibility.hpp"
 
 #include <algorithm>
 #include <cstdio>

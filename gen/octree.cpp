@@ -1,9 +1,10 @@
-// Octree levels from sorted Morton codes, and the palette.
+// Octree levels from sorted Morton codes, the palette, and pruning to kept cells.
 #include "octree.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace mc {
 namespace {
@@ -18,6 +19,23 @@ struct Box {
     std::vector<size_t> items;  // indices into the distinct colours
     double weight = 0;
 };
+
+// Cousin groups from sibling groups: a node at level l-2 has as many grandchildren as its children
+// have children; level 1 is one group, the root's children.
+std::vector<std::vector<uint8_t>> cousin_groups(const std::vector<std::vector<uint8_t>> &siblings) {
+    const int D = static_cast<int>(siblings.size()) - 1;
+    std::vector<std::vector<uint8_t>> cousins(siblings.size());
+    for (int l = 1; l <= D; l++) {
+        if (l == 1) { cousins[1] = {static_cast<uint8_t>(siblings[1].size() ? siblings[1][0] : 0)}; continue; }
+        size_t child = 0;  // index into siblings[l], one entry per node at level l-1
+        for (uint8_t n_children : siblings[l - 1]) {
+            unsigned sum = 0;
+            for (unsigned i = 0; i < n_children; i++) sum += siblings[l][child++];
+            cousins[l].push_back(static_cast<uint8_t>(sum));
+        }
+    }
+    return cousins;
+}
 
 }  // namespace
 
@@ -99,7 +117,6 @@ OctreeLevels build_levels(const Voxels &v) {
     t.depth = D;
     t.masks.assign(D, {});
     t.siblings.assign(D + 1, {});
-    t.cousins.assign(D + 1, {});
     t.mean.assign(D + 1, {});
 
     // Level by level from the leaves up: a node's key is its leaves' code >> 3 per level climbed.
@@ -130,16 +147,7 @@ OctreeLevels build_levels(const Voxels &v) {
         keys = std::move(pkeys), sum = std::move(psum), count = std::move(pcount);
     }
 
-    // Cousin groups: a node at level l-2 has as many grandchildren as its children have children.
-    for (int l = 1; l <= D; l++) {
-        if (l == 1) { t.cousins[1] = {static_cast<uint8_t>(t.siblings[1].size() ? t.siblings[1][0] : 0)}; continue; }
-        size_t child = 0;  // index into siblings[l], one entry per node at level l-1
-        for (uint8_t n_children : t.siblings[l - 1]) {
-            unsigned sum = 0;
-            for (unsigned i = 0; i < n_children; i++) sum += t.siblings[l][child++];
-            t.cousins[l].push_back(static_cast<uint8_t>(sum));
-        }
-    }
+    t.cousins = cousin_groups(t.siblings);
     return t;
 }
 
@@ -190,5 +198,48 @@ Octree cut_octree(const OctreeLevels &v, int d, int max_palette) {
 }
 
 Octree build_octree(const Voxels &v, int max_palette) { return cut_octree(build_levels(v), v.depth, max_palette); }
+
+Octree prune_octree(const Octree &full, const Voxels &vox, const std::vector<uint8_t> &keep) {
+    const int D = full.depth;
+    if (D > vox.depth || D < 1) throw std::logic_error("prune_octree: octree deeper than its voxels");
+    Octree t;
+    t.depth = D;
+    t.palette = full.palette;
+    t.masks.assign(D, {});
+    t.colors.assign(D + 1, {});
+    t.siblings.assign(D + 1, {});
+    // the leaves of full: the voxels' codes climbed to level D
+    const int up = 3 * (vox.depth - D);
+    std::vector<uint64_t> all, kept;
+    for (size_t i = 0; i < vox.codes.size(); i++) {
+        const uint64_t key = vox.codes[i] >> up;
+        if (all.empty() || all.back() != key) all.push_back(key);
+        if (keep[i] && (kept.empty() || kept.back() != key)) kept.push_back(key);
+    }
+    for (int l = D; l >= 1; l--) {
+        if (full.colors[l].size() != all.size()) throw std::logic_error("prune_octree: octree and voxels disagree");
+        // both ascending: each kept node takes its colour from the full level
+        size_t j = 0;
+        for (uint64_t key : kept) {
+            while (all[j] != key) j++;
+            t.colors[l].push_back(full.colors[l][j]);
+        }
+        std::vector<uint64_t> parents, all_parents;
+        std::vector<uint8_t> mask, groups;
+        for (uint64_t key : kept) {
+            if (parents.empty() || parents.back() != key >> 3) parents.push_back(key >> 3), mask.push_back(0), groups.push_back(0);
+            mask.back() |= static_cast<uint8_t>(1u << (key & 7u));
+            groups.back()++;
+        }
+        for (uint64_t key : all)
+            if (all_parents.empty() || all_parents.back() != key >> 3) all_parents.push_back(key >> 3);
+        t.masks[l - 1] = std::move(mask);
+        t.siblings[l] = std::move(groups);
+        kept = std::move(parents);
+        all = std::move(all_parents);
+    }
+    t.cousins = cousin_groups(t.siblings);
+    return t;
+}
 
 }  // namespace mc

@@ -42,6 +42,13 @@ Octree cut_octree(const OctreeLevels &levels, int d, int max_palette);
 // build_levels then cut_octree at the voxels' depth.
 Octree build_octree(const Voxels &v, int max_palette);
 
+// The octree of the kept leaves (keep: one flag per cell of vox, as visibility.hpp's visible_cells
+// makes it). Nodes keep the colours they have in full (so coarse levels are the unpruned model's
+// colours and the palette is unchanged); nodes with no kept leaf disappear. full may be cut at a
+// depth d below the voxels' (its leaves are then the level-d nodes): a leaf stays when any cell
+// under it is kept.
+Octree prune_octree(const Octree &full, const Voxels &vox, const std::vector<uint8_t> &keep);
+
 // Median-cut quantization: at most max_entries colours; exact (deduplicated, sorted) when the input
 // has no more distinct colours than that. index[i] is the entry for colours[i]. Deterministic.
 std::vector<std::array<uint8_t, 3>> make_palette(const std::vector<std::array<uint8_t, 3>> &colours,

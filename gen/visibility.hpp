@@ -64,10 +64,4 @@ std::vector<uint8_t> visible_cells(const Model &model, const Voxels &vox,
 std::string pruning_json(const ViewSpec &spec, const PruneStats &stats);
 std::string pruning_report(const ViewSpec &spec, const PruneStats &stats);
 
-// The octree of the kept leaves. Nodes keep the colours they have in full (so coarse levels are the
-// unpruned model's colours and the palette is unchanged); nodes with no kept leaf disappear. full
-// may be cut at a depth d below the voxels' (its leaves are then the level-d nodes): a leaf stays
-// when any cell under it is kept.
-Octree prune_octree(const Octree &full, const Voxels &vox, const std::vector<uint8_t> &keep);
-
 }  // namespace mc
