@@ -20,7 +20,7 @@ CFLAGS ?= -O2 -g
 CXXFLAGS ?= -O2 -g
 RT_CFLAGS := -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
 HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -Iruntime/include
-GEN_CXXFLAGS := -std=c++17 -Wall -Wextra -Igen -DCGAL_DISABLE_GMP=1 -DCGAL_NO_GMP=1
+GEN_CXXFLAGS := -std=c++17 -Wall -Wextra -Igen -Iruntime/include -DCGAL_DISABLE_GMP=1 -DCGAL_NO_GMP=1
 GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
 
 # Debian packages: the build, the tests and the benchmarks

@@ -17,6 +17,7 @@
 #include "reference.hpp"
 #include "visibility.hpp"
 #include "voxel.hpp"
+#include "modelc/config.h"   // MC_MAX_DEPTH: the deepest octree the runtime decodes
 
 namespace {
 
@@ -51,7 +52,7 @@ int main(int argc, char **argv) {
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
     app.add_option("-d,--depth", vox.depth, "octree depth D: a grid of 2^D cells per side")
-        ->check(CLI::Range(1, 12))->capture_default_str();
+        ->check(CLI::Range(1, MC_MAX_DEPTH))->capture_default_str();
     app.add_option("--spacing", vox.spacing, "mesh sampling grid spacing, in cells")
         ->check(CLI::Range(0.05, 1.0))->capture_default_str();
     app.add_option("--palette", palette, "most palette entries")->check(CLI::Range(1, 256))->capture_default_str();

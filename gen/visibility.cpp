@@ -1,5 +1,6 @@
 // Hidden-cell removal (--views): see visibility.hpp.
 #include "visibility.hpp"
+#include "modelc/depth.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -240,11 +241,13 @@ void merge_views(const Model &model, const Voxels &vox, const std::vector<Dir> &
 //
 // Depth-buffer rounding: a leaf's orthographic depth is a sum of d per-level vectors each rounded
 // once (render.c setup_vectors), so it is off by at most d/2 units, while neighbouring cells of a
-// column lie A / 2^d units apart, A = the cube's side in depth units >= 32500 / sqrt(3) (render.c
-// picks zshift so that the bounding sphere's 2 * radius = sqrt(3) A spans 32500..65000 units). Cells
-// further than d 2^d / A cells behind the front one can never tie with it: for d <= 10 only the front
-// cell can win, for d = 11 and 12 the next one or two cells are kept too (any screen whose model cube
-// is at least one pixel wide: only then does the bound on A hold).
+// column lie A / 2^d units apart, A = the cube's side in depth units >= kDepthSpanMin / sqrt(3) (the
+// bounding sphere's 2 * radius = sqrt(3) A spans at least kDepthSpanMin units). Cells further than
+// d 2^d / A cells behind the front one can never tie with it: for d <= 10 only the front cell can
+// win, for d = 11 and 12 the next one or two cells are kept too (any screen whose model cube is at
+// least one pixel wide: only then does the bound on A hold).
+constexpr double kDepthSpanMin = MC_DEPTH_SPAN / 2;   // modelc/depth.h
+
 size_t keep_frontal(const Voxels &vox, std::vector<uint8_t> &keep) {
     const int D = vox.depth;
     const size_t n = vox.codes.size();
@@ -253,7 +256,7 @@ size_t keep_frontal(const Voxels &vox, std::vector<uint8_t> &keep) {
     size_t added = 0;
     for (int l = D; l >= 1; l--) {
         const int shift = D - l;
-        const uint32_t slack = static_cast<uint32_t>(std::floor(l * std::ldexp(1.0, l) / (32500.0 / std::sqrt(3.0))));
+        const uint32_t slack = static_cast<uint32_t>(std::floor(l * std::ldexp(1.0, l) / (kDepthSpanMin / std::sqrt(3.0))));
         auto column = [&](size_t i) { return (uint64_t(xyz[i][0] >> shift) << 32) | (xyz[i][1] >> shift); };
         std::unordered_map<uint64_t, uint32_t> front;
         front.reserve(n);

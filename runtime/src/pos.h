@@ -16,6 +16,7 @@
 
 #include <stdint.h>
 #include "modelc/config.h"
+#include "modelc/depth.h"
 #include "modelc/fixed.h"
 
 #define F MC_FRAC_BITS

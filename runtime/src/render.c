@@ -451,7 +451,7 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
     int64_t scale = (int64_t)v->zoom * side;       /* pixels per cube side, Q16 */
     const int32_t radius = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 - F) + 2 * MC_MAX_DEPTH;
     c->zshift = 0;
-    while (((uint32_t)(2 * radius) >> c->zshift) >= 65000u) c->zshift++;
+    while (((uint32_t)(2 * radius) >> c->zshift) >= MC_DEPTH_SPAN) c->zshift++;
     c->radius = (mc_pos)pos_units(radius, 1, F - POS_FRAC);
     /* orthographic depth vectors are in depth-buffer units (the shift folded in, one rounding per
      * level); perspective keeps positions, since it divides by the distance */
