@@ -135,30 +135,40 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
 
 Budget budget_of(const Octree &t, const EmitOptions &opt) { return budget_of(t, opt, make_plan(t, opt)); }
 
-std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
+namespace {
+
+
+// Data files: arrays in order, a new file once the current one holds file_bytes.
+std::vector<std::vector<const Array *>> data_files(const std::vector<Array> &arrays, size_t file_bytes) {
+    std::vector<std::vector<const Array *>> files(1);
+    size_t in_file = 0;
+    for (const Array &a : arrays) {
+        if (in_file > 0 && in_file + a.size > file_bytes) files.emplace_back(), in_file = 0;
+        files.back().push_back(&a);
+        in_file += a.size;
+    }
+    return files;
+}
+
+// File name and contents, in the order they are written.
+using Files = std::vector<std::pair<std::string, std::string>>;
+
+// ---- template data -------------------------------------------------------------------------------
+// Everything the templates are filled with, and the files they make (all but budget.json), rendered
+// in memory: nothing touches the disk until all of it succeeded. chunk_files: which data file holds
+// each array, for budget.json.
+Files fill_templates(const Octree &t, [[maybe_unused]] const Voxels &vox, const EmitOptions &opt, const Plan &plan,
+                     const Budget &bud, const std::vector<std::vector<const Array *>> &files,
+                     nlohmann::json &chunk_files) {
     const int D = t.depth;
     const std::string &name = opt.name;
-    const Plan plan = make_plan(t, opt);
-    const Budget bud = budget_of(t, opt, plan);
     const std::vector<Array> &arrays = plan.arrays;
     const std::vector<uint8_t> &palette = plan.palette;
-    const size_t mask_bytes = plan.mask_bytes, color_bytes = plan.color_bytes;
     const size_t data_bytes = bud.data();
     const size_t points = t.nodes(D);
     const size_t workspace = bud.frame_buffers();
 
-    // Data files: arrays in order, a new file once the current one holds file_bytes.
-    std::vector<std::vector<const Array *>> files(1);
-    size_t in_file = 0;
-    for (const Array &a : arrays) {
-        if (in_file > 0 && in_file + a.size > opt.file_bytes) files.emplace_back(), in_file = 0;
-        files.back().push_back(&a);
-        in_file += a.size;
-    }
-
-    // Render everything in memory first: nothing touches the disk until all of it succeeded.
     std::vector<std::pair<std::string, std::string>> out;
-    nlohmann::json chunk_files = nlohmann::json::array();
     for (size_t f = 0; f < files.size(); f++) {
         mstch::map ctx = common(opt);
         mstch::array arr;
@@ -206,6 +216,20 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     header.emplace("symbols", symbols);
     out.emplace_back(name + ".h", mstch::render(template_text("model.h"), header));
     if (!opt.lib) out.emplace_back(name + "_app.c", mstch::render(template_text("app.c"), header));
+    return out;
+}
+// ---- end of template data ------------------------------------------------------------------------
+
+// budget.json: what the bake costs (budget.hpp's rules) and where each array went.
+std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &opt, const Plan &plan,
+                        const Budget &bud, const nlohmann::json &chunk_files) {
+    const int D = t.depth;
+    const std::string &name = opt.name;
+    const std::vector<uint8_t> &palette = plan.palette;
+    const size_t mask_bytes = plan.mask_bytes, color_bytes = plan.color_bytes;
+    const size_t data_bytes = bud.data();
+    const size_t points = t.nodes(D);
+    const size_t workspace = bud.frame_buffers();
 
     // The runtime modules this model needs (it links nothing else) and their estimated code.
     nlohmann::json modules = nlohmann::json::array(), runtime_code = nlohmann::json::object();
@@ -277,11 +301,13 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);
-    std::string budget_text = budget.dump(2) + "\n";
-    out.emplace_back("budget.json", budget_text);
+    return budget.dump(2) + "\n";
+}
 
-    // Write to a temporary sibling directory, then swap it in.
-    fs::path parent(opt.out_dir), final_dir = parent / name;
+// Writes every file into parent/name/ as a whole: into a temporary sibling directory first, then
+// swapped in, so that a failure leaves the previous output (or none), never a part.
+void write_directory(const fs::path &parent, const std::string &name, const Files &out) {
+    const fs::path final_dir = parent / name;
     std::string pid = std::to_string(getpid());
     fs::path tmp = parent / ("." + name + ".tmp-" + pid), old = parent / ("." + name + ".old-" + pid);
     try {
@@ -298,6 +324,19 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
         if (!fs::exists(final_dir, ec) && fs::exists(old, ec)) fs::rename(old, final_dir, ec);
         throw;
     }
+}
+
+}  // namespace
+
+std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
+    const Plan plan = make_plan(t, opt);
+    const Budget bud = budget_of(t, opt, plan);
+    const auto files = data_files(plan.arrays, opt.file_bytes);
+    nlohmann::json chunk_files = nlohmann::json::array();
+    Files out = fill_templates(t, vox, opt, plan, bud, files, chunk_files);
+    std::string budget_text = budget_json(t, vox, opt, plan, bud, chunk_files);
+    out.emplace_back("budget.json", budget_text);
+    write_directory(opt.out_dir, opt.name, out);
     return budget_text;
 }
 
