@@ -18,6 +18,7 @@ fi
 suites=(
     tests/unit/suite.sh       # fixed point, sine table, freestanding builds
     tests/gen/errors.sh       # malformed input: one error line, no output
+    tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/gen/suite.sh        # determinism, chunks, budget
     tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables

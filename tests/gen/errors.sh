@@ -234,11 +234,6 @@ f=$in/obj-bad-corner.obj
 printf '%s\nf 1//1 2/x/1 3\n' "$OBJ_V" >"$f"
 expect obj-bad-face-vertex "$f" 5 "^bad face vertex '2/x/1'$"
 
-# OpenMesh would read the material library forever.
-f=$in/obj-mtllib-device.obj
-printf 'mtllib ../../../../../../../../../../dev/zero\n%s\nf 1 2 3\n' "$OBJ_V" >"$f"
-expect obj-material-not-a-file "$f" 1 "^material library '.*/dev/zero' is not a regular file$"
-
 f=$in/obj-no-faces.obj
 printf '%s\n' "$OBJ_V" >"$f"
 expect obj-no-faces "$f" - '^mesh has no faces$'
