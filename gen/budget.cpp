@@ -1,6 +1,5 @@
 // Budgets: see budget.hpp.
 #include "budget.hpp"
-#include "runtime_costs.hpp"
 
 #include <regex>
 
@@ -19,7 +18,7 @@ size_t parse_size(const std::string &option, const std::string &text) {
 
 size_t runtime_code_bytes(int leaf_switch) {
     size_t code = rt::kLibgccDivision;
-    for (const auto &m : rt::kModules) code += leaf_switch ? m.bytes : m.bytes_loop;
+    for (const auto &m : rt::kModules) code += module_code_bytes(m, leaf_switch);
     return code;
 }
 

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include "runtime_costs.hpp"
 
 namespace mc {
 
@@ -44,6 +45,9 @@ struct BakeSize {
 };
 
 Budget budget_of(const BakeSize &s);
+
+// One runtime module's code, built with this MC_LEAF_SWITCH.
+inline size_t module_code_bytes(const rt::ModuleCode &m, int leaf_switch) { return leaf_switch ? m.bytes : m.bytes_loop; }
 
 // The runtime's code: every module it links plus the libgcc division helpers.
 size_t runtime_code_bytes(int leaf_switch);

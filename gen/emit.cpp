@@ -235,7 +235,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
     nlohmann::json modules = nlohmann::json::array(), runtime_code = nlohmann::json::object();
     for (const auto &m : rt::kModules) {
         modules.push_back(m.name);
-        runtime_code[m.name] = opt.leaf_switch ? m.bytes : m.bytes_loop;
+        runtime_code[m.name] = module_code_bytes(m, opt.leaf_switch);
     }
     runtime_code["libgcc"] = rt::kLibgccDivision;
     runtime_code["leaf_switch"] = opt.leaf_switch;

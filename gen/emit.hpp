@@ -1,5 +1,8 @@
 // Writing a baked model: chunked C arrays, descriptor, app binding, header and budget.json, through
 // the templates in templates/, into a directory that appears whole or not at all.
+//
+// Promise: emit decides the layout of what it writes (which arrays, their chunks, which file holds
+// each) and nothing else; what the bake costs is budget.hpp's, what it contains the octree's.
 #pragma once
 #include <string>
 #include <utility>

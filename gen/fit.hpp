@@ -2,8 +2,8 @@
 //
 // Promise: fit() chooses, in this order of priority, the finest depth <= the voxels' depth, then the
 // largest palette <= max_palette (halving, not below min_palette), and, under a RAM budget, the
-// largest screen of the requested aspect (not below kFitMinSide pixels on its shorter side, nor
-// below the requested screen's shorter side) whose bake meets every limit of opt.limits. RAM depends
+// largest screen of the requested aspect (its shorter side not below kFitMinSide pixels, or below
+// the requested screen's when that is smaller) whose bake meets every limit of opt.limits. RAM depends
 // on the screen only, flash on depth and palette, stack on depth only, so each is searched on its
 // own. The octree it returns is the one the bake writes (pruned to keep when keep is not empty).
 // Nothing fits: throws BudgetError naming the last limit missed.

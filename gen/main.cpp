@@ -1,4 +1,6 @@
-// modelc: compiles a 3D model into C source for the modelc runtime.
+// modelc: compiles a 3D model into C source for the modelc runtime. This file parses the options
+// and runs the stages in order (gen/README.md): input, normalize, voxels, visibility, octree,
+// budget or fit, emit.
 #include <CLI/CLI.hpp>
 
 #include <cctype>

@@ -8,7 +8,6 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/compute_average_spacing.h>
-#include <CGAL/pca_estimate_normals.h>
 
 #include <cmath>
 #include <cstdio>
@@ -41,11 +40,8 @@ void dump_reference(const Model &m, const Voxels &vox, const std::string &file) 
     uint32_t shade = 0;
     double radius = 0;
     if (m.is_mesh) {
-        // the voxelizer's mesh (voxel.cpp to_cgal): the same faces kept, the same vertex normals
-        Mesh mesh;
-        std::vector<Mesh::Vertex_index> v;
-        for (const auto &p : m.points) v.push_back(mesh.add_vertex(Point(p[0], p[1], p[2])));
-        for (const auto &t : m.tris) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
+        // the voxelizer's mesh: the same faces kept, the same vertex normals
+        Mesh mesh = to_cgal(m);
         auto vnormal = mesh.add_property_map<Mesh::Vertex_index, Vector>("v:n", Vector(0, 0, 0)).first;
         PMP::compute_vertex_normals(mesh, vnormal);
         shade = m.colors.empty() ? 1 : 0;
@@ -62,20 +58,10 @@ void dump_reference(const Model &m, const Voxels &vox, const std::string &file) 
                             static_cast<uint32_t>(mesh.target(mesh.next(h)).idx())});
         }
     } else {
-        // as voxel.cpp's voxelize_points: file colours, else the frontal light of the file's normals or
-        // of PCA estimates from 12 neighbours
-        std::vector<std::array<double, 3>> normals = m.normals;
+        // as the voxelizer: file colours, else the frontal light of point_normals
+        const std::vector<std::array<double, 3>> normals = point_normals(m);
         std::vector<Point> pts;
         for (const auto &p : m.points) pts.emplace_back(p[0], p[1], p[2]);
-        if (m.colors.empty() && normals.empty()) {
-            std::vector<std::pair<Point, Vector>> pn;
-            for (const auto &p : pts) pn.emplace_back(p, Vector(0, 0, 0));
-            CGAL::pca_estimate_normals<CGAL::Sequential_tag>(
-                pn, 12,
-                CGAL::parameters::point_map(CGAL::First_of_pair_property_map<std::pair<Point, Vector>>())
-                    .normal_map(CGAL::Second_of_pair_property_map<std::pair<Point, Vector>>()));
-            for (const auto &q : pn) normals.push_back({q.second.x(), q.second.y(), q.second.z()});
-        }
         for (size_t i = 0; i < m.points.size(); i++) {
             pos.push_back(norm(m.points[i]));
             nrm.push_back(normals.empty() ? std::array<double, 3>{0, 0, 0} : normals[i]);

@@ -13,7 +13,6 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/pca_estimate_normals.h>
 #include <boost/function_output_iterator.hpp>
 
 #include <algorithm>
@@ -70,15 +69,6 @@ struct SampleSink {
     }
 };
 
-Mesh to_cgal(const Model &m) {
-    Mesh mesh;
-    std::vector<Mesh::Vertex_index> v;
-    v.reserve(m.points.size());
-    for (const auto &p : m.points) v.push_back(mesh.add_vertex(Point(p[0], p[1], p[2])));
-    for (const auto &t : m.tris) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);  // non-manifold faces are dropped
-    return mesh;
-}
-
 void voxelize_mesh(const Model &m, const std::string &file, const Grid &grid, const VoxelOptions &opt,
                    Progress &progress, std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples) {
     Mesh mesh = to_cgal(m);
@@ -131,19 +121,9 @@ void voxelize_mesh(const Model &m, const std::string &file, const Grid &grid, co
 
 void voxelize_points(const Model &m, const Grid &grid, Progress &progress,
                      std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples) {
-    // Without colours, shade by normals: the file's, or PCA estimates from 12 neighbours (CGAL).
-    std::vector<std::array<double, 3>> normals = m.normals;
-    if (m.colors.empty() && normals.empty()) {
-        progress.step("estimating normals");
-        std::vector<std::pair<Point, Vector>> pts;
-        pts.reserve(m.points.size());
-        for (const auto &p : m.points) pts.emplace_back(Point(p[0], p[1], p[2]), Vector(0, 0, 0));
-        CGAL::pca_estimate_normals<CGAL::Sequential_tag>(
-            pts, 12,
-            CGAL::parameters::point_map(CGAL::First_of_pair_property_map<std::pair<Point, Vector>>())
-                .normal_map(CGAL::Second_of_pair_property_map<std::pair<Point, Vector>>()));
-        for (const auto &pn : pts) normals.push_back({pn.second.x(), pn.second.y(), pn.second.z()});
-    }
+    // Without colours, shade by normals: the file's, or PCA estimates (point_normals).
+    if (m.colors.empty() && m.normals.empty()) progress.step("estimating normals");
+    const std::vector<std::array<double, 3>> normals = point_normals(m);
     progress.step("voxelizing");
     for (size_t i = 0; i < m.points.size(); i++) {
         const auto &p = m.points[i];

@@ -72,7 +72,7 @@ private:
 
     // One face corner: v, v/t, v/t/n or v//n. Returns the 0-based vertex index; one past the
     // vertices read so far may still be valid (checked in build()).
-    int64_t corner(std::string_view tok) {
+    uint32_t corner(std::string_view tok) {
         std::string_view part[3];
         size_t parts = 0, start = 0;
         for (;;) {
@@ -90,8 +90,8 @@ private:
         const std::string shown(part[0]);
         const uint64_t nv = m_.points.size();
         if (n == Num::ok && v == 0) r_.fail("vertex index 0 is invalid (OBJ indices start at 1)");
-        if (n == Num::ok && v > 0 && static_cast<uint64_t>(v) <= kMaxElements) return v - 1;
-        if (n == Num::ok && v < 0 && static_cast<uint64_t>(-v) <= nv) return static_cast<int64_t>(nv) + v;
+        if (n == Num::ok && v > 0 && static_cast<uint64_t>(v) <= kMaxElements) return static_cast<uint32_t>(v - 1);
+        if (n == Num::ok && v < 0 && v >= -static_cast<long long>(nv)) return static_cast<uint32_t>(static_cast<int64_t>(nv) + v);
         if (part[0][0] != '-') r_.fail("vertex index " + shown + " exceeds the limit of " + kLimit);
         if (nv == 0) r_.fail("vertex index " + shown + " but no vertex precedes this face");
         r_.fail("vertex index " + shown + " out of range (-" + num(nv) + "..-1)");
@@ -105,10 +105,9 @@ private:
         for (size_t f = 0; f + 1 < face_start_.size(); ++f) {
             idx.clear();
             for (size_t k = face_start_[f]; k < face_start_[f + 1]; ++k) {
-                const int64_t v = corners_[k];
-                if (static_cast<uint64_t>(v) >= nv)
-                    fail_line(path_, face_line_[f], "vertex index " + std::to_string(v + 1) + " out of range (1.." + num(nv) + ")");
-                idx.push_back(static_cast<uint32_t>(v));
+                const uint32_t v = corners_[k];
+                if (v >= nv) fail_line(path_, face_line_[f], "vertex index " + num(uint64_t(v) + 1) + " out of range (1.." + num(nv) + ")");
+                idx.push_back(v);
             }
             first_mentions(idx);
             faces.add(idx);
@@ -140,7 +139,7 @@ private:
     TextReader r_;
     std::vector<std::pair<uint32_t, size_t>> order_;
     Model m_;
-    std::vector<int64_t> corners_;     // every face's corners, 0-based
+    std::vector<uint32_t> corners_;    // every face's corners, 0-based (at most kMaxElements - 1)
     std::vector<size_t> face_start_;   // where each face's corners begin in corners_
     std::vector<long long> face_line_;
 };

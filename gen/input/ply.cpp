@@ -99,11 +99,13 @@ public:
         if (in_.read(reinterpret_cast<char *>(b), n) < n) fail_byte(path_, size_, ends_after(*e_, i_));
         if (big_) std::reverse(b, b + n);
         v = decode(t, b);
-        shown_ = is_float(t) ? show(v) : std::to_string(static_cast<long long>(v));
+        type_ = t;
+        value_ = v;
         return true;
     }
-    std::string shown() const { return shown_; }
-    std::string quoted() const { return " (" + shown_ + ")"; }
+    // The last value as a message shows it (formatted only on failure: this is the hot path).
+    std::string shown() const { return is_float(type_) ? show(value_) : std::to_string(static_cast<long long>(value_)); }
+    std::string quoted() const { return " (" + shown() + ")"; }
     void end_item(const PlyElem &) {}
     std::string item_size() const { return "?"; }
     [[noreturn]] void fail(const std::string &msg) const { fail_byte(path_, at_, msg); }
@@ -140,7 +142,8 @@ private:
     std::string path_;
     uint64_t size_, at_ = 0;
     bool big_;
-    std::string shown_;
+    PType type_ = PType::u8;
+    double value_ = 0;
     const PlyElem *e_ = nullptr;
     uint64_t i_ = 0;
 };

@@ -234,6 +234,15 @@ f=$in/obj-bad-corner.obj
 printf '%s\nf 1//1 2/x/1 3\n' "$OBJ_V" >"$f"
 expect obj-bad-face-vertex "$f" 5 "^bad face vertex '2/x/1'$"
 
+# A face may name vertices that come later in the file; one that never comes is reported at the face.
+f=$in/obj-forward-index.obj
+printf 'f 1 2 9\n%s\n' "$OBJ_V" >"$f"
+expect obj-forward-index-out-of-range "$f" 1 '^vertex index 9 out of range \(1\.\.4\)$'
+
+f=$in/obj-index-huge.obj
+printf '%s\nf 1 2 99999999999999999999\n' "$OBJ_V" >"$f"
+expect obj-index-beyond-limit "$f" 5 '^vertex index 99999999999999999999 exceeds the limit of 50000000$'
+
 f=$in/obj-no-faces.obj
 printf '%s\n' "$OBJ_V" >"$f"
 expect obj-no-faces "$f" - '^mesh has no faces$'
