@@ -19,6 +19,7 @@ struct EmitOptions {
     size_t file_bytes = 262144;
     int screen_w = 640, screen_h = 480;
     bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
+    char up = 'y';             // the file's axis shown as up (--up): recorded in the model descriptor
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
     Limits limits;             // recorded in budget.json (checked by the caller)
     std::string fit_note;      // what --fit chose, recorded in budget.json
@@ -29,13 +30,13 @@ struct EmitOptions {
 // runtime_costs.hpp for the runtime's constants and where they come from).
 struct Budget {
     size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
-    size_t descriptors = 0;                      // chunk lists, levels, scene, name (32-bit layout)
+    size_t descriptors = 0;                      // chunk lists, levels, octree, model, name (32-bit layout)
     size_t code = 0;                             // runtime modules + libgcc helpers
     size_t flash() const { return masks + colors + palette + descriptors + code; }
     size_t data() const { return masks + colors + palette; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t ram() const { return color_buffer + depth_buffer + runtime_ram; }
-    size_t stack = 0;                            // bound for mc_render at the model's depth
+    size_t stack = 0;                            // bound for mc_octree_render at the model's depth
 };
 
 Budget budget_of(const Octree &tree, const EmitOptions &opt);
