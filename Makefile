@@ -74,14 +74,21 @@ $(BUILD)/gen/templates.o: $(BUILD)/gen/templates.cpp
 RT_SRC := $(wildcard runtime/src/*.c)
 RT_OBJ := $(patsubst runtime/src/%.c,$(BUILD)/runtime/%.o,$(RT_SRC))
 RT_HDR := $(wildcard runtime/include/modelc/*.h runtime/src/*.h)
+# front ends: host/ (viewer, terminal) and fw/ (firmware) each link common/ (view list, checksums, RGB)
+COMMON_SRC := $(wildcard runtime/front/common/*.c)
+COMMON_HDR := $(wildcard runtime/front/common/*.h)
 HOST_SRC := $(wildcard runtime/front/host/*.c)
-HOST_OBJ := $(patsubst runtime/front/host/%.c,$(BUILD)/host/%.o,$(HOST_SRC))
+HOST_OBJ := $(patsubst runtime/front/host/%.c,$(BUILD)/host/%.o,$(HOST_SRC)) \
+  $(patsubst runtime/front/common/%.c,$(BUILD)/common/%.o,$(COMMON_SRC))
 $(BUILD)/runtime/%.o: runtime/src/%.c $(RT_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
-$(BUILD)/host/%.o: runtime/front/host/%.c $(RT_HDR) $(wildcard runtime/front/host/*.h)
+$(BUILD)/host/%.o: runtime/front/host/%.c $(RT_HDR) $(wildcard runtime/front/host/*.h) $(COMMON_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(HOST_CFLAGS) -c -o $@ $<
+$(BUILD)/common/%.o: runtime/front/common/%.c $(RT_HDR) $(COMMON_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
 
 # ---- models, bakes and viewers -----------------------------------------------------------------
 MODEL_FILES := $(foreach m,$(CATALOGUE),$(BUILD)/models/$(notdir $($(m).src)))
@@ -171,8 +178,8 @@ FW_ELF := $(FW_DIR)/$(FW_MODEL).elf
 FW_HOSTVIEW := $(FW_BAKE)/$(FW_MODEL)-view
 FW_QEMU_TIMEOUT ?= 600
 ARM_CC := arm-none-eabi-gcc
-FW_SRC := $(wildcard runtime/front/fw/*.c)
-FW_HDR := $(wildcard runtime/front/fw/*.h)
+FW_SRC := $(wildcard runtime/front/fw/*.c) $(COMMON_SRC)
+FW_HDR := $(wildcard runtime/front/fw/*.h) $(COMMON_HDR)
 # the catalogue's bake options without its --depth, then the board's depth and screen
 FW_BAKE_OPTS = $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) --screen $(FW_SCREEN)
 # -fstack-usage and -fcallgraph-info give runtime/front/fw/stack_bound.py the frames and the call graph;
@@ -199,7 +206,7 @@ $(FW_BAKE)/budget.json: $(BUILD)/models/$(notdir $($(FW_MODEL).src)) $(MODELC) $
 	$(MODELC) $< -o $(FW_DIR) --name $(FW_MODEL) -q $(FW_BAKE_OPTS)
 
 # runtime (freestanding), firmware front end and the bake, compiled for the board, then linked
-$(FW_ELF): $(FW_BAKE)/budget.json $(RT_SRC) $(RT_HDR) $(FW_SRC) $(FW_HDR) runtime/front/host/image.h \
+$(FW_ELF): $(FW_BAKE)/budget.json $(RT_SRC) $(RT_HDR) $(FW_SRC) $(FW_HDR) \
   runtime/front/fw/boards/$(BOARD).ld runtime/front/fw/boards/$(BOARD).mk Makefile
 	@rm -rf $(FW_DIR)/obj && mkdir -p $(FW_DIR)/obj
 	@set -e; o=$(FW_DIR)/obj; \
@@ -214,7 +221,6 @@ $(FW_ELF): $(FW_BAKE)/budget.json $(RT_SRC) $(RT_HDR) $(FW_SRC) $(FW_HDR) runtim
 # the host viewer linked with the same bake: --checksums prints what the firmware must print
 $(FW_HOSTVIEW): $(FW_BAKE)/budget.json $(RT_OBJ) $(HOST_OBJ)
 	$(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $@ $(FW_BAKE)/*.c $(RT_OBJ) $(HOST_OBJ) $(VIEW_LDFLAGS)
-$(BUILD)/host/viewer.o: runtime/front/fw/frames.h runtime/front/fw/views.h
 
 # after linking: no heap, ELF against budget.json, stack bound against the board's RAM
 firmware: fw-args $(FW_ELF)

@@ -28,11 +28,11 @@ size_t ram_bytes(int w, int h) { return color_buffer_bytes(w, h) + depth_buffer_
 
 size_t stack_bytes(int depth) { return rt::stack_bound(depth); }
 
-// The descriptors in a 32-bit image (scene.h): the chunk lists, one level record per level, the scene
-// and the name string.
+// The descriptors in a 32-bit image (octree.h, model.h): the chunk lists, one level record per level,
+// the octree and model descriptors and the name string.
 static size_t descriptor_bytes(const BakeSize &s) {
     return s.chunk_entries * rt::kChunkBytes + static_cast<size_t>(s.depth + 1) * rt::kLevelBytes +
-           rt::kSceneBytes + s.name_bytes;
+           rt::kOctreeBytes + rt::kModelBytes + s.name_bytes;
 }
 
 Budget budget_of(const BakeSize &s) {

@@ -2,7 +2,7 @@
 //
 // Promise: every cost rule is written here once: the runtime's code (its modules and libgcc
 // helpers), the descriptors' 32-bit layout, the frame buffers (one colour byte and a 16-bit depth
-// per pixel), the runtime's static RAM and mc_render's stack bound. The runtime's measured constants
+// per pixel), the runtime's static RAM and mc_octree_render's stack bound. The runtime's measured constants
 // (code sizes, stack frames, descriptor sizes) come from runtime_costs.hpp; the sizes of the model's
 // own arrays and chunk lists come from emit's layout (emit.hpp budget_of), which alone decides them.
 #pragma once
@@ -24,14 +24,14 @@ size_t parse_size(const std::string &option, const std::string &text);
 
 struct Budget {
     size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
-    size_t descriptors = 0;                      // chunk lists, levels, scene, name (32-bit layout)
+    size_t descriptors = 0;                      // chunk lists, levels, octree, model, name (32-bit layout)
     size_t code = 0;                             // runtime modules + libgcc helpers
     size_t flash() const { return masks + colors + palette + descriptors + code; }
     size_t data() const { return masks + colors + palette; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t ram() const { return color_buffer + depth_buffer + runtime_ram; }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
-    size_t stack = 0;                            // bound for mc_render at the model's depth
+    size_t stack = 0;                            // bound for mc_octree_render at the model's depth
 };
 
 // What a bake emits, as the budget counts it.
@@ -59,7 +59,7 @@ size_t depth_buffer_bytes(int w, int h);
 // What --ram-budget checks for a w x h screen: its buffers and the runtime's static state.
 size_t ram_bytes(int w, int h);
 
-// mc_render's stack bound drawing an octree of this depth.
+// mc_octree_render's stack bound drawing an octree of this depth.
 size_t stack_bytes(int depth);
 
 // "" when b is within limits, else "flash 301234 bytes > 262144 (by 39090); ram ..." naming each

@@ -6,7 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -50,6 +53,38 @@ mstch::map common(const EmitOptions &opt) {
     return mstch::map{{"name", opt.name}, {"NAME", upper(opt.name)}, {"source", opt.source}};
 }
 
+// A file coordinate as Q32.32 (modelc/model.h), rounded to nearest, saturated.
+std::string q32(double v) {
+    const double scaled = std::ldexp(v, 32);
+    if (!(scaled < 9.2e18)) return "INT64_MAX";
+    if (!(scaled > -9.2e18)) return "INT64_MIN";
+    return "INT64_C(" + std::to_string(std::llround(scaled)) + ")";
+}
+
+std::string g9(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+// The model descriptor's template data: the grid cube in file coordinates (the voxels' frame is
+// the file's turned to y-up when --up z: (x, y, z) -> (x, z, -y), so turned back here) and the
+// up axis (modelc/model.h).
+mstch::map model_data(const Voxels &vox, const EmitOptions &opt) {
+    const double side = vox.cell * std::ldexp(1.0, vox.depth);
+    std::array<double, 3> c{};
+    for (int i = 0; i < 3; i++) c[i] = vox.origin[i] + side / 2;
+    if (opt.up == 'z') c = {c[0], -c[2], c[1]};
+    mstch::map m = common(opt);
+    m.emplace("centre_q", q32(c[0]) + ", " + q32(c[1]) + ", " + q32(c[2]));
+    m.emplace("side_q", q32(side));
+    m.emplace("centre_text", g9(c[0]) + ", " + g9(c[1]) + ", " + g9(c[2]));
+    m.emplace("side_text", g9(side));
+    m.emplace("up", std::string(1, opt.up == 'z' ? 'z' : 'y'));
+    m.emplace("up_code", std::string(opt.up == 'z' ? "MC_UP_Z" : "MC_UP_Y"));
+    return m;
+}
+
 }  // namespace
 
 std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8_t> *groups) {
@@ -78,8 +113,8 @@ struct Plan {
     size_t mask_bytes = 0, color_bytes = 0, chunk_entries = 0;
 };
 
-// A monochrome scene (one palette entry) stores no colours: every level's colour list is NULL and
-// the renderer draws palette index 0 (scene.h).
+// A monochrome octree (one palette entry) stores no colours: every level's colour list is NULL and
+// the renderer draws palette index 0 (octree.h).
 Plan make_plan(const Octree &t, const EmitOptions &opt) {
     const int D = t.depth;
     const std::string &name = opt.name;
@@ -187,18 +222,19 @@ Files fill_templates(const Octree &t, [[maybe_unused]] const Voxels &vox, const 
         ctx.emplace("count", std::to_string(files[f].size()));
         out.emplace_back(fname, mstch::render(template_text("data.c"), ctx));
     }
-    mstch::map scene = common(opt);
+    mstch::map octree = common(opt);
     mstch::array decls;
     for (const Array &a : arrays) decls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
-    scene.emplace("arrays", decls);
-    scene.emplace("lists", plan.lists);
-    scene.emplace("levels", plan.levels);
-    scene.emplace("level_count", std::to_string(D + 1));
-    scene.emplace("depth", std::to_string(D));
-    scene.emplace("palette_size", std::to_string(t.palette.size()));
-    scene.emplace("palette_bytes", std::to_string(palette.size()));
-    scene.emplace("palette_lines", byte_lines(palette.data(), palette.size()));
-    out.emplace_back(name + "_scene.c", mstch::render(template_text("scene.c"), scene));
+    octree.emplace("arrays", decls);
+    octree.emplace("lists", plan.lists);
+    octree.emplace("levels", plan.levels);
+    octree.emplace("level_count", std::to_string(D + 1));
+    octree.emplace("depth", std::to_string(D));
+    octree.emplace("palette_size", std::to_string(t.palette.size()));
+    octree.emplace("palette_bytes", std::to_string(palette.size()));
+    octree.emplace("palette_lines", byte_lines(palette.data(), palette.size()));
+    out.emplace_back(name + "_octree.c", mstch::render(template_text("octree.c"), octree));
+    out.emplace_back(name + "_model.c", mstch::render(template_text("model.c"), model_data(vox, opt)));
 
     mstch::map header = common(opt);
     header.emplace("depth", std::to_string(D));
@@ -280,7 +316,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
          {{"bound", bud.stack},
           {"depth", D},
           {"frames", stack_frames},
-          {"note", "bytes of stack mc_render uses at any depth <= the model's, from -fstack-usage (larger of "
+          {"note", "bytes of stack mc_octree_render uses at any depth <= the model's, from -fstack-usage (larger of "
                    "arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -O2 and host gcc -O2) summed over the bounded call "
                    "graph (gen/runtime_costs.hpp); add the abort callback's own stack"}}},
         {"screen", {opt.screen_w, opt.screen_h}},

@@ -40,7 +40,7 @@ int fail(const std::string &line, int status = 1) {
 
 int main(int argc, char **argv) {
     CLI::App app{"modelc: compile a triangle mesh or point set into C source for the modelc runtime.\n"
-                 "Writes OUT/NAME/{NAME.h, NAME_data_N.c, NAME_scene.c, NAME_app.c, budget.json}."};
+                 "Writes OUT/NAME/{NAME.h, NAME_data_N.c, NAME_octree.c, NAME_model.c, NAME_app.c, budget.json}."};
     std::string input, out_dir = "build", name, screen = "640x480";
     mc::VoxelOptions vox;
     mc::EmitOptions emit;
@@ -79,7 +79,7 @@ int main(int argc, char **argv) {
                    "runtime's code fit SIZE bytes (e.g. 262144, 256K, 1M)");
     app.add_option("--ram-budget", ram_budget, "fail unless the frame buffers for --screen and the runtime's static "
                    "state fit SIZE bytes");
-    app.add_option("--stack-budget", stack_budget, "fail unless mc_render's stack bound at --depth fits SIZE bytes");
+    app.add_option("--stack-budget", stack_budget, "fail unless mc_octree_render's stack bound at --depth fits SIZE bytes");
     app.add_flag("--fit", fit, "with the budgets: bake the finest depth <= --depth, then the largest palette <= "
                  "--palette (halving, not below --min-palette) and the largest screen of --screen's aspect (not "
                  "below " + std::to_string(mc::kFitMinSide) + " pixels a side) that fit; prints what it chose in one line");
@@ -124,6 +124,7 @@ int main(int argc, char **argv) {
     if (fit && !limits.flash && !limits.ram && !limits.stack)
         return fail("--fit needs at least one of --flash-budget, --ram-budget, --stack-budget", 2);
     emit.lib = emit_kind == "lib";
+    emit.up = up == "z" ? 'z' : 'y';
     if (name.empty()) name = name_from_path(input);
     if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")))
         return fail("--name " + name + ": must be a C identifier of at most 64 characters", 2);

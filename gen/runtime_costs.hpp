@@ -10,12 +10,14 @@
 // once with the default MC_LEAF_SWITCH=1 and once with -DMC_LEAF_SWITCH=0 (config.h). The runtime
 // has no .data and no .bss: its static RAM is 0. 64-bit divisions (view clamp, perspective) pull
 // in libgcc's __aeabi_ldivmod/__aeabi_uldivmod/__udivmoddi4: 960 bytes, from the link map of a
-// Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (render.o 75847 bytes, with the
-// depth test as a select, MC_DEPTH_SELECT's default there); the budget is for the firmware target.
+// Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (octree_render.o 75847 bytes, with
+// the depth test as a select, MC_DEPTH_SELECT's default there); the budget is for the firmware target.
+// Header-only modules (bits.h, chunk.h, rng.h) have no code of their own: what they inline is
+// counted in their callers'.
 //
 // Stack: bytes per function from -fstack-usage (every entry "static", no dynamic frames), compiled
 // as above for Cortex-M4 and with host gcc 12 -O2 (x86-64), taking the larger of the two. Functions
-// the compiler inlines (cursor_*, skip_subtree, setup_vectors, poll_abort, leaves) do not appear;
+// the compiler inlines (mc_cursor_*, skip_subtree, setup_vectors, poll_abort, leaves) do not appear;
 // their frames are part of their callers'.
 #pragma once
 #include <cstddef>
@@ -32,25 +34,28 @@ struct ModuleCode {
 inline constexpr ModuleCode kModules[] = {
     {"fixed", 476, 476, "fixed-point helpers (fixed.c)"},
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
-    {"view", 600, 600, "view clamping and rotation matrix (view.c)"},
-    {"render", 62584, 5764, "the octree renderer (render.c); MC_LEAF_SWITCH=1 has one case per mask value"},
-    {"finish", 1884, 1884, "hole filling (finish.c)"},
+    {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
+    {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
+    {"octree_render", 62492, 5672, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;
 
-// Sizes of the descriptors on a 32-bit target (scene.h): mc_chunk {pointer, uint32}, mc_level
-// {uint32, 2 pointers}, mc_scene {pointer, uint8, uint16, 2 pointers}.
-inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kSceneBytes = 16;
+// Sizes of the descriptors on a 32-bit target (chunk.h, octree.h, model.h; sizeof with
+// arm-none-eabi-gcc): mc_chunk {pointer, uint32}, mc_octree_level {uint32, 2 pointers}, mc_octree
+// {uint8, uint16, 2 pointers}, mc_model {4 int64, 4 pointers, uint8, padded to 8}.
+inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kOctreeBytes = 12, kModelBytes = 56;
 
-// -fstack-usage of every function of render.c, fixed.c, trig.c and view.c that mc_render can reach.
+// -fstack-usage of every function of octree_render.c, fixed.c, trig.c and xform.c that
+// mc_octree_render can reach.
 struct Frame {
     const char *function;
     size_t arm, host;
     constexpr size_t bytes() const { return arm > host ? arm : host; }
 };
 inline constexpr Frame kFrames[] = {
-    {"mc_render", 2480, 2672},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_octree_render", 2480, 2656},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
     {"visit", 96, 128},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 72},
@@ -60,7 +65,7 @@ inline constexpr Frame kFrames[] = {
     {"draw_square", 28, 16},
     {"classify", 8, 8},
     {"mc_mul_shift64", 24, 8},
-    {"mc_view_clamp", 40, 16},
+    {"mc_view_clamp", 24, 8},
     {"mc_view_rotation", 176, 272},
     {"matmul.constprop", 24, 8},
     {"mc_sin", 0, 8},
@@ -75,8 +80,8 @@ constexpr size_t frame(const char *fn) {
     return 1u << 30;   // unknown: no bound (a compile-time error where it is used in a constant)
 }
 
-// The bounded call graph of mc_render drawing at depth d (render.c):
-//   mc_render -> mc_view_clamp
+// The bounded call graph of mc_octree_render drawing at depth d (octree_render.c):
+//   mc_octree_render -> mc_view_clamp
 //             -> [setup_vectors] -> mc_view_rotation -> matmul | mc_cos -> mc_sin ; mc_mul_shift64
 //             -> classify
 //             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit recurses
@@ -86,8 +91,8 @@ constexpr size_t frame(const char *fn) {
 //                                           | leaves_clipped -> draw_square
 //                  classify, [skip_subtree]
 //                  [poll_abort] -> the abort callback (the caller's code: add its own stack)
-// [bracketed] functions are inlined into their callers. The bound is mc_render's frame plus the
-// deepest of those paths. mc_clear and mc_finish_* are called by the front end beside mc_render,
+// [bracketed] functions are inlined into their callers. The bound is mc_octree_render's frame plus
+// the deepest of those paths. mc_clear and mc_finish_* are called by the front end beside it,
 // never inside it, and their frames are smaller than the walk's.
 constexpr size_t max2(size_t a, size_t b) { return a > b ? a : b; }
 constexpr size_t stack_setup() {
@@ -102,7 +107,7 @@ constexpr size_t stack_tail() {
 constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }
 constexpr int walk_frames(int depth) { return depth > 3 ? depth - 2 : 1; }
 constexpr size_t stack_bound(int depth) {
-    return frame("mc_render") + max2(stack_setup(), static_cast<size_t>(walk_frames(depth)) * stack_walk_frame() + stack_tail());
+    return frame("mc_octree_render") + max2(stack_setup(), static_cast<size_t>(walk_frames(depth)) * stack_walk_frame() + stack_tail());
 }
 static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is missing from kFrames");
 

@@ -28,7 +28,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include <modelc/view.h>
+#include <modelc/xform.h>
 
 typedef struct mc_mesh_ref {
     int is_points;

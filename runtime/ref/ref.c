@@ -70,7 +70,7 @@ void mc_ref_rotation(const mc_view *v, double r[3][3])
         for (int j = 0; j < 3; j++) r[i][j] = rz[i][0] * t[0][j] + rz[i][1] * t[1][j] + rz[i][2] * t[2][j];
 }
 
-void mc_ref_points(const mc_scene *scene, const mc_view *view, unsigned depth, unsigned width,
+void mc_ref_points(const mc_octree *scene, const mc_view *view, unsigned depth, unsigned width,
                    unsigned height, mc_ref_fn fn, void *user)
 {
     walk w;
@@ -106,7 +106,7 @@ static void plot(const mc_ref_point *p, void *user)
     }
 }
 
-void mc_ref_render(const mc_scene *scene, const mc_view *view, unsigned depth, const mc_target *t,
+void mc_ref_render(const mc_octree *scene, const mc_view *view, unsigned depth, const mc_target *t,
                    double *zbuf)
 {
     size_t n = (size_t)t->width * t->height;

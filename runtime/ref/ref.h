@@ -5,7 +5,7 @@
 #ifndef MODELC_REF_H
 #define MODELC_REF_H
 
-#include <modelc/render.h>
+#include <modelc/octree_render.h>
 
 typedef struct mc_ref_point {
     double sx, sy;          /* screen position in pixels (pixel i covers [i, i+1)) */
@@ -21,13 +21,13 @@ typedef void (*mc_ref_fn)(const mc_ref_point *p, void *user);
 void mc_ref_rotation(const mc_view *v, double r[3][3]);
 
 /* Calls fn for every leaf at `depth`, in stored order. */
-void mc_ref_points(const mc_scene *scene, const mc_view *view, unsigned depth, unsigned width,
+void mc_ref_points(const mc_octree *scene, const mc_view *view, unsigned depth, unsigned width,
                    unsigned height, mc_ref_fn fn, void *user);
 
 /* Z-buffered one-pixel-per-leaf image: fills t->color, and t->depth with 0 where a point landed and
  * MC_DEPTH_EMPTY elsewhere; the nearest point wins on exact double depth. zbuf: width * height
  * doubles of scratch. */
-void mc_ref_render(const mc_scene *scene, const mc_view *view, unsigned depth, const mc_target *t,
+void mc_ref_render(const mc_octree *scene, const mc_view *view, unsigned depth, const mc_target *t,
                    double *zbuf);
 
 #endif

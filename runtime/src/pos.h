@@ -1,9 +1,9 @@
-/* Screen positions of the renderer (render.c): the one place that knows their number type.
+/* Screen positions of the octree renderer (octree_render.c): the one place that knows their number type.
  *
  * The renderer moves points by adding displacement vectors and reads a pixel off each position.
  * A position is Q MC_FRAC_BITS fixed point in an int32, and the hot loop packs x and y into one
  * int64 (x * 2^32 + y: on screen both are non-negative, so one 64-bit addition moves a point in
- * both axes). render.c uses positions only through the types and operations below, so that the
+ * both axes). octree_render.c uses positions only through the types and operations below, so that the
  * accuracy benchmark can build the same renderer with another number type: config.h's
  * MC_POS_HEADER names a header that replaces this one with the same interface
  * (tests/accuracy/pos_single.h). Viewers, libraries and firmware never set it.

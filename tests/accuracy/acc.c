@@ -5,7 +5,7 @@
  *
  * Built per setting by tests/accuracy/bench.sh: the runtime (runtime/src, with -DMC_FRAC_BITS=F, or
  * with tests/accuracy/pos_single.h for the float build of the renderer, config.h MC_POS_HEADER), one bake of the model at depth D
- * (ACC_SCENE naming its descriptor, mc_scene_NAME), runtime/ref/ref.c and runtime/ref/mesh_ref.c.
+ * (ACC_SCENE naming its descriptor, mc_octree_NAME), runtime/ref/ref.c and runtime/ref/mesh_ref.c.
  * With -DACC_EXACT=1 the "exact" build: the octree is drawn by the double-precision walk of
  * runtime/ref/ref.c (mc_ref_points: every leaf placed exactly from its integer cell coordinates) with
  * the runtime's footprints and a 16-bit depth buffer, so that the runtime's finishing (mc_finish)
@@ -22,7 +22,7 @@
  *   coverage: the share of the pixels covered by either image that only one of them covers;
  *   ms, cpu_ms: median wall-clock / thread CPU milliseconds of mc_clear + render + finish over N frames
  *         (at least N, and at least 40 ms of frames, at most 400);
- *   status: ok, or the runtime's error (e.g. size: mc_render refuses a target larger than
+ *   status: ok, or the runtime's error (e.g. size: mc_octree_render refuses a target larger than
  *         MC_TARGET_MAX, which is 2^(27 - MC_FRAC_BITS) pixels).
  * --dump DIR: also writes each image and the reference as DIR/vI_SPLAT_FILL.ppm and DIR/vI_ref.ppm.
  * --cg: no reference and no timing; each of the four cost views is drawn once per splat and finished
@@ -44,8 +44,8 @@
 #ifndef ACC_EXACT
 #define ACC_EXACT 0
 #endif
-extern const mc_scene ACC_SCENE;
-static const mc_scene *scene = &ACC_SCENE;
+extern const mc_octree ACC_SCENE;
+static const mc_octree *scene = &ACC_SCENE;
 
 #ifdef MC_SPLAT_DEFAULT_MODE
 #define HAVE_SPLATS 1
@@ -79,6 +79,9 @@ static const char *splat_names[] = {"pixel", "zoom"};
 static const char *fill_names[] = {"none", "pixel", "scanline"};
 static const int nsplats = HAVE_SPLATS ? 2 : 1, nfills = HAVE_SCANLINE ? 3 : 2;
 
+/* the footprint of the view make_view made last */
+static mc_octree_options opt;
+
 static mc_view make_view(const view_spec *s, int splat)
 {
     mc_view v = mc_view_default();
@@ -86,7 +89,7 @@ static mc_view make_view(const view_spec *s, int splat)
     v.pitch = (int32_t)lround(s->pitch / 360.0 * MC_ANGLE_FULL);
     v.zoom = (int32_t)lround(s->zoom * MC_ZOOM_ONE);
 #if HAVE_SPLATS
-    v.splat = splat ? MC_SPLAT_ZOOM : MC_SPLAT_PIXEL;
+    opt.splat = splat ? MC_SPLAT_ZOOM : MC_SPLAT_PIXEL;
 #else
     (void)splat;
 #endif
@@ -124,7 +127,7 @@ static int render(const mc_view *v, const mc_target *t)
     mc_view c = mc_view_clamp(v, t->width, t->height);
     exact_ctx fc = {t, 1};
 #if HAVE_SPLATS
-    if (c.splat == MC_SPLAT_ZOOM || (c.splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
+    if (opt.splat == MC_SPLAT_ZOOM || (opt.splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
         double leaf = c.zoom / 65536.0 * (t->width < t->height ? t->width : t->height) / (double)(1u << scene->depth);
         double s = ceil(leaf - 1e-9);
         fc.side = s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int)s;
@@ -133,7 +136,7 @@ static int render(const mc_view *v, const mc_target *t)
     mc_ref_points(scene, &c, scene->depth, t->width, t->height, exact_plot, &fc);
     return MC_OK;
 #else
-    return mc_render(scene, v, scene->depth, t, NULL, NULL, NULL);
+    return mc_octree_render(scene, v, scene->depth, &opt, t, NULL, NULL, NULL);
 #endif
 }
 

@@ -107,7 +107,7 @@ EOF
         if [ "$(cat "$OUT/obj/$name/.done" 2>/dev/null)" != "$STAMP" ]; then
             rm -rf "${OUT:?}/obj/$name"
             mkdir -p "$OUT/obj/$name"
-            for s in "$OUT/bakes/$name/${name}_data_"*.c "$OUT/bakes/$name/${name}_scene.c"; do
+            for s in "$OUT/bakes/$name/${name}_data_"*.c "$OUT/bakes/$name/${name}_octree.c"; do
                 $CC $OPT -std=c99 -ffreestanding -Wall -Wextra -Iruntime/include -c \
                     -o "$OUT/obj/$name/$(basename "${s%.c}").o" "$s"
             done
@@ -143,7 +143,7 @@ for s in "${settings[@]}"; do
     fi
     # shellcheck disable=SC2046
     $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -Iruntime/front/host $(cfg_flags "$key") \
-        -DACC_SCENE="mc_scene_$name" -DACC_EXACT=$exact -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
+        -DACC_SCENE="mc_octree_$name" -DACC_EXACT=$exact -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
         "$OUT/obj/$name"/*.o -lm
     step "$tag: render and time 12 views"
     "$exe" "$OUT/bakes/$m.ref" --tag "$tag" --frames "$FRAMES" --size "$SIZE" >>"$OUT/views.csv"

@@ -2,8 +2,8 @@
  *
  *   meshref_test BUNNY_REF_DUMP KITTEN_REF_DUMP
  *
- * Linked with the bunny00 bake at depth 8 (mc_scene_acc_bunny00), the kitten bake at depth 7
- * (mc_scene_acc_kitten) and the runtime. Prints TAP lines.
+ * Linked with the bunny00 bake at depth 8 (mc_octree_acc_bunny00), the kitten bake at depth 7
+ * (mc_octree_acc_kitten) and the runtime. Prints TAP lines.
  *
  * Synthetic meshes with a known image (320x240, zoom 1: the unit cube spans 240 pixels, its centre
  * at pixel (160, 120); model +y up, +z towards the viewer):
@@ -23,7 +23,7 @@
  *   - the outlines agree within one pixel (the same normalisation), and do not when the octree is
  *     moved by two pixels;
  *   - discrimination: the reference of a view 10 degrees off scores below PSNR_MIN.
- * A point set (kitten, octree at depth 7, mc_scene_acc_kitten): the dump is a point set with a splat
+ * A point set (kitten, octree at depth 7, mc_octree_acc_kitten): the dump is a point set with a splat
  * radius, and every pixel the octree draws lies within 2 pixels of the splats' coverage.
  */
 #include <math.h>
@@ -34,7 +34,7 @@
 #include <modelc/modelc.h>
 #include "mesh_ref.h"
 
-extern const mc_scene mc_scene_acc_bunny00, mc_scene_acc_kitten;
+extern const mc_octree mc_octree_acc_bunny00, mc_octree_acc_kitten;
 
 #define W 320
 #define H 240
@@ -88,13 +88,13 @@ static double psnr(const uint8_t *a, const uint8_t *b)
     return se == 0 ? 99 : 10 * log10(255.0 * 255.0 / (se / (3.0 * W * H)));
 }
 
-static void octree_image(const mc_scene *s, const mc_view *v, uint8_t *out, uint8_t *c)
+static void octree_image(const mc_octree *s, const mc_view *v, uint8_t *out, uint8_t *c)
 {
     static uint8_t col[W * H];
     static uint16_t dep[W * H];
     mc_target t = {col, dep, W, H};
     mc_clear(&t);
-    mc_render(s, v, s->depth, &t, NULL, NULL, NULL);
+    mc_octree_render(s, v, s->depth, NULL, &t, NULL, NULL, NULL);
 #ifdef MC_DEPTH_FILLED   /* the runtime has selectable fills (finish.h): its default */
     mc_finish(&t, MC_FILL_DEFAULT);
 #else
@@ -267,7 +267,7 @@ int main(int argc, char **argv)
         printf("not ok - bunny00 reference: %s\n", err);
         return 1;
     }
-    const mc_scene *s = &mc_scene_acc_bunny00;
+    const mc_octree *s = &mc_octree_acc_bunny00;
     static uint8_t oct[3 * W * H], ocov[W * H];
     const int yaws[2] = {0, 30};
     for (int i = 0; i < 2; i++) {
@@ -319,7 +319,7 @@ int main(int argc, char **argv)
     }
     check(k.is_points && k.nverts == 5210 && k.radius > 0 && k.radius < 0.05,
           "kitten: a point set of 5210 points with a splat radius", "%g points, radius %g", k.nverts, k.radius);
-    const mc_scene *ks = &mc_scene_acc_kitten;
+    const mc_octree *ks = &mc_octree_acc_kitten;
     mc_view kv = mc_view_default();
     kv.yaw = MC_ANGLE_FULL / 12;
     long kn = mc_mesh_ref_render(&k, &kv, W, H, ks->palette, ks->palette_size, rgb, cov, NULL);

@@ -26,7 +26,7 @@ fi
 echo "ok - modelc --dump-reference writes the reference dumps (mesh, point set)"
 if ! gcc -std=c99 -O2 -g -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -o "$out/meshref_test" \
     tests/accuracy/meshref_test.c runtime/ref/mesh_ref.c runtime/ref/ref.c runtime/src/*.c "$out/acc_bunny00"/acc_bunny00_data_*.c \
-    "$out/acc_bunny00/acc_bunny00_scene.c" "$out/acc_kitten"/acc_kitten_data_*.c "$out/acc_kitten/acc_kitten_scene.c" -lm 2>"$out/build.log"; then
+    "$out/acc_bunny00/acc_bunny00_octree.c" "$out/acc_kitten"/acc_kitten_data_*.c "$out/acc_kitten/acc_kitten_octree.c" -lm 2>"$out/build.log"; then
     echo "not ok - accuracy: test build failed: $(head -n 3 "$out/build.log" | tr '\n' ' ')"; exit 1
 fi
 "$out/meshref_test" "$out/bunny00.ref" "$out/kitten.ref"

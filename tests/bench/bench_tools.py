@@ -280,7 +280,7 @@ def report(rdir, out_md):
     A(f"- compiler: {meta['cc_version']}")
     A(f"- valgrind: {meta['valgrind']}; Mesa: {meta['mesa_pkg']}; draco: {meta['draco_pkg']}")
     A(f"- OpenGL renderer (glGetString(GL_RENDERER)): **{R[depths[0]]['renderer']}**, GL_VERSION {R[depths[0]]['gl_version']}, LP_NUM_THREADS={R[depths[0]]['lp_threads']}, {R[depths[0]]['depth_bits']}-bit depth buffer")
-    A(f"- source tree: commit {meta['commit']}; runtime/ {meta['runtime_state']} (benchmarked copy: `{meta['snapshot']}`, render.c sha256 {meta['render_sha']})")
+    A(f"- source tree: commit {meta['commit']}; runtime/ {meta['runtime_state']} (benchmarked copy: `{meta['snapshot']}`, octree_render.c sha256 {meta['render_sha']})")
     A(f"- generator: `{meta['modelc']}` ({meta['modelc_version']}); model `{meta['model_src']}` baked with `--depth D`, one bake per depth")
     A(f"- views: {size}, orthographic, zoom 1, pitch = roll = 0; a full turn of yaw starting frontal (yaw 0): "
       f"frame i of N at yaw = i * 4096 / N modelc angle units. Each run reports the median over {frames} frames; "
@@ -288,7 +288,7 @@ def report(rdir, out_md):
       "A round's modelc time is the mean of its two runs; tables show the median over rounds, and a speed ratio "
       "is the median over rounds of Mesa's time / modelc's time in the same round.")
     A("- clocks: wall-clock times are what the viewer's `--bench` prints. `callgrind_frames --time` runs the same "
-      "loop (mc_clear + mc_render [+ mc_finish_pixel_holes], same object code) and `osmesa_points` its own, both "
+      "loop (mc_clear + mc_octree_render [+ mc_finish_pixel_holes], same object code) and `osmesa_points` its own, both "
       "printing the median wall-clock **and process CPU time** per frame. On a machine shared with other work a "
       "~30 ms Mesa frame is preempted far more often than a ~1 ms modelc frame, which inflates Mesa's wall-clock "
       "median and the wall-clock ratio; the CPU-time ratio is not affected by that, so it is the headline figure. "
@@ -305,7 +305,7 @@ def report(rdir, out_md):
     A("")
     A("Data bytes are the bake's `budget.json` `flash` figures (masks of levels 0..D-1, colours of levels 1..D, "
       "palette). Geometry bits per point = masks only; total = masks + colours + palette. ms per frame: wall clock "
-      f"from the viewer's `--bench {frames}` (mc_clear + mc_render [+ mc_finish_pixel_holes]), and CPU time of the "
+      f"from the viewer's `--bench {frames}` (mc_clear + mc_octree_render [+ mc_finish_pixel_holes]), and CPU time of the "
       "same loop from `callgrind_frames --time`. Mpoints/s = points drawn per frame / wall-clock ms.")
     A("")
     A("| depth | points | masks B | colours B | palette B | data bytes | geometry bits/pt | total bits/pt | ms/frame (no finish) | ms/frame (finish) | CPU ms/frame (no finish) | CPU ms/frame (finish) | Mpoints/s (no finish) | Mpoints/s (finish) |")
@@ -326,8 +326,8 @@ def report(rdir, out_md):
     A("## 2. Instructions per drawn point (callgrind)")
     A("")
     A(f"`tests/bench/callgrind_frames.c` renders {cg_frames} views of the turn (and, separately, the frontal view "
-      "alone) with mc_clear + mc_render; `valgrind --tool=callgrind --toggle-collect=mc_render` counts only "
-      "instructions inside mc_render and its callees. Ir per point = that total / sum of mc_stats.points. "
+      "alone) with mc_clear + mc_octree_render; `valgrind --tool=callgrind --toggle-collect=mc_octree_render` counts only "
+      "instructions inside mc_octree_render and its callees. Ir per point = that total / sum of mc_stats.points. "
       "Same object code as the timed viewer. `--branch-sim=yes` also simulates a simple branch predictor: "
       "mispredicted conditional branches (Bcm) and indirect jumps (Bim, e.g. switch jump tables) are valgrind's "
       "model, not this CPU's, but are deterministic and show what the instruction count leaves out (a mispredict "
@@ -359,7 +359,7 @@ def report(rdir, out_md):
         A("")
     lines_md = read(os.path.join(rdir, f"d{target_d}.cg.lines.md"))
     if lines_md:
-        A(f"Where mc_render's instructions go at depth {target_d} ({cg_frames}-view turn; self cost, inlined code "
+        A(f"Where mc_octree_render's instructions go at depth {target_d} ({cg_frames}-view turn; self cost, inlined code "
           "attributed to its source line; full listing in "
           f"`build/bench/results/d{target_d}.cg.annotate.txt`):")
         A("")
@@ -369,7 +369,7 @@ def report(rdir, out_md):
     A("## 3. modelc vs Mesa software OpenGL (OSMesa, llvmpipe, one thread)")
     A("")
     A("`tests/bench/osmesa_points.c` decodes the same bake's leaf cells (double precision, independently of the "
-      "runtime), uploads them once into a VBO (float xyz + RGBA8 colour per point, in mc_render's draw order) and "
+      "runtime), uploads them once into a VBO (float xyz + RGBA8 colour per point, in mc_octree_render's draw order) and "
       f"draws them as one-pixel GL_POINTS, depth test GL_LESS, {size}, orthographic projection matching modelc's view. "
       f"Timed per frame: glClear + modelview + glDrawArrays + glFinish, median over the same {frames}-frame turn. "
       "Ratio = median over rounds of Mesa ms / modelc ms (without finishing unless stated) in the same round; "
@@ -432,7 +432,7 @@ def report(rdir, out_md):
           f"**{ratio:.1f}x faster** ({r['ratio_finish']:.1f}x with finishing; wall-clock ratio {r['ratio_wall']:.1f}x), "
           f"which **{ok(ratio >= 30)}** the >= 30x target"
           + ("" if ratio >= 30 else f" (short by a factor {30 / ratio:.2f}: modelc would need {r['mesa_cpu_ms'] / 30:.3f} ms per frame)")
-          + f". mc_render executes **{ipp:.1f} instructions per drawn point** ({fmt_int(r['cg_turn_ir'] / r['cg_turn_frames'])} per frame), "
+          + f". mc_octree_render executes **{ipp:.1f} instructions per drawn point** ({fmt_int(r['cg_turn_ir'] / r['cg_turn_frames'])} per frame), "
           f"which **{ok(ipp <= 25)}** the <= 25 Ir/point target"
           + ("" if ipp <= 25 else f" ({ipp - 25:.1f} Ir/point too many, {ipp / 25:.2f}x the target)")
           + f". Geometry costs **{geo:.2f} bits per point** (masks only; {b['bits_per_point']['total']:.2f} with colours), "

@@ -1,6 +1,6 @@
 /* Benchmark driver for valgrind --tool=callgrind: renders F views of one full turn with
- * mc_clear + mc_render only (no finishing, no output), so that
- *   valgrind --tool=callgrind --toggle-collect=mc_render ./callgrind_frames F
+ * mc_clear + mc_octree_render only (no finishing, no output), so that
+ *   valgrind --tool=callgrind --toggle-collect=mc_octree_render ./callgrind_frames F
  * counts exactly the renderer's instructions. Links against a bake (mc_app_model) and the runtime.
  *
  *   callgrind_frames [F [YAW0]] [--size WxH] [--ppm FILE] [--mask FILE] [--image-yaw U]
@@ -12,7 +12,7 @@
  * --ppm FILE / --mask FILE: write one frame (no finishing; yaw U angle units from --image-yaw, default 0
  * = frontal) as a binary PPM, and its coverage (255 = drawn) as a binary PGM.
  * --time N: instead, time N frames of the turn exactly as the viewer's --bench does (mc_clear +
- * mc_render [+ mc_finish_pixel_holes with --finish]) and print the median wall-clock time and the
+ * mc_octree_render [+ mc_finish_pixel_holes with --finish]) and print the median wall-clock time and the
  * median CPU time of the process per frame (CPU time leaves out time spent preempted on a busy
  * machine, like osmesa_points' "cpu ms").
  */
@@ -54,7 +54,7 @@ static int write_image(const char *path, const mc_target *t, const uint8_t *pale
 /* The viewer's --bench loop, timed with both clocks. */
 static int time_frames(const mc_target *t, int frames, int finish)
 {
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_octree *scene = mc_app_model.model->octree;
     double *ms = malloc((size_t)frames * sizeof *ms), *cpu = malloc((size_t)frames * sizeof *cpu);
     if (!ms || !cpu) return 1;
     mc_view v = mc_view_default();
@@ -64,7 +64,7 @@ static int time_frames(const mc_target *t, int frames, int finish)
         mc_stats st;
         double t0 = mc_host_clock_ms(CLOCK_MONOTONIC), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
         mc_clear(t);
-        mc_render(scene, &v, scene->depth, t, NULL, NULL, &st);
+        mc_octree_render(scene, &v, scene->depth, NULL, t, NULL, NULL, &st);
         if (finish) mc_finish_pixel_holes(t);
         ms[i] = mc_host_clock_ms(CLOCK_MONOTONIC) - t0;
         cpu[i] = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
@@ -114,7 +114,7 @@ int main(int argc, char **argv)
                 mc_app_model.max_height);
         return 2;
     }
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_octree *scene = mc_app_model.model->octree;
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
     if (time_n) return time_frames(&t, time_n, finish);
     mc_view v = mc_view_default();
@@ -124,7 +124,7 @@ int main(int argc, char **argv)
         v.yaw = (int32_t)(yaw0 + (int64_t)MC_ANGLE_FULL * i / frames);
         mc_stats st;
         mc_clear(&t);
-        if (mc_render(scene, &v, scene->depth, &t, NULL, NULL, &st) != MC_OK) return 1;
+        if (mc_octree_render(scene, &v, scene->depth, NULL, &t, NULL, NULL, &st) != MC_OK) return 1;
         points += st.points;
         pixels += covered(&t);
     }
@@ -134,7 +134,7 @@ int main(int argc, char **argv)
     if (ppm || mask) {
         v.yaw = (int32_t)image_yaw;
         mc_clear(&t);
-        mc_render(scene, &v, scene->depth, &t, NULL, NULL, NULL);
+        mc_octree_render(scene, &v, scene->depth, NULL, &t, NULL, NULL, NULL);
         printf("pixels covered in the image (yaw %ld units): %ld\n", image_yaw, covered(&t));
         if (ppm && write_image(ppm, &t, scene->palette, 0)) return 1;
         if (mask && write_image(mask, &t, scene->palette, 1)) return 1;

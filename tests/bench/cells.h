@@ -17,7 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include <modelc/scene.h>
+#include <modelc/octree.h>
 
 typedef struct bench_cell {
     uint32_t ix, iy, iz;   /* integer cell coordinates, 0..2^D-1 */
@@ -39,7 +39,7 @@ static int bench_cursor_byte(bench_cursor *c, uint8_t *out)
 }
 
 typedef struct bench_walk {
-    const mc_scene *scene;
+    const mc_octree *scene;
     unsigned depth;
     bench_cursor mask[32];
     bench_cursor color;
@@ -73,9 +73,9 @@ static void bench_walk_node(bench_walk *w, unsigned l, uint32_t ix, uint32_t iy,
     }
 }
 
-/* Decodes every leaf of `scene` at its full depth, in depth-first order (the order mc_render draws
+/* Decodes every leaf of `scene` at its full depth, in depth-first order (the order mc_octree_render draws
  * them). Returns a malloc'd array and sets *count, or NULL on a malformed scene. */
-static bench_cell *bench_decode_cells(const mc_scene *scene, uint32_t *count)
+static bench_cell *bench_decode_cells(const mc_octree *scene, uint32_t *count)
 {
     bench_walk w = {0};
     unsigned d = scene->depth;

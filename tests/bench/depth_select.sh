@@ -17,12 +17,12 @@ mkdir -p "$out"
 cmds=()
 run() { cmds+=("$*"); "$@"; }
 for s in 0 1; do
-    run gcc -O2 -g -std=c99 -ffreestanding -Wall -Wextra -DMC_DEPTH_SELECT=$s -I"$rt/include" -c -o "$out/render$s.o" "$rt/src/render.c"
+    run gcc -O2 -g -std=c99 -ffreestanding -Wall -Wextra -DMC_DEPTH_SELECT=$s -I"$rt/include" -c -o "$out/render$s.o" "$rt/src/octree_render.c"
     others=()
-    for f in "$rt"/src/*.c; do [ "$(basename "$f")" = render.c ] || others+=("$f"); done
+    for f in "$rt"/src/*.c; do [ "$(basename "$f")" = octree_render.c ] || others+=("$f"); done
     run gcc -O2 -g -std=c99 -Wall -Wextra -I"$rt/include" -I"$rt/front/host" -o "$out/frames$s" tests/bench/callgrind_frames.c \
         "$bake"/*.c "$out/render$s.o" "${others[@]}" -lm
-    run valgrind --tool=callgrind --toggle-collect=mc_render --callgrind-out-file="$out/cg$s.out" \
+    run valgrind --tool=callgrind --toggle-collect=mc_octree_render --callgrind-out-file="$out/cg$s.out" \
         "$out/frames$s" 20 --size "$size" >"$out/cg$s.txt" 2>"$out/cg$s.log"
 done
 cmp -s <("$out/frames0" 20 --size "$size" --ppm "$out/f0.ppm") <("$out/frames1" 20 --size "$size" --ppm "$out/f1.ppm") &&
@@ -49,10 +49,10 @@ ratio = lambda k: statistics.median(r[2] / r[k] for r in rows)
 ir0, ir1 = ir(0), ir(1)
 print("## Depth test: branch or select\n")
 print(f"`tests/bench/depth_select.sh` (`make bench`): bunny00 at depth {d}, {size}, the {frames}-frame turn of section 1, "
-      f"`callgrind_frames --time` (mc_clear + mc_render, no finishing) with the runtime built with `-DMC_DEPTH_SELECT=0` "
+      f"`callgrind_frames --time` (mc_clear + mc_octree_render, no finishing) with the runtime built with `-DMC_DEPTH_SELECT=0` "
       f"(a branch per leaf) and `=1` (a conditional move of the written pixel's index, the default on x86-64), and Mesa as in section 3; {rounds} rounds of "
       f"branch, select, Mesa; CPU ms = median over rounds of each round's median. Instructions: callgrind, 20-view turn, "
-      f"mc_render only. Same pixels in both builds: **{same}**.\n")
+      f"mc_octree_render only. Same pixels in both builds: **{same}**.\n")
 print("| depth test | Ir per drawn point | CPU ms per frame | Mesa CPU ms | ratio (median over rounds) |")
 print("|---|---:|---:|---:|---:|")
 print(f"| branch (MC_DEPTH_SELECT 0) | {ir0:.2f} | {med(0):.3f} | {med(2):.3f} | {ratio(0):.1f}x |")

@@ -5,14 +5,14 @@
  *   interaction [--frames N] [--trials N] [--markdown] [--size WxH]
  *
  * Frames: N views of one full turn of yaw (zoom 1, orthographic, the default splat), each timed as
- * the viewer draws it: mc_clear + mc_render + mc_finish (the default fill); wall clock
+ * the viewer draws it: mc_clear + mc_octree_render + mc_finish (the default fill); wall clock
  * (CLOCK_MONOTONIC) and CPU time of the thread (CLOCK_THREAD_CPUTIME_ID, which leaves out time the
  * machine spent on other processes). Median, 95th percentile and maximum.
  *
  * Abort latency: a fine frame starts; a key "arrives" at a random moment, uniform over the median
  * fine frame time; from then on the abort callback returns 1 (it compares the clock with the key's
  * time, as the viewer's callback polls the terminal). The latency is the time from the key to
- * mc_render returning. The callback is polled on entering each node at depth MC_ABORT_LEVEL (4, the
+ * mc_octree_render returning. The callback is polled on entering each node at depth MC_ABORT_LEVEL (4, the
  * paper's). Trials in which the frame ended before the key are not counted (no abort was needed).
  * Measured twice: on the wall clock, and on the thread's CPU clock (key time and latency in CPU time,
  * so that preemption by other processes on a shared machine does not count).
@@ -73,7 +73,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "size over the bake's %ux%u\n", mc_app_model.max_width, mc_app_model.max_height);
         return 2;
     }
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_octree *scene = mc_app_model.model->octree;
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
     const unsigned fine = scene->depth, coarse = scene->depth > 1 ? scene->depth - 1u : 1u;
     double *wall = malloc(sizeof(double) * (size_t)(frames > trials ? frames : trials));
@@ -91,7 +91,7 @@ int main(int argc, char **argv)
             mc_stats st;
             double w0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_THREAD_CPUTIME_ID);
             mc_clear(&t);
-            mc_render(scene, &v, depths[d], &t, NULL, NULL, &st);
+            mc_octree_render(scene, &v, depths[d], NULL, &t, NULL, NULL, &st);
             mc_finish(&t, MC_FILL_DEFAULT);
             double w1 = mc_host_now_ms(), c1 = mc_host_clock_ms(CLOCK_THREAD_CPUTIME_ID);
             if (i < 0) continue;
@@ -110,7 +110,7 @@ int main(int argc, char **argv)
         key k = {1e300, 0, CLOCK_MONOTONIC};
         mc_view v = mc_view_default();
         mc_clear(&t);
-        mc_render(scene, &v, fine, &t, key_pressed, &k, NULL);
+        mc_octree_render(scene, &v, fine, NULL, &t, key_pressed, &k, NULL);
         full_polls = k.polls;
     }
     /* twice: on the wall clock (what a user sees, preemption by other processes included), and on
@@ -130,7 +130,7 @@ int main(int argc, char **argv)
             mc_stats st;
             double t0 = mc_host_clock_ms(clk);
             k.at = t0 + rnd_unit() * (pass ? sc[1].median : sw[1].median);
-            mc_render(scene, &v, fine, &t, key_pressed, &k, &st);
+            mc_octree_render(scene, &v, fine, NULL, &t, key_pressed, &k, &st);
             double t1 = mc_host_clock_ms(clk);
             if (!st.aborted) { fin++; continue; }
             wall[m++] = (t1 - k.at) * 1e3;   /* microseconds */
@@ -145,10 +145,10 @@ int main(int argc, char **argv)
         printf("\n## Interaction timing (coarse and fine frames, abort latency)\n\n");
         printf("Written by `tests/bench/interaction.sh` (`make bench`): `%s --frames %d --trials %d` "
                "(tests/bench/interaction.c) on %s at %ux%u, linked with the benchmarked runtime. Frames: a full turn "
-               "of yaw at zoom 1, each timed as the viewer draws it (mc_clear + mc_render + mc_finish with the default "
+               "of yaw at zoom 1, each timed as the viewer draws it (mc_clear + mc_octree_render + mc_finish with the default "
                "fill and splat); wall clock and thread CPU time (CPU time leaves out the time other processes took "
                "on this shared machine).\n\n",
-               argv[0], frames, trials, scene->name, w, h);
+               argv[0], frames, trials, mc_app_model.model->name, w, h);
         printf("| frame | depth | points | wall ms median | wall ms p95 | wall ms max | CPU ms median | CPU ms p95 | paper |\n");
         printf("|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
         printf("| coarse (view moving) | %u | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f | one frame per 100 ms period: %.0fx headroom (median) |\n",
@@ -157,7 +157,7 @@ int main(int argc, char **argv)
                fine, points[1], sw[1].median, sw[1].p95, sw[1].max, sc[1].median, sc[1].p95, 300.0 / sw[1].median);
         printf("Abort latency of the fine frame (a key arrives at a uniformly random moment of the frame; the callback "
                "is polled at tree depth %d, %u times in a whole frontal fine frame, one poll every %.1f us on average): "
-               "%d of %d trials aborted (%d frames ended before the key), latency from the key to mc_render returning: "
+               "%d of %d trials aborted (%d frames ended before the key), latency from the key to mc_octree_render returning: "
                "**median %.1f us, 95th percentile %.1f us, max %.1f us** on the wall clock (which includes the time "
                "other processes held the CPU); on the thread's CPU clock (key and latency in CPU time, %d of %d "
                "aborted): **median %.1f us, 95th percentile %.1f us, max %.1f us**. The paper promises \"within a "

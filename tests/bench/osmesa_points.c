@@ -1,8 +1,8 @@
 /* Benchmark baseline: Mesa's software OpenGL (OSMesa) drawing the same cells as a modelc bake.
  *
- * Links against a bake's generated sources (for mc_app_model.scene) but not against the runtime's
+ * Links against a bake's generated sources (for mc_app_model.model->octree) but not against the runtime's
  * renderer: the cells are decoded by tests/bench/cells.h in double precision and uploaded once into a
- * vertex buffer as one-pixel GL_POINTS with per-point colours (in the order mc_render draws them).
+ * vertex buffer as one-pixel GL_POINTS with per-point colours (in the order mc_octree_render draws them).
  * The view matches modelc's (modelc/view.h): orthographic, the model's bounding cube centred with its
  * side spanning the shorter screen side at zoom 1, screen y down, +z toward the viewer,
  * R = Rz(roll) * Rx(pitch) * Ry(yaw); depth test GL_LESS on a 16-bit depth buffer like modelc's.
@@ -131,7 +131,7 @@ int main(int argc, char **argv)
     }
     if (frames < 1 || views < 0 || w < 1 || h < 1 || w > 4096 || h > 4096) return 2;
 
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_octree *scene = mc_app_model.model->octree;
     uint32_t n;
     bench_cell *cells = bench_decode_cells(scene, &n);
     if (!cells) return 1;

@@ -3,7 +3,7 @@
 #
 # For the default model baked at several depths, at one screen size, a full turn of views:
 #   1. size (budget.json) and speed (the viewer's --bench, with and without finishing)
-#   2. instructions per drawn point of mc_render under callgrind (tests/bench/callgrind_frames.c)
+#   2. instructions per drawn point of mc_octree_render under callgrind (tests/bench/callgrind_frames.c)
 #   3. the same cells drawn by Mesa's software OpenGL, single-threaded llvmpipe via OSMesa
 #      (tests/bench/osmesa_points.c), timed interleaved with modelc
 #   4. the same cells' geometry compressed by Draco
@@ -101,7 +101,7 @@ pkgver() { dpkg-query -W -f='${Package} ${Version}' "$1" 2>/dev/null || echo "$1
 # ---- runtime: a snapshot, so that timings, callgrind and its annotations all see the same code -----
 step "runtime snapshot and objects"
 cp -r runtime/include runtime/src runtime/front "$SNAP/"
-echo "render_sha: $(sha256sum "$SNAP/src/render.c" | cut -c1-16)" >>"$RES/meta.txt"
+echo "render_sha: $(sha256sum "$SNAP/src/octree_render.c" | cut -c1-16)" >>"$RES/meta.txt"
 INC="-I$SNAP/include -I$SNAP/front/host"
 for f in "$SNAP"/src/*.c; do
     run $CC $OPT $RT_FLAGS $INC -c -o "$OBJ/rt/$(basename "${f%.c}").o" "$f"
@@ -133,7 +133,7 @@ for d in $DEPTHS; do
 done
 
 # ---- 2. callgrind -----------------------------------------------------------------------------------
-CG_OPTS=(--tool=callgrind --toggle-collect=mc_render --branch-sim=yes --compress-strings=no --compress-pos=no)
+CG_OPTS=(--tool=callgrind --toggle-collect=mc_octree_render --branch-sim=yes --compress-strings=no --compress-pos=no)
 for d in $DEPTHS; do
     name=${MODEL}_d$d
     step "depth $d: callgrind ($CG_FRAMES-view turn and frontal)"

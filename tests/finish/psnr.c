@@ -30,7 +30,9 @@
 #include "ref.h"
 #include "timing.h"   /* runtime/front/host: clocks, medians */
 
-extern const mc_scene TEST_SCENE, REF_SCENE;
+extern const mc_model TEST_MODEL, REF_MODEL;
+#define TEST_SCENE (*TEST_MODEL.octree)
+#define REF_SCENE (*REF_MODEL.octree)
 
 #define W 320
 #define H 240
@@ -39,9 +41,14 @@ static uint8_t color[W * H], ref_color[W * H];
 static uint16_t depth[W * H], ref_depth[W * H];
 static double ref_z[W * H];
 
-static void rgb(const mc_scene *s, uint8_t c, uint16_t z, int out[3])
+/* empty pixels are black in both images */
+static void rgb(const mc_octree *s, uint8_t *c, uint16_t *z, size_t i, int out[3])
 {
-    for (int k = 0; k < 3; k++) out[k] = z == MC_DEPTH_EMPTY ? 0 : s->palette[3 * c + k];
+    static const uint8_t black[3] = {0, 0, 0};
+    const mc_target one = {c, z, W, H};
+    uint8_t v[3];
+    mc_target_rgb(&one, (uint32_t)i, s->palette, black, v);
+    for (int k = 0; k < 3; k++) out[k] = v[k];
 }
 
 static double psnr(double *coverage_diff)
@@ -50,8 +57,8 @@ static double psnr(double *coverage_diff)
     size_t cov = 0;
     for (size_t i = 0; i < W * H; i++) {
         int a[3], b[3];
-        rgb(&TEST_SCENE, color[i], depth[i], a);
-        rgb(&REF_SCENE, ref_color[i], ref_depth[i], b);
+        rgb(&TEST_SCENE, color, depth, i, a);
+        rgb(&REF_SCENE, ref_color, ref_depth, i, b);
         for (int k = 0; k < 3; k++) se += (double)(a[k] - b[k]) * (a[k] - b[k]);
         cov += (depth[i] == MC_DEPTH_EMPTY) != (ref_depth[i] == MC_DEPTH_EMPTY);
     }
@@ -73,18 +80,17 @@ int main(int argc, char **argv)
         {"none", MC_FILL_NONE}, {"pixel", MC_FILL_PIXEL}, {"scanline", MC_FILL_SCANLINE}};
     mc_target t = {color, depth, W, H}, rt = {ref_color, ref_depth, W, H};
     int failed = 0;
-    printf("# %s depth %u against the double-precision reference of %s (depth %u), %ux%u\n", TEST_SCENE.name,
-           (unsigned)TEST_SCENE.depth, REF_SCENE.name, (unsigned)REF_SCENE.depth, W, H);
+    printf("# %s depth %u against the double-precision reference of %s (depth %u), %ux%u\n", TEST_MODEL.name,
+           (unsigned)TEST_SCENE.depth, REF_MODEL.name, (unsigned)REF_SCENE.depth, W, H);
     printf("# %-12s %-6s %-9s %8s %10s %9s %8s\n", "view", "splat", "fill", "PSNR dB", "coverage%", "filled", "ms");
     for (size_t vi = 0; vi < sizeof views / sizeof views[0]; vi++) {
         mc_view v = mc_view_default();
         v.yaw = (int32_t)lround(views[vi].yaw * MC_ANGLE_FULL / 360.0);
         v.zoom = (int32_t)lround(views[vi].zoom * MC_ZOOM_ONE);
-        v.splat = MC_SPLAT_PIXEL;
         mc_ref_render(&REF_SCENE, &v, REF_SCENE.depth, &rt, ref_z);
         double all[2][3];
         for (size_t si = 0; si < sizeof splats / sizeof splats[0]; si++) {
-            v.splat = splats[si].splat;
+            const mc_octree_options opt = {splats[si].splat};
             double p[3];
             for (size_t fi = 0; fi < sizeof fills / sizeof fills[0]; fi++) {
                 double ms[101];
@@ -93,7 +99,7 @@ int main(int argc, char **argv)
                 for (int f = 0; f < n; f++) {
                     double t0 = mc_host_now_ms();
                     mc_clear(&t);
-                    mc_render(&TEST_SCENE, &v, TEST_SCENE.depth, &t, NULL, NULL, NULL);
+                    mc_octree_render(&TEST_SCENE, &v, TEST_SCENE.depth, &opt, &t, NULL, NULL, NULL);
                     filled = mc_finish(&t, fills[fi].fill);
                     ms[f] = mc_host_now_ms() - t0;
                 }
@@ -108,17 +114,17 @@ int main(int argc, char **argv)
             for (size_t fi = 1; fi < 3; fi++) {
                 int ok = p[fi] >= p[0] - 1e-9;
                 printf("%s - finish: %s %s, %s splat: %s fill does not lower PSNR (%.2f dB -> %.2f dB)\n",
-                       ok ? "ok" : "not ok", TEST_SCENE.name, views[vi].name, splats[si].name, fills[fi].name, p[0], p[fi]);
+                       ok ? "ok" : "not ok", TEST_MODEL.name, views[vi].name, splats[si].name, fills[fi].name, p[0], p[fi]);
                 failed += !ok;
             }
             int ok = p[2] >= p[1] - 1e-9;
             printf("%s - finish: %s %s, %s splat: scanline fill at least as good as one-pixel fill (%.2f dB vs %.2f dB)\n",
-                   ok ? "ok" : "not ok", TEST_SCENE.name, views[vi].name, splats[si].name, p[2], p[1]);
+                   ok ? "ok" : "not ok", TEST_MODEL.name, views[vi].name, splats[si].name, p[2], p[1]);
             failed += !ok;
             if (views[vi].yaw == 30 && views[vi].zoom == 2 && splats[si].splat == MC_SPLAT_PIXEL) {
                 ok = p[2] > p[0] + 1;
                 printf("%s - finish: %s %s, %s splat: scanline fill raises PSNR by over 1 dB (%.2f dB -> %.2f dB)\n",
-                       ok ? "ok" : "not ok", TEST_SCENE.name, views[vi].name, splats[si].name, p[0], p[2]);
+                       ok ? "ok" : "not ok", TEST_MODEL.name, views[vi].name, splats[si].name, p[0], p[2]);
                 failed += !ok;
             }
             for (size_t fi = 0; fi < 3; fi++) all[si][fi] = p[fi];
@@ -129,20 +135,19 @@ int main(int argc, char **argv)
             for (size_t fi = 0; fi < 3; fi++) best = all[si][fi] > best ? all[si][fi] : best;
         int ok = all[1][2] >= best - 1e-9;
         printf("%s - finish: %s %s: zoom splats with the scanline fill (the defaults) give the highest PSNR of the six (%.2f dB, best %.2f dB)\n",
-               ok ? "ok" : "not ok", TEST_SCENE.name, views[vi].name, all[1][2], best);
+               ok ? "ok" : "not ok", TEST_MODEL.name, views[vi].name, all[1][2], best);
         failed += !ok;
         if (views[vi].zoom <= 1) {   /* leaves under a pixel: both splats draw the same image */
-            v.splat = MC_SPLAT_PIXEL;
+            const mc_octree_options pixel = {MC_SPLAT_PIXEL}, zoom = {MC_SPLAT_ZOOM};
             mc_clear(&t);
-            mc_render(&TEST_SCENE, &v, TEST_SCENE.depth, &t, NULL, NULL, NULL);
+            mc_octree_render(&TEST_SCENE, &v, TEST_SCENE.depth, &pixel, &t, NULL, NULL, NULL);
             memcpy(ref_color, color, sizeof color);
             memcpy(ref_depth, depth, sizeof depth);
-            v.splat = MC_SPLAT_ZOOM;
             mc_clear(&t);
-            mc_render(&TEST_SCENE, &v, TEST_SCENE.depth, &t, NULL, NULL, NULL);
+            mc_octree_render(&TEST_SCENE, &v, TEST_SCENE.depth, &zoom, &t, NULL, NULL, NULL);
             ok = !memcmp(ref_color, color, sizeof color) && !memcmp(ref_depth, depth, sizeof depth);
             printf("%s - finish: %s %s: zoom and one-pixel splats draw the same image when leaves are under a pixel\n",
-                   ok ? "ok" : "not ok", TEST_SCENE.name, views[vi].name);
+                   ok ? "ok" : "not ok", TEST_MODEL.name, views[vi].name);
             failed += !ok;
         }
     }

@@ -57,7 +57,7 @@ for m in bunny00 nefertiti; do
             { notok "$m: reference bake at depth 9" "$(head -n 3 "$out/$m-d9.bake.log" | oneline)"; continue; }
     fi
     # shellcheck disable=SC2086,SC2046
-    if gcc $CFLAGS_T -O2 -g -Iruntime/ref -Iruntime/front/host -DTEST_SCENE=mc_scene_$m -DREF_SCENE=mc_scene_${m}_d9 -o "$out/psnr-$m" \
+    if gcc $CFLAGS_T -O2 -g -Iruntime/ref -Iruntime/front/host -DTEST_MODEL=mc_model_$m -DREF_MODEL=mc_model_${m}_d9 -o "$out/psnr-$m" \
         tests/finish/psnr.c runtime/src/*.c runtime/ref/ref.c $(ls build/$m/*.c | grep -v '_app\.c$') \
         $(ls "$ref"/*.c | grep -v '_app\.c$') -lm >"$out/psnr-$m.build.log" 2>&1; then
         run "psnr $m" "$out/psnr-$m"

@@ -1,6 +1,6 @@
 /* Hole filling on synthetic images (modelc/finish.h): the scanline neighbourhood criterion closes
  * hole types 1 to 4 and leaves border holes (type 5) open; it agrees with a brute-force evaluation
- * of the criterion on random images; and zoom footprints (view.h, MC_SPLAT_ZOOM) cover s x s
+ * of the criterion on random images; and zoom footprints (octree_render.h, MC_SPLAT_ZOOM) cover s x s
  * pixels. Prints "ok - NAME" / "not ok - NAME: why" per check; exits non-zero if any failed.
  */
 #include <stdio.h>
@@ -118,8 +118,8 @@ static const uint8_t one_mask[1] = {0x01}, one_color[1] = {5};
 static const mc_chunk mask_chunks[2] = {{one_mask, 1}, {0, 0}};
 static const mc_chunk color_chunks[2] = {{one_color, 1}, {0, 0}};
 static const uint8_t palette[3 * 8] = {0};
-static const mc_level one_levels[2] = {{1, mask_chunks, NULL}, {1, NULL, color_chunks}};
-static const mc_scene one_leaf = {"one_leaf", 1, 8, palette, one_levels};
+static const mc_octree_level one_levels[2] = {{1, mask_chunks, NULL}, {1, NULL, color_chunks}};
+static const mc_octree one_leaf = {1, 8, palette, one_levels};
 
 static int drawn_pixels(void)
 {
@@ -265,14 +265,13 @@ int main(void)
         int side = fp[i].want_side > MC_SPLAT_MAX ? MC_SPLAT_MAX : fp[i].want_side;
         mc_view v = mc_view_default();
         v.zoom = fp[i].zoom;
-        v.splat = MC_SPLAT_ZOOM;
+        const mc_octree_options zoom = {MC_SPLAT_ZOOM}, pixel = {MC_SPLAT_PIXEL};
         mc_clear(&ft);
         mc_stats st;
-        mc_render(&one_leaf, &v, 1, &ft, NULL, NULL, &st);
+        mc_octree_render(&one_leaf, &v, 1, &zoom, &ft, NULL, NULL, &st);
         int got = drawn_pixels();
-        v.splat = MC_SPLAT_PIXEL;
         mc_clear(&ft);
-        mc_render(&one_leaf, &v, 1, &ft, NULL, NULL, NULL);
+        mc_octree_render(&one_leaf, &v, 1, &pixel, &ft, NULL, NULL, NULL);
         int one = drawn_pixels();
         snprintf(name, sizeof name, "zoom splat: a leaf %.3g pixels wide covers %dx%d pixels, one-pixel splat 1",
                  fp[i].zoom / 65536.0 * H / 2, side, side);

@@ -13,7 +13,7 @@
 #   - cross-check (FW_BENCH_TRACE=0 skips it; it takes a few minutes): the lm3s6965evb firmware again
 #     under -singlestep -d exec,nochain, QEMU's execution trace with one line per executed instruction;
 #     the line numbers of the stage marker function's entries give each stage's instructions exactly;
-#   - host: valgrind --tool=callgrind --toggle-collect=mc_render --dump-after=mc_render on the host
+#   - host: valgrind --tool=callgrind --toggle-collect=mc_octree_render --dump-after=mc_octree_render on the host
 #     viewer linked with the same bake (--checksums: the same views), one dump per frame.
 # FW_BENCH_REPORT_ONLY=1 rewrites the section from the files of the last run without running anything.
 set -u
@@ -41,7 +41,7 @@ for b in $boards; do
     grep -q '^cost frame' "$out/$b.icount.txt" || die "$b: no cost lines (see $out/$b.icount.txt)"
     say "host callgrind for the $b bake"
     rm -f "$out/$b.cg".*
-    valgrind --tool=callgrind --toggle-collect=mc_render --dump-after=mc_render \
+    valgrind --tool=callgrind --toggle-collect=mc_octree_render --dump-after=mc_octree_render \
         --callgrind-out-file="$out/$b.cg.%p" build/fw/$b/$model/$model-view --checksums \
         >"$out/$b.host.txt" 2>"$out/$b.valgrind.txt" || die "$b: valgrind failed (see $out/$b.valgrind.txt)"
     if [ "$b" = lm3s6965evb ] && [ "$trace" = 1 ]; then
@@ -117,23 +117,23 @@ A("")
 qv = subprocess.run(["qemu-system-arm", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
 gv = subprocess.run(["arm-none-eabi-gcc", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
 import hashlib
-sha = hashlib.sha256(open("runtime/src/render.c", "rb").read()).hexdigest()[:16]
+sha = hashlib.sha256(open("runtime/src/octree_render.c", "rb").read()).hexdigest()[:16]
 A(f"- {qv}; {gv}, `-O2`, picolibc 1.8 (semihosting); host: valgrind callgrind on the same bake, gcc -O2 x86-64; "
-  f"runtime/src/render.c sha256 {sha}")
+  f"runtime/src/octree_render.c sha256 {sha}")
 A(f"- model {model}, each board's bake (`make firmware MODEL={model} BOARD=...`): mps2-an386 depth 8 at 320x240, "
   "lm3s6965evb depth 7 at 160x128; the nine views of `runtime/front/fw/views.h` (the checksum views)")
 A("- **instructions, not cycles**: QEMU counts executed instructions (`-icount shift=0`: 1 ns of virtual time per "
   "instruction, read through SysTick at each stage boundary and calibrated with a loop of known length, exact to "
   "one tick = 80 instructions on lm3s6965evb, 40 on mps2-an386). A real Cortex-M3/M4 takes more cycles than "
   "instructions (loads 2 cycles, taken branches 2-4, flash wait states on the M3 above 20-50 MHz): QEMU models no timing.")
-A("- render = mc_render alone (what callgrind's `--toggle-collect=mc_render` counts on the host: Ir); clear = mc_clear; "
+A("- render = mc_octree_render alone (what callgrind's `--toggle-collect=mc_octree_render` counts on the host: Ir); clear = mc_clear; "
   "finish = mc_finish_pixel_holes; points = leaves that landed on screen (mc_stats.points)")
 A("")
 A("Commands:")
 A("```")
 A(f"make bench-firmware        # runs: make firmware firmware-host MODEL={model} BOARD=b, then")
 A(f"qemu-system-arm -M b -nographic -monitor none -icount shift=0 -semihosting-config enable=on,target=native,arg={model},arg=FRAME.ppm,arg=bench -kernel build/fw/b/{model}.elf")
-A(f"valgrind --tool=callgrind --toggle-collect=mc_render --dump-after=mc_render build/fw/b/{model}/{model}-view --checksums")
+A(f"valgrind --tool=callgrind --toggle-collect=mc_octree_render --dump-after=mc_octree_render build/fw/b/{model}/{model}-view --checksums")
 if trace:
     A(f"qemu-system-arm -M lm3s6965evb ... -singlestep -d exec,nochain -D FIFO ...   # cross-check: one trace line per instruction")
 A("```")
@@ -148,7 +148,7 @@ for b, cpu in boards:
     A("")
     A(f"Frame checksums equal the host viewer's: **{'yes' if same else 'NO'}** ({len(fr)} frames).")
     A("")
-    A("| view | points | clear | render | **render / point** | finish | frame (clear+render+finish) | frame / point | host mc_render Ir | host Ir / point |")
+    A("| view | points | clear | render | **render / point** | finish | frame (clear+render+finish) | frame / point | host mc_octree_render Ir | host Ir / point |")
     A("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     tot = {"o": [0, 0, 0, 0], "p": [0, 0, 0, 0]}
     for i in sorted(co):
@@ -179,7 +179,7 @@ for b, cpu in boards:
         if rows:
             worst = max(abs(t - q) for _, t, q in rows)
             A(f"Cross-check with QEMU's execution trace (`-singlestep -d exec,nochain`, one line per instruction; line numbers "
-              f"of the stage marker's entries): mc_render's instructions per frame differ from the `-icount` figures above "
+              f"of the stage marker's entries): mc_octree_render's instructions per frame differ from the `-icount` figures above "
               f"by at most {worst} instructions over {len(rows)} frames (one SysTick tick is 80; each figure also includes "
               f"the ~10 instructions of one stage marker). Trace counts: "
               + ", ".join(f"frame {i} {t:,}" for i, t, _ in rows) + ".")
@@ -192,7 +192,7 @@ A("The paper (Barth, Schwanecke & Wild, figure 10) times the frontal view of a d
 A("")
 m4, m3 = summary.get("mps2-an386"), summary.get("lm3s6965evb")
 if m4 and m3:
-    A("| | frontal view: mc_render instructions / point | frontal: whole frame (clear + render + finish) / point | orthographic views 0-6: render / point | host x86-64 Ir / point (frontal) |")
+    A("| | frontal view: mc_octree_render instructions / point | frontal: whole frame (clear + render + finish) / point | orthographic views 0-6: render / point | host x86-64 Ir / point (frontal) |")
     A("|---|---:|---:|---:|---:|")
     A(f"| Cortex-M4F (mps2-an386, depth 8, 320x240) | **{m4[0]:.1f}** | {m4[1]:.1f} | {m4[2]:.1f} | {m4[3]:.1f} |")
     A(f"| Cortex-M3 (lm3s6965evb, depth 7, 160x128) | **{m3[0]:.1f}** | {m3[1]:.1f} | {m3[2]:.1f} | {m3[3]:.1f} |")

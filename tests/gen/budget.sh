@@ -43,7 +43,7 @@ assert f["image"] == f["total"] + f["descriptors"] + f["runtime_code"]["total"],
 assert f["runtime_code"]["total"] == sum(v for k, v in f["runtime_code"].items() if k not in ("total", "leaf_switch"))
 assert b["ram"]["image"] == 3 * 320 * 240 + b["ram"]["runtime_static"]
 assert b["stack"]["bound"] > 2000 and b["stack"]["frames"]["walk_frames"] == 4
-assert set(b["modules"]) == {"fixed", "trig", "view", "render", "finish"}, b["modules"]
+assert set(b["modules"]) == {"fixed", "trig", "xform", "target", "octree_render", "finish"}, b["modules"]
 PY
 fb=$((flash - 1000)) sb=$((stack - 100))
 mkdir -p "$tmp/over"
@@ -109,7 +109,7 @@ check "palette entries all used (bunny00 cut to depth 5 by --fit)" used "$tmp/f1
 # --- --emit lib and the README example --------------------------------------------------------
 "$modelc" "$bunny" -q --depth 5 --emit lib -o "$tmp/lib"
 check "--emit lib writes the model's .h/.c and budget.json, no app binding" \
-    test -f "$tmp/lib/bunny00/bunny00.h" -a -f "$tmp/lib/bunny00/bunny00_scene.c" -a ! -e "$tmp/lib/bunny00/bunny00_app.c" -a \
+    test -f "$tmp/lib/bunny00/bunny00.h" -a -f "$tmp/lib/bunny00/bunny00_octree.c" -a -f "$tmp/lib/bunny00/bunny00_model.c" -a ! -e "$tmp/lib/bunny00/bunny00_app.c" -a \
     "$(json "$tmp/lib/bunny00/budget.json" 'b["emit"]')" = lib
 check "--emit app (the default) writes the app binding" test -f "$tmp/ref/bunny00/bunny00_app.c"
 check "README's library example is tests/lib/example.c, verbatim" python3 - <<'PY'
@@ -129,8 +129,8 @@ fi
 if $rt_cc -ffunction-sections -fdata-sections -I"$tmp/lib/bunny00" -o "$tmp/example-gc" tests/lib/example.c \
     runtime/src/*.c "$tmp/lib/bunny00"/*.c -Wl,--gc-sections 2>"$tmp/gc.log"; then
     syms=$(nm "$tmp/example-gc")
-    check "--gc-sections: the example links mc_render and mc_finish_pixel_holes but not mc_finish_scanline_holes or mc_finish" \
-        test -n "$(grep ' T mc_render$' <<<"$syms")" -a -n "$(grep ' T mc_finish_pixel_holes$' <<<"$syms")" -a \
+    check "--gc-sections: the example links mc_octree_render and mc_finish_pixel_holes but not mc_finish_scanline_holes or mc_finish" \
+        test -n "$(grep ' T mc_octree_render$' <<<"$syms")" -a -n "$(grep ' T mc_finish_pixel_holes$' <<<"$syms")" -a \
         -z "$(grep ' mc_finish_scanline_holes$\| mc_finish$' <<<"$syms")"
 else
     nok "--gc-sections build of the example: $(head -n 3 "$tmp/gc.log" | tr '\n' ' ')"
@@ -140,8 +140,9 @@ over=('-DMC_BUNNY00_SECTION=__attribute__((section(".models")))' '-DMC_BUNNY00_A
 if $rt_cc "${over[@]}" -I"$tmp/lib/bunny00" -o "$tmp/example2" tests/lib/example.c runtime/src/*.c "$tmp/lib/bunny00"/*.c 2>"$tmp/ex2.log"; then
     syms=$(nm "$tmp/example2")
     check "section, alignment and prefix macros: .models section, global symbols board_*, same frames" \
-        test -n "$(objdump -h "$tmp/example2" | grep ' \.models ')" -a -n "$(grep ' board_scene$' <<<"$syms")" -a \
-        -z "$(grep ' [A-Z] mc_scene_bunny00$\| [A-Z] mc_bunny00_' <<<"$syms")" -a "$("$tmp/example2")" = "$(cat "$tmp/example.out")"
+        test -n "$(objdump -h "$tmp/example2" | grep ' \.models ')" -a -n "$(grep ' board_model$' <<<"$syms")" -a \
+        -n "$(grep ' board_octree$' <<<"$syms")" -a \
+        -z "$(grep ' [A-Z] mc_model_bunny00$\| [A-Z] mc_octree_bunny00$\| [A-Z] mc_bunny00_' <<<"$syms")" -a "$("$tmp/example2")" = "$(cat "$tmp/example.out")"
 else
     nok "section, alignment and prefix macros build: $(head -n 3 "$tmp/ex2.log" | tr '\n' ' ')"
 fi
@@ -155,7 +156,7 @@ measure() {   # CC FLAGS... : compile runtime/src with -fstack-usage into $tmp/s
             -ffunction-sections -fdata-sections "$@" -c "$OLDPWD/$f") || return 1
     done
 }
-tables() {   # KIND DIR SIZE-TOOL: every frame in the table >= measured; every render.c function listed
+tables() {   # KIND DIR SIZE-TOOL: every frame in the table >= measured; every octree_render.c function listed
     python3 - "$@" <<'PY'
 import glob, re, subprocess, sys
 kind, d, size = sys.argv[1:]
@@ -171,8 +172,8 @@ for su in glob.glob(d + "/*.su"):
         if fn in frames:
             if int(n) > frames[fn][col]:
                 bad.append("%s: %s bytes, table %d" % (fn, n, frames[fn][col]))
-        elif mod == "render" and fn not in ("mc_clear",):
-            bad.append("%s (render.c) missing from kFrames" % fn)
+        elif mod == "octree_render":
+            bad.append("%s (octree_render.c) missing from kFrames" % fn)
         if "static" not in qual:
             bad.append("%s: %s stack" % (fn, qual.strip()))
 if kind == "arm":
@@ -193,7 +194,7 @@ if bad:
 PY
 }
 if measure host gcc; then
-    check "stack table >= host gcc -O2 -fstack-usage for every function, every render.c function listed" tables host "$tmp/su-host" size
+    check "stack table >= host gcc -O2 -fstack-usage for every function, every octree_render.c function listed" tables host "$tmp/su-host" size
 else
     nok "host -fstack-usage build of runtime/src"
 fi

@@ -3,7 +3,7 @@
  *   dump LIMIT    prints, per level, the node count and an FNV-1a hash of the reassembled mask and
  *                 colour streams, then a checksum of a rendered frame; exits 1 (with a message) when
  *                 a chunk is larger than LIMIT, a level's chunks do not add up to its node count, or
- *                 a chunk boundary splits a group the renderer reads at once (scene.h). */
+ *                 a chunk boundary splits a group the renderer reads at once (octree.h). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -32,7 +32,7 @@ static int walk(const mc_chunk *c, unsigned long limit, uint32_t *total, uint32_
 static uint32_t prefix_store[1u << 23];
 static uint32_t *prefix[MC_MAX_DEPTH];
 
-static void build_prefixes(const mc_scene *s)
+static void build_prefixes(const mc_octree *s)
 {
     uint32_t *p = prefix_store;
     for (unsigned l = 0; l < s->depth; l++) {
@@ -50,7 +50,7 @@ static void build_prefixes(const mc_scene *s)
 
 /* Every chunk of `chunks` (entries of level l) must end where the descendants of some node at level
  * l - up end: the renderer reads such a group from one chunk. */
-static int check_groups(const mc_scene *s, const mc_chunk *chunks, unsigned l, unsigned up, const char *what)
+static int check_groups(const mc_octree *s, const mc_chunk *chunks, unsigned l, unsigned up, const char *what)
 {
     unsigned a = l < up ? 0 : l - up;
     uint32_t i = 0, end = 0;
@@ -72,12 +72,12 @@ static int check_groups(const mc_scene *s, const mc_chunk *chunks, unsigned l, u
 
 int main(int argc, char **argv)
 {
-    const mc_scene *s = mc_app_model.scene;
+    const mc_octree *s = mc_app_model.model->octree;
     unsigned long limit = argc > 1 ? strtoul(argv[1], NULL, 10) : 65536;
     int bad = 0;
     build_prefixes(s);
     for (unsigned l = 0; l <= s->depth; l++) {
-        const mc_level *lv = &s->levels[l];
+        const mc_octree_level *lv = &s->levels[l];
         uint32_t hm = 2166136261u, hc = 2166136261u, nm = 0, nc = 0;
         if (lv->masks) bad |= walk(lv->masks, limit, &nm, &hm, "masks", l);
         if (lv->colors) bad |= walk(lv->colors, limit, &nc, &hc, "colours", l);
@@ -93,7 +93,7 @@ int main(int argc, char **argv)
     mc_view v = mc_view_default();
     v.yaw = 300, v.pitch = 100;
     mc_clear(&t);
-    mc_render(s, &v, s->depth, &t, NULL, NULL, NULL);
+    mc_octree_render(s, &v, s->depth, NULL, &t, NULL, NULL, NULL);
     uint32_t h = 2166136261u;
     for (int i = 0; i < 320 * 240; i++) h = fnv(fnv(fnv(h, t.color[i]), (uint8_t)t.depth[i]), (uint8_t)(t.depth[i] >> 8));
     printf("frame %08x\n", h);

@@ -17,14 +17,14 @@ static void display_line(int y, const uint16_t *rgb565, int w)
 
 int main(void)
 {
-    const mc_scene *s = &mc_scene_bunny00;
+    const mc_octree *s = mc_model_bunny00.octree;     /* the model's point octree */
     mc_target t = {color, depth, W, H};
     mc_view v = mc_view_default();
     uint16_t line[W];
     for (int frame = 0; frame < 8; frame++) {
         v.yaw = frame * (MC_ANGLE_FULL / 8);           /* an eighth of a turn per frame */
         mc_clear(&t);
-        mc_render(s, &v, MC_BUNNY00_DEPTH, &t, NULL, NULL, NULL);
+        mc_octree_render(s, &v, MC_BUNNY00_DEPTH, NULL, &t, NULL, NULL, NULL);   /* default options */
         mc_finish_pixel_holes(&t);
         for (int y = 0; y < H; y++) {
             for (int x = 0; x < W; x++) {

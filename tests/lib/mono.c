@@ -17,9 +17,9 @@ static uint16_t z1[W * H], z2[W * H];
 int main(void)
 {
     int fails = 0;
-    if (mc_scene_mono.palette_size != 1) { printf("not ok - mono: palette has %u entries\n", mc_scene_mono.palette_size); return 1; }
-    for (unsigned l = 0; l <= mc_scene_mono.depth; l++)
-        if (mc_scene_mono.levels[l].colors) { printf("not ok - mono: level %u has colours\n", l); return 1; }
+    if (mc_octree_mono.palette_size != 1) { printf("not ok - mono: palette has %u entries\n", mc_octree_mono.palette_size); return 1; }
+    for (unsigned l = 0; l <= mc_octree_mono.depth; l++)
+        if (mc_octree_mono.levels[l].colors) { printf("not ok - mono: level %u has colours\n", l); return 1; }
     printf("ok - mono: one palette entry, no colour list at any level\n");
     static const int32_t views[][6] = {   /* yaw, pitch, zoom/16, tx, ty, perspective */
         {0, 0, 16, 0, 0, 0}, {341, 113, 16, 0, 0, 0}, {700, -200, 40, 30, -20, 0},
@@ -35,8 +35,8 @@ int main(void)
             mc_stats sa, sb;
             mc_clear(&a), mc_clear(&b);
             memset(c2, 7, sizeof c2);            /* mono must write index 0 over anything */
-            int ra = mc_render(&mc_scene_colr, &v, d, &a, NULL, NULL, &sa);
-            int rb = mc_render(&mc_scene_mono, &v, d, &b, NULL, NULL, &sb);
+            int ra = mc_octree_render(&mc_octree_colr, &v, d, NULL, &a, NULL, NULL, &sa);
+            int rb = mc_octree_render(&mc_octree_mono, &v, d, NULL, &b, NULL, NULL, &sb);
             long drawn = 0, wrong = 0;
             for (int p = 0; p < W * H; p++) {
                 drawn += z2[p] != MC_DEPTH_EMPTY;

@@ -95,12 +95,13 @@ static int32_t angle(double deg) { return (int32_t)lround(deg * MC_ANGLE_FULL / 
 
 static int run_case(const view_case *vc)
 {
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_octree *scene = mc_app_model.model->octree;
     mc_view v = mc_view_default();
     v.yaw = angle(vc->yaw), v.pitch = angle(vc->pitch), v.roll = angle(vc->roll);
     v.zoom = (int32_t)lround(vc->zoom * MC_ZOOM_ONE);
     v.projection = vc->perspective ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
-    v.splat = MC_SPLAT_PIXEL;   /* one pixel per leaf, as the reference image draws */
+    const mc_octree_options opt = {MC_SPLAT_PIXEL};   /* one pixel per leaf, as the reference image draws */
+    const char *name = mc_app_model.model->name;
     unsigned depth = scene->depth - (unsigned)vc->coarser;
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)vc->w, (uint16_t)vc->h};
     mc_target rt = {ref_color, ref_depth, (uint16_t)vc->w, (uint16_t)vc->h};
@@ -108,8 +109,8 @@ static int run_case(const view_case *vc)
     n_fixed = n_ref = 0;
     mc_clear(&t);
     mc_stats st;
-    if (mc_render(scene, &v, depth, &t, NULL, NULL, &st) != MC_OK) {
-        printf("not ok - %s %s: mc_render failed\n", scene->name, vc->name);
+    if (mc_octree_render(scene, &v, depth, &opt, &t, NULL, NULL, &st) != MC_OK) {
+        printf("not ok - %s %s: mc_octree_render failed\n", name, vc->name);
         return 1;
     }
     mc_ref_points(scene, &v, depth, t.width, t.height, record_ref, NULL);
@@ -146,7 +147,7 @@ static int run_case(const view_case *vc)
     int ok = total > 1000 && share >= 0.999 && max_err <= bound && pix_share >= 0.995;
     printf("%s - %s %s: %zu points, %.4f%% on the same pixel, max error %.2e px (bound %.2e), "
            "%.3f%% of pixels equal\n",
-           ok ? "ok" : "not ok", scene->name, vc->name, total, 100 * share, max_err, bound, 100 * pix_share);
+           ok ? "ok" : "not ok", name, vc->name, total, 100 * share, max_err, bound, 100 * pix_share);
     return !ok;
 }
 

@@ -4,7 +4,7 @@
  *                        property and a summary line "# views ... seconds ..."
  *
  * Linked with one model's generated files and a runtime compiled with MC_PLOT_HOOK pointing at
- * stress_point below (see tests/stress/suite.sh), so every point mc_render puts on screen is
+ * stress_point below (see tests/stress/suite.sh), so every point mc_octree_render puts on screen is
  * recorded with its Q F position and the address of its palette index (which names the leaf).
  *
  * Views: every angle (mostly one turn, sometimes any int32), zoom log-uniform over [1/64, 64] and
@@ -18,17 +18,17 @@
  * without clearing. Per frame:
  *
  *  1. guard zones: GUARD elements before and after the colour and the depth buffer hold a pattern
- *     that changes every frame; after mc_clear, after mc_render and after each finishing mode
+ *     that changes every frame; after mc_clear, after mc_octree_render and after each finishing mode
  *     (mc_finish with every mc_fill) the zones must be unchanged;
- *  2. every point mc_render draws is a leaf the reference (runtime/ref, mc_ref_points, double
+ *  2. every point mc_octree_render draws is a leaf the reference (runtime/ref, mc_ref_points, double
  *     precision, the same clamped view) walks, in the same order, and lies within BOUND of the
  *     reference's position on both axes;
  *  3. every leaf the reference puts on screen further than BOUND from the target's edges (and, in
  *     perspective, clearly in front of the near plane) is drawn, unless the frame was aborted;
- *  4. mc_stats.points equals the number of points the hook saw, and mc_render returns MC_OK (or
+ *  4. mc_stats.points equals the number of points the hook saw, and mc_octree_render returns MC_OK (or
  *     MC_ERR_SIZE for a target over MC_TARGET_MAX, then writing nothing);
  *  5. with -DSTRESS_ALT=1 (tests/stress/suite.sh links a second copy of render.c built with the other
- *     form of the depth test, MC_DEPTH_SELECT, its entry points renamed mc_render_alt/mc_clear_alt):
+ *     form of the depth test, MC_DEPTH_SELECT, its entry points renamed mc_octree_render_alt/mc_clear_alt):
  *     the other form, drawing the same frames into a second target, leaves both buffers byte for byte
  *     equal to this one's. The select form parks losing leaves on a spare pixel and puts it back, so
  *     a wrong spare would show here as one changed pixel, which the reference checks cannot see.
@@ -91,8 +91,8 @@ static uint16_t depth_mem[GUARD + MAXW * MAXH + GUARD];
 #if STRESS_ALT
 /* the other depth-test form (check 5) */
 void mc_clear_alt(const mc_target *t);
-int mc_render_alt(const mc_scene *scene, const mc_view *view, unsigned depth, const mc_target *t,
-                  mc_abort_fn abort, void *user, mc_stats *stats);
+int mc_octree_render_alt(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,
+                         const mc_target *t, mc_abort_fn abort, void *user, mc_stats *stats);
 static uint8_t alt_color[MAXW * MAXH];
 static uint16_t alt_depth[MAXW * MAXH];
 #endif
@@ -197,16 +197,17 @@ static void fail(uint64_t *counter, const char *fmt, ...)
 
 static const mc_fill fill_modes[] = {MC_FILL_PIXEL, MC_FILL_SCANLINE};
 
-static void describe(char *buf, size_t n, const mc_view *v, unsigned w, unsigned h, unsigned d, uint64_t view)
+static void describe(char *buf, size_t n, const mc_view *v, const mc_octree_options *opt, unsigned w, unsigned h,
+                     unsigned d, uint64_t view)
 {
     snprintf(buf, n,
              "view %" PRIu64 ": %ux%u depth %u yaw %" PRId32 " pitch %" PRId32 " roll %" PRId32 " zoom %" PRId32
              " tx %" PRId32 " ty %" PRId32 " proj %d eye %" PRId32 " splat %d",
              view, w, h, d, v->yaw, v->pitch, v->roll, v->zoom, v->tx, v->ty, (int)v->projection, v->eye,
-             (int)v->splat);
+             (int)opt->splat);
 }
 
-static void one_view(const mc_scene *scene, counters *k)
+static void one_view(const mc_octree *scene, counters *k)
 {
     mc_view v = mc_view_default();
     /* angles: mostly one turn, sometimes any int32 */
@@ -244,7 +245,8 @@ static void one_view(const mc_scene *scene, counters *k)
     case 1: v.eye = MC_EYE_MIN; break;
     default: v.eye = (int32_t)lround(MC_ZOOM_ONE * exp2(rnd_unit() * 12 - 4)); break;
     }
-    v.splat = (mc_splat)(int)rnd_below(4);   /* default, pixel, zoom, and one out of range */
+    mc_octree_options opt;
+    opt.splat = (mc_splat)(int)rnd_below(4);   /* default, pixel, zoom, and one out of range */
 
     unsigned w, h;
     switch (rnd_below(16)) {
@@ -261,7 +263,7 @@ static void one_view(const mc_scene *scene, counters *k)
     size_t n = (size_t)w * h;
     mc_target t = {color_mem + GUARD, depth_mem + GUARD, (uint16_t)w, (uint16_t)h};
     char what[400];
-    describe(what, sizeof what, &v, w, h, d, k->views);
+    describe(what, sizeof what, &v, &opt, w, h, d, k->views);
     k->views++;
 
     pattern_seed = (uint32_t)rnd();
@@ -275,7 +277,7 @@ static void one_view(const mc_scene *scene, counters *k)
         mc_target big = t;
         if (rnd_below(2)) big.width = (uint16_t)(MC_TARGET_MAX + 1 + rnd_below(100));
         else big.height = (uint16_t)(MC_TARGET_MAX + 1 + rnd_below(100));
-        if (mc_render(scene, &v, d, &big, NULL, NULL, NULL) != MC_ERR_SIZE)
+        if (mc_octree_render(scene, &v, d, &opt, &big, NULL, NULL, NULL) != MC_ERR_SIZE)
             fail(&k->rc_fail, "a %ux%u target was not refused: %s", big.width, big.height, what);
         k->rejected++;
     }
@@ -286,10 +288,10 @@ static void one_view(const mc_scene *scene, counters *k)
     mc_stats st = {0, 0, 0};
     for (int r = 0; r < repeat; r++) {
         n_fixed = 0;
-        int rc = mc_render(scene, &v, d, &t, use_abort ? abort_after : NULL, &ab, &st);
-        if (rc != MC_OK) fail(&k->rc_fail, "mc_render returned %d: %s", rc, what);
+        int rc = mc_octree_render(scene, &v, d, &opt, &t, use_abort ? abort_after : NULL, &ab, &st);
+        if (rc != MC_OK) fail(&k->rc_fail, "mc_octree_render returned %d: %s", rc, what);
         g = guards_check(n);
-        if (g >= 0) fail(&k->guard_fail, "mc_render changed guard element %ld: %s", g, what);
+        if (g >= 0) fail(&k->guard_fail, "mc_octree_render changed guard element %ld: %s", g, what);
         if (st.points != n_fixed) fail(&k->stats_fail, "stats.points %" PRIu32 " but %zu points plotted: %s", st.points, n_fixed, what);
     }
     k->frames_drawn += (uint64_t)repeat;
@@ -300,7 +302,7 @@ static void one_view(const mc_scene *scene, counters *k)
         abort_state ab2 = {0, ab.give_up_after};
         mc_clear_alt(&at);
         for (int r = 0; r < repeat; r++)
-            mc_render_alt(scene, &v, d, &at, use_abort ? abort_after : NULL, &ab2, NULL);
+            mc_octree_render_alt(scene, &v, d, &opt, &at, use_abort ? abort_after : NULL, &ab2, NULL);
         if (memcmp(at.color, t.color, n) || memcmp(at.depth, t.depth, n * sizeof at.depth[0])) {
             size_t p = 0;
             while (p < n && at.color[p] == t.color[p] && at.depth[p] == t.depth[p]) p++;
@@ -421,7 +423,7 @@ int main(int argc, char **argv)
     uint64_t seed = argc > 2 ? strtoull(argv[2], NULL, 10) : 1;
     rng_state = seed * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull;
     if (!rng_state) rng_state = 1;
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_octree *scene = mc_app_model.model->octree;
     counters k;
     memset(&k, 0, sizeof k);
     struct timespec t0, t1;
@@ -436,12 +438,12 @@ int main(int argc, char **argv)
         if (cond) printf("ok - %s: %s (%" PRIu64 " views, seed %" PRIu64 ")\n", tag, name, k.views, seed);     \
         else printf("not ok - %s: %s: %" PRIu64 " failures; first: %s\n", tag, name, counter, first_failure);   \
     } while (0)
-    REPORT(!k.guard_fail, "guard zones around colour and depth intact after mc_clear, mc_render, mc_finish", k.guard_fail);
+    REPORT(!k.guard_fail, "guard zones around colour and depth intact after mc_clear, mc_octree_render, mc_finish", k.guard_fail);
     REPORT(!k.order_fail, "every drawn point is a leaf of the reference walk, in stored order", k.order_fail);
     REPORT(!k.pos_fail, "every drawn point within the stated bound of its double-precision position", k.pos_fail);
     REPORT(!k.missing_fail, "every leaf clearly on screen is drawn", k.missing_fail);
     REPORT(!k.stats_fail, "mc_stats.points equals the points plotted", k.stats_fail);
-    REPORT(!k.rc_fail, "mc_render returns MC_OK, and MC_ERR_SIZE for targets over MC_TARGET_MAX", k.rc_fail);
+    REPORT(!k.rc_fail, "mc_octree_render returns MC_OK, and MC_ERR_SIZE for targets over MC_TARGET_MAX", k.rc_fail);
 #if STRESS_ALT
     REPORT(!k.alt_fail && k.alt_frames == k.views,
            "the other depth-test form (MC_DEPTH_SELECT) draws byte-identical colour and depth buffers", k.alt_fail);

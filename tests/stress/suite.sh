@@ -38,17 +38,21 @@ if [ ! -f "$bake/budget.json" ] || [ "$bake/budget.json" -ot build/bin/modelc ];
 fi
 
 build() {   # build OUTPUT FLAGS...
-    # the runtime with the select form of the depth test, plus a second copy of render.c with the
+    # the runtime with the select form of the depth test, plus a second copy of octree_render.c (and
+    # target.c's mc_clear) with the
     # branch form (entry points renamed, no plot hook) that stress.c checks against it (check 5)
     local prog=$1
     shift
     # shellcheck disable=SC2068
-    gcc -std=c99 "$@" -DMC_DEPTH_SELECT=0 -Dmc_render=mc_render_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
-        -Iruntime/include -c -o "$prog.alt.o" runtime/src/render.c >"$prog.log" 2>&1 || return 1
+    gcc -std=c99 "$@" -DMC_DEPTH_SELECT=0 -Dmc_octree_render=mc_octree_render_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
+        -Iruntime/include -c -o "$prog.alt.o" runtime/src/octree_render.c >"$prog.log" 2>&1 || return 1
+    # shellcheck disable=SC2068
+    gcc -std=c99 "$@" -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
+        -Iruntime/include -c -o "$prog.alt-target.o" runtime/src/target.c >>"$prog.log" 2>&1 || return 1
     # shellcheck disable=SC2068
     gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" -DMC_DEPTH_SELECT=1 -DSTRESS_ALT=1 -Wall -Wextra -Werror \
         -Iruntime/include -Iruntime/ref '-DMC_PLOT_HOOK(fx,fy,c)=stress_point(fx,fy,c)' -include tests/stress/hook.h \
-        -o "$prog" tests/stress/stress.c runtime/ref/ref.c runtime/src/*.c "$prog.alt.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
+        -o "$prog" tests/stress/stress.c runtime/ref/ref.c runtime/src/*.c "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
 }
 
 # ---- optimised, JOBS processes with consecutive seeds ---------------------------------------------

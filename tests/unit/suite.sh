@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Unit tests of the runtime: fixed point, sine table and rotation, view clamping, mc_render's
-# contract on hand-made and random scenes, hole filling (cmocka, tests/unit/test_*.c), and the
-# freestanding build of runtime/src under gcc and clang.
+# Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, view
+# clamping, mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
+# tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
 # SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit).
@@ -83,6 +83,7 @@ for f in 15 8 24; do
     build_and_run "unit: fixed F=$f: " "test_fixed-f$f" -DMC_FRAC_BITS=$f
 done
 build_and_run "unit: trig: " test_trig
+build_and_run "unit: bits, rng, chunk: " test_bits
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/)
 for f in 15 8 24; do

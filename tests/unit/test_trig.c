@@ -1,4 +1,4 @@
-/* Sine, cosine and the view rotation (modelc/trig.h, runtime/src/trig.c, sintab.c, view.c).
+/* Sine, cosine and the view rotation (modelc/trig.h, runtime/src/trig.c, sintab.c, xform.c).
  *
  * References are long double: sinl(2 pi a / 4096) with the angle first reduced exactly to a turn in
  * integers, so the reference itself is good to ~1e-9 units of Q30; every bound below adds a slack of
@@ -29,7 +29,7 @@
 #include <cmocka.h>
 
 #include <modelc/trig.h>
-#include <modelc/view.h>
+#include <modelc/xform.h>
 
 #define PI_L 3.14159265358979323846264338327950288L
 #define Q30 1073741824.0L

@@ -1,4 +1,4 @@
-/* View clamping, mc_render's argument checks and contract on hand-made and random scenes, and the
+/* View clamping, mc_octree_render's argument checks and contract on hand-made and random scenes, and the
  * one-pixel hole filler (modelc/view.h, render.h, finish.h).
  *
  * The runtime is compiled into this test with MC_PLOT_HOOK pointing at mc_test_plot_hook (see
@@ -110,9 +110,9 @@ typedef struct tree {
     uint8_t *mask[MAXD + 1], *color[MAXD + 1];
     uint32_t *parent[MAXD + 1];              /* index of each node's parent in the level above */
     mc_chunk *mchunks[MAXD + 1], *cchunks[MAXD + 1];
-    mc_level levels[MAXD + 1];
+    mc_octree_level levels[MAXD + 1];
     uint8_t palette[256 * 3];
-    mc_scene scene;
+    mc_octree scene;
     uint8_t colors_at[MAXD + 1][32];         /* bit set of the palette indices used at each level */
 } tree;
 
@@ -175,7 +175,6 @@ static void tree_finish(tree *t, int split)
             for (uint32_t i = 0; i < t->nodes[l]; i++) t->colors_at[l][t->color[l][i] >> 3] |= 1u << (t->color[l][i] & 7);
     }
     for (int i = 0; i < 256 * 3; i++) t->palette[i] = (uint8_t)i;
-    t->scene.name = "unit";
     t->scene.depth = (uint8_t)t->depth;
     t->scene.palette_size = 256;
     t->scene.palette = t->palette;
@@ -269,7 +268,7 @@ static void check_clamp(const mc_view *in, uint32_t w, uint32_t h)
                  " (the nearest zoom in [1/64, 64] with extent <= MC_COORD_LIMIT/2 = %d px)",
                  in->zoom, w, h, out.zoom, clamp_ref(in->zoom, zlo, zhi), MC_COORD_LIMIT / 2);
     /* (for sides above MC_COORD_LIMIT / 2 * 65536 no positive Q16 zoom keeps the extent in bounds;
-     * mc_render refuses such targets anyway) */
+     * mc_octree_render refuses such targets anyway) */
     if (out.zoom < 1 ||
         (side <= (uint64_t)(MC_COORD_LIMIT / 2) * MC_ZOOM_ONE &&
          (uint64_t)out.zoom * side > (uint64_t)(MC_COORD_LIMIT / 2) * MC_ZOOM_ONE))
@@ -356,7 +355,7 @@ static void test_clamp(void **state)
     assert_memory_equal(&c, &d, sizeof d);
 }
 
-/* ---- mc_render: arguments ------------------------------------------------------------------ */
+/* ---- mc_octree_render: arguments ------------------------------------------------------------------ */
 
 static void test_render_args(void **state)
 {
@@ -369,47 +368,47 @@ static void test_render_args(void **state)
     mc_stats st;
     mc_target bad;
 
-    assert_int_equal(mc_render(NULL, &v, 1, &g.t, NULL, NULL, &st), MC_ERR_ARG);
-    assert_int_equal(mc_render(&t.scene, NULL, 1, &g.t, NULL, NULL, &st), MC_ERR_ARG);
-    assert_int_equal(mc_render(&t.scene, &v, 1, NULL, NULL, NULL, &st), MC_ERR_ARG);
+    assert_int_equal(mc_octree_render(NULL, &v, 1, NULL, &g.t, NULL, NULL, &st), MC_ERR_ARG);
+    assert_int_equal(mc_octree_render(&t.scene, NULL, 1, NULL, &g.t, NULL, NULL, &st), MC_ERR_ARG);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, NULL, NULL, NULL, &st), MC_ERR_ARG);
     bad = g.t;
     bad.color = NULL;
-    assert_int_equal(mc_render(&t.scene, &v, 1, &bad, NULL, NULL, &st), MC_ERR_ARG);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &bad, NULL, NULL, &st), MC_ERR_ARG);
     bad = g.t;
     bad.depth = NULL;
-    assert_int_equal(mc_render(&t.scene, &v, 1, &bad, NULL, NULL, &st), MC_ERR_ARG);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &bad, NULL, NULL, &st), MC_ERR_ARG);
     /* NULL pointers are reported before a bad depth or size */
     bad.width = 0;
-    assert_int_equal(mc_render(&t.scene, &v, 0, &bad, NULL, NULL, &st), MC_ERR_ARG);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 0, NULL, &bad, NULL, NULL, &st), MC_ERR_ARG);
 
-    assert_int_equal(mc_render(&t.scene, &v, 0, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
-    assert_int_equal(mc_render(&t.scene, &v, 3, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
-    assert_int_equal(mc_render(&t.scene, &v, 1000, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
-    assert_int_equal(mc_render(&t.scene, &v, (unsigned)-1, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 0, NULL, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 3, NULL, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1000, NULL, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
+    assert_int_equal(mc_octree_render(&t.scene, &v, (unsigned)-1, NULL, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
     /* a scene deeper than the runtime can decode is refused at any depth beyond MC_MAX_DEPTH,
      * before its levels are read (this one has none) */
-    mc_scene deep = t.scene;
+    mc_octree deep = t.scene;
     deep.depth = MC_MAX_DEPTH + 1;
     deep.levels = NULL;
-    assert_int_equal(mc_render(&deep, &v, MC_MAX_DEPTH + 1, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
+    assert_int_equal(mc_octree_render(&deep, &v, MC_MAX_DEPTH + 1, NULL, &g.t, NULL, NULL, &st), MC_ERR_DEPTH);
 
     static uint8_t cbuf[MC_TARGET_MAX + 1];
     static uint16_t dbuf[MC_TARGET_MAX + 1];
     mc_target big = {cbuf, dbuf, 0, 1};
-    assert_int_equal(mc_render(&t.scene, &v, 1, &big, NULL, NULL, &st), MC_ERR_SIZE);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &big, NULL, NULL, &st), MC_ERR_SIZE);
     big.width = 1;
     big.height = 0;
-    assert_int_equal(mc_render(&t.scene, &v, 1, &big, NULL, NULL, &st), MC_ERR_SIZE);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &big, NULL, NULL, &st), MC_ERR_SIZE);
     big.width = MC_TARGET_MAX + 1;
     big.height = 1;
-    assert_int_equal(mc_render(&t.scene, &v, 1, &big, NULL, NULL, &st), MC_ERR_SIZE);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &big, NULL, NULL, &st), MC_ERR_SIZE);
     big.width = 1;
     big.height = MC_TARGET_MAX + 1;
-    assert_int_equal(mc_render(&t.scene, &v, 1, &big, NULL, NULL, &st), MC_ERR_SIZE);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &big, NULL, NULL, &st), MC_ERR_SIZE);
     big.width = 65535;
-    assert_int_equal(mc_render(&t.scene, &v, 1, &big, NULL, NULL, &st), MC_ERR_SIZE);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &big, NULL, NULL, &st), MC_ERR_SIZE);
     /* a bad depth is reported before a bad size */
-    assert_int_equal(mc_render(&t.scene, &v, 0, &big, NULL, NULL, &st), MC_ERR_DEPTH);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 0, NULL, &big, NULL, NULL, &st), MC_ERR_DEPTH);
     assert_true(gt_guards_ok(&g));
     /* the largest sides are fine */
     big.width = MC_TARGET_MAX;
@@ -417,18 +416,18 @@ static void test_render_args(void **state)
     hook.w = MC_TARGET_MAX;
     hook.h = 1;
     mc_clear(&big);
-    assert_int_equal(mc_render(&t.scene, &v, 2, &big, NULL, NULL, NULL), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &big, NULL, NULL, NULL), MC_OK);
     big.width = 1;
     big.height = MC_TARGET_MAX;
     hook.w = 1;
     hook.h = MC_TARGET_MAX;
     mc_clear(&big);
-    assert_int_equal(mc_render(&t.scene, &v, 2, &big, NULL, NULL, NULL), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &big, NULL, NULL, NULL), MC_OK);
     gt_free(&g);
     tree_free(&t);
 }
 
-/* ---- mc_render: the hand-made scene -------------------------------------------------------- */
+/* ---- mc_octree_render: the hand-made scene -------------------------------------------------------- */
 
 /* Lists the drawn pixels of g: returns how many, storing up to 8 as (x, y, colour, depth). */
 static int drawn(const gtarget *g, int32_t out[][4])
@@ -468,7 +467,7 @@ static void test_render_tiny(void **state)
      * child 7 at (7S/8, S/8), both exactly on pixel corners */
     mc_clear(&g.t);
     hook.calls = hook.off = 0;
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, &st), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, &st), MC_OK);
     assert_int_equal(st.points, 2);
     assert_int_equal(hook.calls, 2);
     assert_int_equal(hook.off, 0);
@@ -486,7 +485,7 @@ static void test_render_tiny(void **state)
 
     /* depth 1 reads only level 1's colours: the two children at (S/4, 3S/4) and (3S/4, S/4) */
     mc_clear(&g.t);
-    assert_int_equal(mc_render(&t.scene, &v, 1, &g.t, NULL, NULL, &st), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &g.t, NULL, NULL, &st), MC_OK);
     assert_int_equal(st.points, 2);
     assert_int_equal(drawn(&g, px), 2);
     assert_int_equal(px[0][0], 3 * S / 4);
@@ -499,7 +498,7 @@ static void test_render_tiny(void **state)
     /* half a turn of yaw: x and z flip; the +++ leaf is now at the back, on the left */
     v.yaw = 2048;
     mc_clear(&g.t);
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, &st), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, &st), MC_OK);
     assert_int_equal(drawn(&g, px), 2);
     assert_int_equal(px[0][0], S / 8);
     assert_int_equal(px[0][1], S / 8);
@@ -512,22 +511,22 @@ static void test_render_tiny(void **state)
     /* rendering adds to what the target holds: a second render leaves the image the same */
     v = mc_view_default();
     mc_clear(&g.t);
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, NULL), MC_OK);
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, NULL), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, NULL), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, NULL), MC_OK);
     assert_int_equal(drawn(&g, px), 2);
 
     /* translated wholly off screen: MC_OK, nothing drawn, nothing counted */
     v.tx = S * 4;
     mc_clear(&g.t);
     hook.calls = 0;
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, &st), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, &st), MC_OK);
     assert_int_equal(st.points, 0);
     assert_int_equal(hook.calls, 0);
     assert_int_equal(drawn(&g, px), 0);
     /* half off: only the left point stays */
     v.tx = S / 2;
     mc_clear(&g.t);
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, &st), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, &st), MC_OK);
     assert_int_equal(st.points, 1);
     assert_int_equal(drawn(&g, px), 1);
     assert_int_equal(px[0][0], S / 8 + S / 2);
@@ -538,7 +537,7 @@ static void test_render_tiny(void **state)
     v.projection = MC_PERSPECTIVE;
     mc_clear(&g.t);
     hook.calls = hook.off = 0;
-    assert_int_equal(mc_render(&t.scene, &v, 2, &g.t, NULL, NULL, &st), MC_OK);
+    assert_int_equal(mc_octree_render(&t.scene, &v, 2, NULL, &g.t, NULL, NULL, &st), MC_OK);
     assert_int_equal(st.points, 2);
     assert_int_equal(hook.off, 0);
     assert_int_equal(drawn(&g, px), 2);
@@ -576,7 +575,7 @@ static void test_render_depth_test(void **state)
     for (int yaw = 0; yaw <= 2048; yaw += 2048) {   /* frontal: 7 is nearer and drawn last; turned: 3 */
         v.yaw = yaw;
         mc_clear(&g.t);
-        assert_int_equal(mc_render(&t.scene, &v, 1, &g.t, NULL, NULL, &st), MC_OK);
+        assert_int_equal(mc_octree_render(&t.scene, &v, 1, NULL, &g.t, NULL, NULL, &st), MC_OK);
         assert_int_equal(st.points, 2);
         assert_int_equal(drawn(&g, px), 1);
         assert_int_equal(px[0][2], yaw == 0 ? 70 : 30);
@@ -585,7 +584,7 @@ static void test_render_depth_test(void **state)
     tree_free(&t);
 }
 
-/* ---- mc_render: abort polling -------------------------------------------------------------- */
+/* ---- mc_octree_render: abort polling -------------------------------------------------------------- */
 
 static int abort_after;
 static int poll_count;
@@ -610,7 +609,7 @@ static void test_render_abort(void **state)
     for (unsigned d = 1; d <= t.depth; d++) {
         /* without a callback nothing is polled */
         mc_clear(&ref.t);
-        assert_int_equal(mc_render(&t.scene, &v, d, &ref.t, NULL, NULL, &st), MC_OK);
+        assert_int_equal(mc_octree_render(&t.scene, &v, d, NULL, &ref.t, NULL, NULL, &st), MC_OK);
         assert_int_equal(st.polls, 0);
         assert_int_equal(st.aborted, 0);
         /* a callback that never aborts: the same image; the polls are one per node at one level of
@@ -618,7 +617,7 @@ static void test_render_abort(void **state)
         abort_after = 1 << 30;
         poll_count = 0;
         mc_clear(&g.t);
-        assert_int_equal(mc_render(&t.scene, &v, d, &g.t, abort_cb, NULL, &st), MC_OK);
+        assert_int_equal(mc_octree_render(&t.scene, &v, d, NULL, &g.t, abort_cb, NULL, &st), MC_OK);
         assert_int_equal(st.aborted, 0);
         assert_int_equal(st.polls, (uint32_t)poll_count);
         assert_memory_equal(g.t.depth, ref.t.depth, g.n * sizeof(uint16_t));
@@ -637,7 +636,7 @@ static void test_render_abort(void **state)
         abort_after = 3;
         poll_count = 0;
         mc_clear(&g.t);
-        assert_int_equal(mc_render(&t.scene, &v, d, &g.t, abort_cb, NULL, &st), MC_OK);
+        assert_int_equal(mc_octree_render(&t.scene, &v, d, NULL, &g.t, abort_cb, NULL, &st), MC_OK);
         assert_int_equal(st.polls, 3);
         assert_int_equal(poll_count, 3);
         assert_int_equal(st.aborted, 1);
@@ -650,7 +649,7 @@ static void test_render_abort(void **state)
     tree_free(&t);
 }
 
-/* ---- mc_render: random scenes and views ---------------------------------------------------- */
+/* ---- mc_octree_render: random scenes and views ---------------------------------------------------- */
 
 static int32_t rand_zoom_like(int32_t one, int lo_bits, int hi_bits)
 {
@@ -666,12 +665,12 @@ static int32_t rand_zoom_like(int32_t one, int lo_bits, int hi_bits)
     }
 }
 
-/* A crash inside mc_render names the render before cmocka reports the signal. */
+/* A crash inside mc_octree_render names the render before cmocka reports the signal. */
 static const char *volatile crash_context;
 static void (*prev_handler[NSIG])(int);
 static void on_crash(int sig)
 {
-    if (crash_context) fprintf(stderr, "ERROR: signal %d (%s) in mc_render: %s\n", sig, strsignal(sig), crash_context);
+    if (crash_context) fprintf(stderr, "ERROR: signal %d (%s) in mc_octree_render: %s\n", sig, strsignal(sig), crash_context);
     crash_context = NULL;
     signal(sig, prev_handler[sig]);
     if (prev_handler[sig] != SIG_DFL && prev_handler[sig] != SIG_IGN) prev_handler[sig](sig);
@@ -717,15 +716,15 @@ static void test_render_random(void **state)
                      depth, d, w, h, cv.yaw, cv.pitch, cv.roll, cv.zoom, cv.tx, cv.ty,
                      cv.projection == MC_PERSPECTIVE ? "perspective" : "orthographic", cv.eye);
             crash_context = what;
-            int rc = mc_render(&t.scene, &v, d, &g.t, NULL, NULL, &st);
+            int rc = mc_octree_render(&t.scene, &v, d, NULL, &g.t, NULL, NULL, &st);
             crash_context = NULL;
             renders++;
-            if (rc != MC_OK) fail_msg("mc_render returned %d for %s", rc, what);
+            if (rc != MC_OK) fail_msg("mc_octree_render returned %d for %s", rc, what);
             if (hook.off)
                 fail_msg("%" PRIu32 " point(s) reported on screen lie off the target, first at (%.4f, %.4f)"
                          " pixels: %s", hook.off, hook.off_fx / (double)(1 << F), hook.off_fy / (double)(1 << F),
                          what);
-            if (!gt_guards_ok(&g)) fail_msg("mc_render wrote outside the target: %s", what);
+            if (!gt_guards_ok(&g)) fail_msg("mc_octree_render wrote outside the target: %s", what);
             if (st.points != hook.calls)
                 fail_msg("stats.points %" PRIu32 " but %" PRIu32 " points reported on screen: %s", st.points,
                          hook.calls, what);

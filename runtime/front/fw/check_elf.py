@@ -41,16 +41,16 @@ MARGINS = {
     # Measured: +5.7 KB on lm3s6965evb (Cortex-M3), +3.1 KB on mps2-an386. 16 KiB catches a runtime
     # that grew past its estimate.
     "flash_image": 16 * 1024,
-    # when budget.json gives only the model's data (flash.total): the runtime's code, about 66 KB on Thumb-2: render.c's MC_LEAF_SWITCH=1 leaf switch alone is
+    # when budget.json gives only the model's data (flash.total): the runtime's code, about 66 KB on Thumb-2: octree_render.c's MC_LEAF_SWITCH=1 leaf switch alone is
     # ~58 KB (one case per mask value, config.h) and the quarter-wave sine table 4 KB; picolibc's
     # integer printf, crt0 and the semihosting calls ~4 KB; libgcc's 64-bit division ~1 KB; the model's
-    # descriptors (chunk lists, levels, scene: 8-16 bytes each) and the vector table < 1 KB.
+    # descriptors (chunk lists, levels, octree, model: 8-56 bytes each) and the vector table < 1 KB.
     # 96 KiB leaves room for a larger switch from another compiler version, not for a second copy.
     "flash": 96 * 1024,
     # picolibc's static data (stdout FILE, errno, TLS block) and the front end's command-line buffer
     # (160 bytes): under 1 KiB. The stack is checked separately (check 5).
     "ram": 1024,
-    # our whole-program bound against budget.json's stack.bound for mc_render alone: crt0 and main
+    # our whole-program bound against budget.json's stack.bound for mc_octree_render alone: crt0 and main
     # (about 60 bytes), two more walk frames (D instead of d-2: about 250 bytes), minus frames the
     # estimate takes from the host compiler where they are larger. 1 KiB.
     "stack": 1024,
@@ -159,10 +159,10 @@ def main():
     print(f"# {elfname}: stack bound {total} bytes: " + " > ".join(n.split(":")[-1] for _, n in path))
     sb = budget.get("stack", {}).get("bound") if isinstance(budget.get("stack"), dict) else None
     if sb is not None:
-        # budget.json's bound is mc_render's alone (frames the larger of ARM and host, d-2 walk frames);
+        # budget.json's bound is mc_octree_render's alone (frames the larger of ARM and host, d-2 walk frames);
         # ours adds crt0's and main's frames and counts D walk frames: within a few hundred bytes
         d = total - sb
-        print(f"# {elfname}: budget.json stack.bound {sb} (mc_render's): ours {d:+d} (margin {MARGINS['stack']})")
+        print(f"# {elfname}: budget.json stack.bound {sb} (mc_octree_render's): ours {d:+d} (margin {MARGINS['stack']})")
         check(f"{elfname}: stack bound within {MARGINS['stack']} bytes of budget.json's stack.bound",
               "" if abs(d) <= MARGINS["stack"] else f"{total} vs {sb}: {d:+d} bytes")
     check(f"{elfname}: stack bound {total} fits the reservation __stack_size {stack_reserved} and the "

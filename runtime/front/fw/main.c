@@ -1,9 +1,9 @@
-/* The firmware front end: renders the fixed view list (views.h) of the model linked in, on a
+/* The firmware front end: renders the fixed view list (../common/views.h) of the model linked in, on a
  * Cortex-M under QEMU or on a board with a semihosting debugger.
  *
  * Promise: for every view, one line on the semihosting console, exactly as the host viewer's
- * --checksums prints it (frames.h: FNV-1a of the finished colour and depth buffers); the frame of
- * view MC_FW_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
+ * --checksums prints it (../common/frames.h: FNV-1a of the finished colour and depth buffers); the frame of
+ * view MC_FRONT_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
  * semihosting argument after the program name (default "frame.ppm"); then the measured stack
  * high-water mark and the free RAM it may grow into, and "done". With the word "bench" after the
  * file name, also a line "cost frame I clear N render N finish N" per frame: the instructions of each
@@ -20,8 +20,8 @@
 #include <modelc/modelc.h>
 
 #include "counter.h"
-#include "mark.h"   /* defines MC_FW_MARK before frames.h */
-#include "frames.h"
+#include "mark.h"   /* defines MC_FRONT_MARK before frames.h */
+#include "../common/frames.h"
 #include "ppm_out.h"
 #include "stack.h"
 
@@ -57,23 +57,28 @@ int main(void)
                (unsigned long)(mc_fw_counter_insn_per_tick() >> 16),
                (unsigned long)(((mc_fw_counter_insn_per_tick() & 0xFFFFu) * 10000u) >> 16));
     }
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_model *model = mc_app_model.model;
+    const mc_octree *octree = model->octree;
+    if (!octree) {
+        printf("modelc firmware: model %s has no octree to draw\n", model->name);
+        return 1;
+    }
     const mc_target t = {mc_app_model.color, mc_app_model.depth, mc_app_model.max_width, mc_app_model.max_height};
-    const unsigned depth = scene->depth;
+    const unsigned depth = octree->depth;
     int status = 0;
-    printf("modelc firmware: model %s depth %u size %ux%u views %u\n", scene->name, depth, (unsigned)t.width,
-           (unsigned)t.height, MC_FW_VIEW_COUNT);
-    for (unsigned i = 0; i < MC_FW_VIEW_COUNT; i++) {
-        mc_fw_result r = mc_fw_frame(scene, i, depth, &t);
-        printf(MC_FW_FRAME_LINE, MC_FW_FRAME_ARGS(i, depth, &t, r));
+    printf("modelc firmware: model %s depth %u size %ux%u views %u\n", model->name, depth, (unsigned)t.width,
+           (unsigned)t.height, MC_FRONT_VIEW_COUNT);
+    for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+        mc_front_result r = mc_front_frame(octree, i, depth, &t);
+        printf(MC_FRONT_FRAME_LINE, MC_FRONT_FRAME_ARGS(i, depth, &t, r));
         if (r.rc != MC_OK) status = 1;
         if (bench)
             printf("cost frame %u clear %lu render %lu finish %lu points %lu\n", i,
                    (unsigned long)mc_fw_counter_insns(mc_fw_marks[0], mc_fw_marks[1]),
                    (unsigned long)mc_fw_counter_insns(mc_fw_marks[1], mc_fw_marks[2]),
                    (unsigned long)mc_fw_counter_insns(mc_fw_marks[2], mc_fw_marks[3]), (unsigned long)r.points);
-        if (i == MC_FW_PPM_VIEW) {
-            if (mc_fw_write_ppm(ppm_path, &t, scene) != 0) {
+        if (i == MC_FRONT_PPM_VIEW) {
+            if (mc_fw_write_ppm(ppm_path, &t, octree->palette) != 0) {
                 printf("cannot write %s through semihosting\n", ppm_path);
                 status = 1;
             } else {

@@ -1,7 +1,7 @@
 /* Frame stage markers for counting instructions under QEMU.
  *
  * Promise: mc_fw_mark is a real, never inlined function (symbol mc_fw_mark) that the firmware calls
- * between the stages of every frame (frames.h: clear, render, finish, done). It records the SysTick
+ * between the stages of every frame (../common/frames.h: clear, render, finish, done). It records the SysTick
  * count (counter.h) of each stage boundary in mc_fw_marks[stage], so that under QEMU -icount the
  * instructions of a stage are mc_fw_counter_insns(mc_fw_marks[s], mc_fw_marks[s + 1]); and its entry
  * address appears once per call in QEMU's one-instruction-per-block execution trace
@@ -16,6 +16,6 @@
 extern uint32_t mc_fw_marks[4];
 void mc_fw_mark(unsigned stage);
 
-#define MC_FW_MARK(stage) mc_fw_mark(stage)
+#define MC_FRONT_MARK(stage) mc_fw_mark(stage)
 
 #endif

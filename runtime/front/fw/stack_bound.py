@@ -7,10 +7,10 @@ Promise: the bound is never below what the program can use, given the stated ass
     OBJ/*.ci). Calls the compiler inlined are inside the caller's frame.
   - Library code (picolibc, libgcc) has no .su files: its frames are read from the ELF's disassembly
     (push/stmdb, vpush, sub sp), its callees from its bl/blx/b.w to other functions.
-  - Recursion: the renderer's walk (visit, visit_inside in render.c) recurses once per octree level
-    and never deeper than the drawn depth D (render.h); every path may enter recursive functions at
+  - Recursion: the renderer's walk (visit, visit_inside in octree_render.c) recurses once per octree level
+    and never deeper than the drawn depth D (octree_render.h); every path may enter recursive functions at
     most D times in all. Any other cycle is an error.
-  - Indirect calls: in our code only the renderer's abort callback (mc_render's `abort`), which the
+  - Indirect calls: in our code only the renderer's abort callback (mc_octree_render's `abort`), which the
     firmware passes as NULL: counted as 0, stated in the output. In library code (stdio's FILE
     put/get callbacks) each counts as the deepest of the library's semihosting character functions.
   - Interrupts: the firmware enables none.

@@ -8,6 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "../common/rgb.h"
+
 /* MC_PNG_ARENA_BYTES: static memory for one PNG encode. stb needs about 4x the raw image at most
  * (filtered rows, the deflate output growing by doubling); 64 MiB covers 2048x2048. Untouched pages
  * of a static array cost no RAM on a desktop. */
@@ -51,23 +53,16 @@ static void *arena_realloc(void *old, size_t old_size, size_t new_size)
 
 void mc_host_to_rgb(const mc_target *t, const uint8_t *palette, uint8_t *rgb)
 {
-    size_t n = (size_t)t->width * t->height;
-    for (size_t i = 0; i < n; i++) {
-        if (t->depth[i] == MC_DEPTH_EMPTY) {
-            rgb[3 * i] = MC_HOST_BACKGROUND_R;
-            rgb[3 * i + 1] = MC_HOST_BACKGROUND_G;
-            rgb[3 * i + 2] = MC_HOST_BACKGROUND_B;
-        } else {
-            memcpy(rgb + 3 * i, palette + 3 * t->color[i], 3);
-        }
-    }
+    mc_front_rgb(t, palette, 0, (uint32_t)t->width * t->height, rgb);
 }
 
 int mc_host_write_ppm(const char *path, const uint8_t *rgb, int w, int h)
 {
+    char header[MC_FRONT_PPM_HEADER_MAX];
+    const unsigned n = mc_front_ppm_header(header, (unsigned)w, (unsigned)h);
     FILE *f = fopen(path, "wb");
     if (!f) return -1;
-    int ok = fprintf(f, "P6\n%d %d\n255\n", w, h) > 0 && fwrite(rgb, 3, (size_t)w * h, f) == (size_t)w * h;
+    int ok = fwrite(header, 1, n, f) == n && fwrite(rgb, 3, (size_t)w * h, f) == (size_t)w * h;
     return fclose(f) == 0 && ok ? 0 : -1;
 }
 

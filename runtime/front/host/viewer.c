@@ -24,7 +24,7 @@
 #include "image.h"
 #include "term.h"
 #include "timing.h"
-#include "../fw/frames.h"   /* the firmware's view list and frame checksum: --checksums */
+#include "../common/frames.h"   /* the view list and frame checksum the firmware prints: --checksums */
 
 static uint8_t rgb_buffer[4096 * 4096 * 3];
 
@@ -35,7 +35,7 @@ static void usage(FILE *f)
             "  --png FILE      render one frame to a PNG file\n"
             "  --ppm FILE      render one frame to a binary PPM file\n"
             "  --bench N       render N frames of one full turn and print ms per frame (median)\n"
-            "  --checksums     render the firmware's fixed view list (runtime/front/fw/views.h) at the\n"
+            "  --checksums     render the firmware's fixed view list (runtime/front/common/views.h) at the\n"
             "                  baked screen size and the model's depth (unless --size, --depth) and\n"
             "                  print the firmware's checksum line per frame; --ppm/--png then write\n"
             "                  the frame the firmware writes out\n"
@@ -54,7 +54,7 @@ static void usage(FILE *f)
             "  --help          this text\n"
             "With no output option and stdout a terminal, runs interactively: arrow keys rotate, + and -\n"
             "zoom, q quits.\n",
-            mc_app_model.scene->name, mc_app_model.scene->depth, mc_app_model.scene->depth,
+            mc_app_model.model->name, mc_app_model.model->octree->depth, mc_app_model.model->octree->depth,
             mc_app_model.max_width, mc_app_model.max_height,
             MC_FILL_DEFAULT_MODE == 2 ? "scanline" : MC_FILL_DEFAULT_MODE == 1 ? "pixel" : "none",
             MC_SPLAT_DEFAULT_MODE == 2 ? "zoom" : "1");
@@ -62,7 +62,7 @@ static void usage(FILE *f)
 
 static int die(const char *msg, const char *arg)
 {
-    fprintf(stderr, "%s-view: %s%s%s\n", mc_app_model.scene->name, msg, arg ? ": " : "", arg ? arg : "");
+    fprintf(stderr, "%s-view: %s%s%s\n", mc_app_model.model->name, msg, arg ? ": " : "", arg ? arg : "");
     return 2;
 }
 
@@ -78,7 +78,8 @@ static int parse_double(const char *s, double lo, double hi, double *out)
 
 int32_t mc_host_angle(double degrees) { return (int32_t)lround(fmod(degrees, 360.0) * MC_ANGLE_FULL / 360.0); }
 
-static int bench(const mc_target *t, mc_view v, unsigned depth, mc_fill fill, int frames)
+static int bench(const mc_octree *octree, const mc_target *t, mc_view v, const mc_octree_options *opt, unsigned depth,
+                 mc_fill fill, int frames)
 {
     static double ms[100000];
     if (frames > 100000) frames = 100000;
@@ -89,14 +90,14 @@ static int bench(const mc_target *t, mc_view v, unsigned depth, mc_fill fill, in
         mc_stats st;
         double t0 = mc_host_now_ms();
         mc_clear(t);
-        mc_render(mc_app_model.scene, &v, depth, t, NULL, NULL, &st);
+        mc_octree_render(octree, &v, depth, opt, t, NULL, NULL, &st);
         mc_finish(t, fill);
         ms[i] = mc_host_now_ms() - t0;
         points += st.points;
     }
     double median = mc_host_median(ms, (size_t)frames);
     double mean_points = (double)points / frames;
-    printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.scene->name, depth, t->width, t->height,
+    printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, depth, t->width, t->height,
            frames, fill == MC_FILL_NONE ? " no-finish" : "");
     printf("ms per frame (median): %.3f\n", median);
     printf("points drawn per frame: %.0f\n", mean_points);
@@ -105,15 +106,15 @@ static int bench(const mc_target *t, mc_view v, unsigned depth, mc_fill fill, in
 }
 
 /* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c). */
-static int checksums(const mc_target *t, unsigned depth, const char *png, const char *ppm)
+static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth, const char *png, const char *ppm)
 {
     int status = 0;
-    for (unsigned i = 0; i < MC_FW_VIEW_COUNT; i++) {
-        mc_fw_result r = mc_fw_frame(mc_app_model.scene, i, depth, t);
-        printf(MC_FW_FRAME_LINE, MC_FW_FRAME_ARGS(i, depth, t, r));
+    for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+        mc_front_result r = mc_front_frame(octree, i, depth, t);
+        printf(MC_FRONT_FRAME_LINE, MC_FRONT_FRAME_ARGS(i, depth, t, r));
         if (r.rc != MC_OK) status = 1;
-        if (i == MC_FW_PPM_VIEW && (png || ppm)) {
-            mc_host_to_rgb(t, mc_app_model.scene->palette, rgb_buffer);
+        if (i == MC_FRONT_PPM_VIEW && (png || ppm)) {
+            mc_host_to_rgb(t, octree->palette, rgb_buffer);
             if (png && mc_host_write_png(png, rgb_buffer, t->width, t->height)) return die("cannot write PNG", png);
             if (ppm && mc_host_write_ppm(ppm, rgb_buffer, t->width, t->height)) return die(strerror(errno), ppm);
         }
@@ -123,13 +124,18 @@ static int checksums(const mc_target *t, unsigned depth, const char *png, const 
 
 int main(int argc, char **argv)
 {
-    const mc_scene *scene = mc_app_model.scene;
+    const mc_model *model = mc_app_model.model;
+    const mc_octree *octree = model->octree;
+    if (!octree) {
+        fprintf(stderr, "%s-view: the model has no octree to draw\n", model->name);
+        return 2;
+    }
     const char *png = NULL, *ppm = NULL;
     double yaw = 0, pitch = 0, roll = 0, zoom = 1, dv;
-    unsigned depth = scene->depth, w = 320, h = 240;
+    unsigned depth = octree->depth, w = 320, h = 240;
     int perspective = 0, check = 0, sized = 0;
     mc_fill fill = MC_FILL_DEFAULT;
-    mc_splat splat = MC_SPLAT_DEFAULT;
+    mc_octree_options opt = {MC_SPLAT_DEFAULT};
     long frames = 0;
     static const struct option opts[] = {
         {"png", required_argument, 0, 'P'}, {"ppm", required_argument, 0, 'M'},
@@ -155,7 +161,7 @@ int main(int argc, char **argv)
         case 'r': if (parse_double(optarg, -1e6, 1e6, &roll)) return die("--roll expects degrees", optarg); break;
         case 'z': if (parse_double(optarg, 1.0 / 64, 64, &zoom)) return die("--zoom expects 1/64..64", optarg); break;
         case 'd':
-            if (parse_double(optarg, 1, scene->depth, &dv) || dv != (unsigned)dv)
+            if (parse_double(optarg, 1, octree->depth, &dv) || dv != (unsigned)dv)
                 return die("--depth expects an integer from 1 to the model's depth", optarg);
             depth = (unsigned)dv;
             break;
@@ -174,8 +180,8 @@ int main(int argc, char **argv)
             else return die("--fill expects none, pixel or scanline", optarg);
             break;
         case 'S':
-            if (!strcmp(optarg, "1") || !strcmp(optarg, "pixel")) splat = MC_SPLAT_PIXEL;
-            else if (!strcmp(optarg, "zoom")) splat = MC_SPLAT_ZOOM;
+            if (!strcmp(optarg, "1") || !strcmp(optarg, "pixel")) opt.splat = MC_SPLAT_PIXEL;
+            else if (!strcmp(optarg, "zoom")) opt.splat = MC_SPLAT_ZOOM;
             else return die("--splat expects 1 or zoom", optarg);
             break;
         case 'e': perspective = 1; break;
@@ -192,7 +198,7 @@ int main(int argc, char **argv)
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
     if (check) {
         if (frames) return die("--checksums and --bench exclude each other", NULL);
-        return checksums(&t, depth, png, ppm);
+        return checksums(octree, &t, depth, png, ppm);
     }
     mc_view v = mc_view_default();
     v.yaw = mc_host_angle(yaw);
@@ -200,26 +206,24 @@ int main(int argc, char **argv)
     v.roll = mc_host_angle(roll);
     v.zoom = (int32_t)lround(zoom * MC_ZOOM_ONE);
     v.projection = perspective ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
-    v.splat = splat;
-    mc_host_fill = fill;
 
-    if (frames) return bench(&t, v, depth, fill, (int)frames);
+    if (frames) return bench(octree, &t, v, &opt, depth, fill, (int)frames);
     if (!png && !ppm) {
-        if (isatty(STDOUT_FILENO)) return mc_host_interactive(&mc_app_model, v);
+        if (isatty(STDOUT_FILENO)) return mc_host_interactive(&mc_app_model, v, &opt, fill);
         return die("stdout is not a terminal: give --png FILE, --ppm FILE or --bench N (see --help)", NULL);
     }
 
     mc_stats st;
     double t0 = mc_host_now_ms();
     mc_clear(&t);
-    int rc = mc_render(scene, &v, depth, &t, NULL, NULL, &st);
+    int rc = mc_octree_render(octree, &v, depth, &opt, &t, NULL, NULL, &st);
     uint32_t filled = mc_finish(&t, fill);
     double ms = mc_host_now_ms() - t0;
     if (rc != MC_OK) return die("render failed", NULL);
-    mc_host_to_rgb(&t, scene->palette, rgb_buffer);
+    mc_host_to_rgb(&t, octree->palette, rgb_buffer);
     if (png && mc_host_write_png(png, rgb_buffer, (int)w, (int)h)) return die("cannot write PNG", png);
     if (ppm && mc_host_write_ppm(ppm, rgb_buffer, (int)w, (int)h)) return die(strerror(errno), ppm);
-    printf("model %s depth %u size %ux%u points %u filled %u ms %.3f\n", scene->name, depth, w, h, st.points,
+    printf("model %s depth %u size %ux%u points %u filled %u ms %.3f\n", model->name, depth, w, h, st.points,
            filled, ms);
     return 0;
 }

@@ -14,7 +14,7 @@
 /* MC_FRAC_BITS: fraction bits of the fixed-point screen coordinates (mc_fix). The source paper uses
  * 17 integer and 15 fraction bits in a 32-bit word. More fraction bits place points more exactly but
  * shrink the representable screen range: coordinates must stay below 2^(30 - MC_FRAC_BITS) pixels
- * (MC_COORD_LIMIT), and views are clamped to that (see view.h). */
+ * (MC_COORD_LIMIT), and views are clamped to that (see xform.h). */
 #ifndef MC_FRAC_BITS
 #define MC_FRAC_BITS 15
 #endif
@@ -80,7 +80,8 @@
 #endif
 #endif
 
-/* MC_SPLAT_DEFAULT_MODE: the leaf footprint of views whose splat is MC_SPLAT_DEFAULT (view.h):
+/* MC_SPLAT_DEFAULT_MODE: the leaf footprint of octree renders whose splat is MC_SPLAT_DEFAULT
+ * (octree_render.h):
  *   1 (MC_SPLAT_PIXEL): one pixel per leaf, the source paper's;
  *   2 (MC_SPLAT_ZOOM, default): a square that grows with the leaf's size on screen. Chosen by
  *     measurement: at zoom 2 it raises PSNR against the reference by several dB over one-pixel

@@ -14,7 +14,7 @@
  * column and the two diagonals, up to MC_FILL_REACH pixels each way (config.h, default 3) for a drawn
  * pixel. A line is bounded when it meets a drawn pixel on both sides. The pixel is filled when at
  * least three of its four lines are bounded, with the colour of the nearest (smallest depth) of the
- * drawn pixels met, and the depth MC_DEPTH_FILLED: behind every drawn pixel (a later mc_render on
+ * drawn pixels met, and the depth MC_DEPTH_FILLED: behind every drawn pixel (a later render on
  * top draws over it) but not empty. Only pixels drawn by the renderer count as bounds, never filled
  * ones, so the result does not depend on the scan order, a fill never enables another, and a
  * second call fills nothing more. The hole types (the paper's figure is not in its text, so they are defined here by shape):
@@ -36,9 +36,9 @@
 #define MODELC_FINISH_H
 
 #include <stdint.h>
-#include "render.h"
+#include "target.h"
 
-/* Depth of a pixel the scanline fill closed: the renderer never writes it (render.h). */
+/* Depth of a pixel the scanline fill closed: renderers never write it (target.h). */
 #define MC_DEPTH_FILLED (MC_DEPTH_EMPTY - 1u)
 
 typedef enum mc_fill {

@@ -1,5 +1,7 @@
-/* Point-octree renderer: see modelc/render.h for what it promises. */
-#include "modelc/render.h"
+/* Point-octree renderer: see modelc/octree_render.h for what it promises. */
+#include "modelc/octree_render.h"
+#include "modelc/bits.h"
+#include "modelc/chunk.h"
 #include "pos.h"
 
 /* Depth: offset so the model's bounding sphere spans [0, 2 * radius] and never goes negative. The
@@ -11,18 +13,6 @@
 /* sqrt(3)/2 in Q30, rounded up, for bounding spheres that are never too small */
 #define HALF_SQRT3_Q30 929887697
 
-#if defined(__GNUC__) || defined(__clang__)
-#define ALWAYS_INLINE static inline __attribute__((always_inline))
-#else
-#define ALWAYS_INLINE static inline
-#endif
-
-/* A read position in a chunked byte array. */
-typedef struct cursor {
-    const uint8_t *p, *end;
-    const mc_chunk *next;
-} cursor;
-
 /* Displacement from the centre of a node at one level to that of its child k, as x and y apart and
  * as one packed pair (pos.h). Kept together so that the hot loop reaches all of a level's vectors
  * from one base register. */
@@ -32,8 +22,8 @@ typedef struct levelvec {
 } levelvec;
 
 typedef struct ctx {
-    cursor mask[MC_MAX_DEPTH];
-    cursor color;                        /* colours of the drawn level */
+    mc_cursor mask[MC_MAX_DEPTH];
+    mc_cursor color;                        /* colours of the drawn level */
     levelvec v[MC_MAX_DEPTH];            /* level-l node -> child k */
     mc_pos radius;                       /* bounding sphere of the model, Q F pixels */
     /* how far the drawn leaves under a level-l node can lie from its centre, per screen axis: the
@@ -60,77 +50,6 @@ typedef struct ctx {
     int aborted;
 } ctx;
 
-static const uint8_t popcount8[256] = {
-#define B2(n) n, n + 1, n + 1, n + 2
-#define B4(n) B2(n), B2(n + 1), B2(n + 1), B2(n + 2)
-#define B6(n) B4(n), B4(n + 1), B4(n + 1), B4(n + 2)
-    B6(0), B6(1), B6(1), B6(2)
-#undef B2
-#undef B4
-#undef B6
-};
-
-ALWAYS_INLINE unsigned lowest_bit(unsigned m)
-{
-#if defined(__GNUC__) || defined(__clang__)
-    return (unsigned)__builtin_ctz(m);   /* unsigned: used as an index without sign extension */
-#else
-    unsigned k = 0;
-    while (!(m & 1u)) { m >>= 1; k++; }
-    return k;
-#endif
-}
-
-static void cursor_init(cursor *c, const mc_chunk *chunks)
-{
-    c->p = chunks->data;
-    c->end = chunks->data + chunks->size;
-    c->next = chunks + 1;
-}
-
-/* A monochrome scene stores no colours (levels[l].colors == NULL, scene.h): its colour cursor reads
- * a run of zeros (palette index 0) and is rewound whenever it reaches MONO_RUN. Between two tests
- * of p >= end the renderer takes at most one cousin group (64 colours), so it never reads past the
- * run's second half. The tests are >= rather than == only for this; real chunks are never overrun,
- * and the hot path costs the same compare. */
-#define MONO_RUN 64
-static const uint8_t mono_zeros[2 * MONO_RUN] = {0};
-static const mc_chunk mono_chunks[2] = {{mono_zeros, MONO_RUN}, {0, 0}};
-#define IS_MONO(c) ((c)->next == mono_chunks + 1)
-
-/* Moves to the next non-empty chunk once the current one is used up. */
-static void cursor_refill(cursor *c)
-{
-    if (IS_MONO(c)) { c->p = mono_zeros; return; }
-    while (c->p == c->end && c->next->data) {
-        c->p = c->next->data;
-        c->end = c->p + c->next->size;
-        c->next++;
-    }
-}
-
-/* The next n bytes, which the generator guarantees lie in one chunk (a sibling group for masks,
- * a group of cousins for colours: see scene.h). */
-ALWAYS_INLINE const uint8_t *cursor_take(cursor *c, uint32_t n)
-{
-    if (c->p >= c->end) cursor_refill(c);
-    const uint8_t *p = c->p;
-    c->p += n;
-    return p;
-}
-
-static void cursor_skip(cursor *c, uint32_t n)
-{
-    if (IS_MONO(c)) return;   /* zeros: nothing to step over */
-    while (n > (uint32_t)(c->end - c->p)) {
-        n -= (uint32_t)(c->end - c->p);
-        c->p = c->end;
-        cursor_refill(c);
-        if (c->p == c->end) return;   /* end of data: only reachable with a corrupt scene */
-    }
-    c->p += n;
-}
-
 /* Steps over the subtree of one node at level l without drawing it: reads the masks of levels
  * l..d-1 inside the subtree only to count how far each cursor must move. */
 static void skip_subtree(ctx *c, unsigned l)
@@ -139,15 +58,15 @@ static void skip_subtree(ctx *c, unsigned l)
     for (unsigned lev = l; lev < c->d; lev++) {
         uint32_t children = 0;
         for (uint32_t i = 0; i < n; i++) {
-            if (c->mask[lev].p == c->mask[lev].end) cursor_refill(&c->mask[lev]);
-            children += popcount8[*c->mask[lev].p++];
+            if (c->mask[lev].p == c->mask[lev].end) mc_cursor_refill(&c->mask[lev]);
+            children += mc_popcount8(*c->mask[lev].p++);
         }
         n = children;
     }
-    cursor_skip(&c->color, n);
+    mc_cursor_skip(&c->color, n);
 }
 
-/* An s x s footprint (view.h, MC_SPLAT_ZOOM) centred on (fx, fy), which is on the target, clipped
+/* An s x s footprint (octree_render.h, MC_SPLAT_ZOOM) centred on (fx, fy), which is on the target, clipped
  * to the target; each pixel depth tested. */
 static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth, uint8_t color)
 {
@@ -173,7 +92,7 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
     const unsigned l = c->d - 1;
     const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
-        unsigned k = lowest_bit(m);
+        unsigned k = mc_ctz(m);
         mc_pos fx = x + vx[k], fy = y + vy[k];
         int32_t px = pos_floor(fx), py = pos_floor(fy);
         if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
@@ -197,7 +116,7 @@ static void leaves_perspective(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z,
     const unsigned l = c->d - 1;
     const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
-        unsigned k = lowest_bit(m);
+        unsigned k = mc_ctz(m);
         mc_pos zk = z + vz[k];
         mc_pos_wide dist = c->eye + zk - c->radius;   /* z carries a +radius offset */
         if (dist < c->near) continue;
@@ -234,7 +153,7 @@ static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8
         const mc_pos2 p_ = POS2_ADD(pxy, lv[j]);                                           \
         intptr_t i_ = POS2_ROW(p_) * w + POS2_COL(p_);                                     \
         uint16_t depth_ = (uint16_t)(pz + lz[j]);                                          \
-        const uint8_t *col_ = col + popcount8[(n) & ((1u << (j)) - 1u)];                   \
+        const uint8_t *col_ = col + mc_popcount8((n) & ((1u << (j)) - 1u));                   \
         MC_PLOT_HOOK(POS2_X(p_), POS2_Y(p_), col_);                                        \
         DEPTH_TEST(i_, depth_, col_)                                                       \
     }
@@ -261,18 +180,16 @@ static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8
 #if MC_LEAF_SWITCH
 /* One case per mask value: the compiler folds every test of LEAVES(n) and every colour rank, so a
  * node costs one indirect jump and each present leaf only its own work (see config.h). */
-#define CASE1(n) case n: LEAVES(n) col += POPCOUNT8(n); break;
+#define CASE1(n) case n: LEAVES(n) col += MC_POPCOUNT8(n); break;
 #define CASE4(n) CASE1(n) CASE1(n + 1) CASE1(n + 2) CASE1(n + 3)
 #define CASE16(n) CASE4(n) CASE4(n + 4) CASE4(n + 8) CASE4(n + 12)
 #define CASE64(n) CASE16(n) CASE16(n + 16) CASE16(n + 32) CASE16(n + 48)
-#define POPCOUNT8(n) (((n) & 1) + ((n) >> 1 & 1) + ((n) >> 2 & 1) + ((n) >> 3 & 1) + \
-                      ((n) >> 4 & 1) + ((n) >> 5 & 1) + ((n) >> 6 & 1) + ((n) >> 7 & 1))
 /* ... and moves col past the node's colours by a constant */
 #define DRAW_LEAVES(cm)                                                                    \
     switch (cm) { CASE64(0) CASE64(64) CASE64(128) CASE64(192) }
 #else
 /* The paper's unrolled 8-child loop: an absent child costs a test and a branch. */
-#define DRAW_LEAVES(cm) LEAVES(cm) col += popcount8[cm];
+#define DRAW_LEAVES(cm) LEAVES(cm) col += mc_popcount8(cm);
 #endif
 
 #if MC_DEPTH_SELECT
@@ -290,7 +207,7 @@ static intptr_t spare_pixel(const ctx *c, unsigned l, mc_pos2 xy)
 
 /* Nodes at level d-2 wholly on screen, orthographic: the children of one node at level d-3 whose
  * mask is m (or just one of them: m = its child bit). Masks of level d-1 come one sibling group per
- * d-2 node and colours one cousin group per d-2 node, each from one chunk (scene.h). Everything the
+ * d-2 node and colours one cousin group per d-2 node, each from one chunk (octree.h). Everything the
  * loops touch is in locals, so nothing is reloaded after each pixel store: the two cursors too,
  * written back before a refill and at the end (a colour store may alias any field of *c). Not
  * inlined: there is one copy of the leaf code however many callers. */
@@ -310,27 +227,27 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
     const uint16_t spare_depth = zb[spare];
     const uint8_t spare_color = fb[spare];
 #endif
-    cursor *const mc = &c->mask[l3 + 2];
+    mc_cursor *const mc = &c->mask[l3 + 2];
     const uint8_t *mp = mc->p, *mend = mc->end;
     const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;
     uint32_t points = 0;
     for (; m; m &= m - 1) {
-        const unsigned k3 = lowest_bit(m);
+        const unsigned k3 = mc_ctz(m);
         const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);
         const mc_pos zz2 = z + L[0].z[k3];
         unsigned m2 = *masks2++;
-        if (mp >= mend) { mc->p = mp; cursor_refill(mc); mp = mc->p; mend = mc->end; }
+        if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }
         const uint8_t *masks1 = mp;
-        mp += popcount8[m2];
+        mp += mc_popcount8(m2);
         if (col >= cend) {
             points += (uint32_t)(col - first);
             c->color.p = col;
-            cursor_refill(&c->color);
+            mc_cursor_refill(&c->color);
             col = first = c->color.p;
             cend = c->color.end;
         }
         for (; m2; m2 &= m2 - 1) {
-            const unsigned k2 = lowest_bit(m2);
+            const unsigned k2 = mc_ctz(m2);
             const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);
             const mc_pos pz = zz2 + L[1].z[k2];
             const unsigned cm = *masks1++;
@@ -364,16 +281,16 @@ static void draw_checked(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_
 {
     const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     if (l + 1 == c->d) {                                 /* only when d = 1: the root's leaves */
-        leaves(c, m, x, y, z, cursor_take(&c->color, popcount8[m]));
+        leaves(c, m, x, y, z, mc_cursor_take(&c->color, mc_popcount8(m)));
         return;
     }
-    const uint8_t *masks = cursor_take(&c->mask[l + 1], popcount8[m]);
-    if (c->color.p >= c->color.end) cursor_refill(&c->color);
+    const uint8_t *masks = mc_cursor_take(&c->mask[l + 1], mc_popcount8(m));
+    if (c->color.p >= c->color.end) mc_cursor_refill(&c->color);
     for (; m; m &= m - 1) {
-        unsigned k = lowest_bit(m);
+        unsigned k = mc_ctz(m);
         unsigned cm = *masks++;
         const uint8_t *col = c->color.p;
-        c->color.p += popcount8[cm];
+        c->color.p += mc_popcount8(cm);
         leaves(c, cm, x + vx[k], y + vy[k], z + vz[k], col);
     }
 }
@@ -391,15 +308,15 @@ static int poll_abort(ctx *c)
 static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    unsigned m = *cursor_take(&c->mask[l], 1);
+    unsigned m = *mc_cursor_take(&c->mask[l], 1);
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
     if (l + 3 == c->d) {
-        draw_inside(c, l, m, cursor_take(&c->mask[l + 1], popcount8[m]), xy, z);
+        draw_inside(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), xy, z);
         return;
     }
     for (; m; m &= m - 1) {
-        unsigned k = lowest_bit(m);
+        unsigned k = mc_ctz(m);
         visit_inside(c, l + 1, POS2_ADD(xy, v[k]), z + vz[k]);
         if (c->aborted) return;
     }
@@ -414,20 +331,20 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    unsigned m = *cursor_take(&c->mask[l], 1);
+    unsigned m = *mc_cursor_take(&c->mask[l], 1);
     if (l + 2 >= c->d) {                                 /* d <= 2: the root draws everything */
         draw_checked(c, l, m, x, y, z);
         return;
     }
     const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
     for (; m; m &= m - 1) {
-        unsigned k = lowest_bit(m);
+        unsigned k = mc_ctz(m);
         mc_pos cx = x + vx[k], cy = y + vy[k], cz = z + vz[k];
         int where = c->perspective ? 0 : classify(c, cx, cy, l + 1);
         if (where < 0) {
             skip_subtree(c, l + 1);
         } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
-            const uint8_t *cm = cursor_take(&c->mask[l + 1], 1);
+            const uint8_t *cm = mc_cursor_take(&c->mask[l + 1], 1);
             if (where > 0) draw_inside(c, l, 1u << k, cm, POS2(x, y), z);
             else draw_checked(c, l + 1, *cm, cx, cy, cz);
         } else if (where > 0) {
@@ -443,7 +360,7 @@ static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
  * Q30 rotation and the Q16 scale, so a leaf's position is off by at most (d + 1) / 2 units of Q F
  * per axis: the root's rounding plus one per level. Returns the root's orthographic depth in
  * depth-buffer units. */
-static int32_t setup_vectors(ctx *c, const mc_view *v)
+static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
 {
     int32_t r[3][3];
     mc_view_rotation(v, r);
@@ -493,7 +410,7 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
     /* footprints, chosen once per frame: a leaf's side on screen is scale / 2^d pixels */
     c->splat = 1;
     c->leaf_side = 0;
-    if (v->splat == MC_SPLAT_ZOOM || (v->splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
+    if (splat == MC_SPLAT_ZOOM || (splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
         const mc_pos_wide leaf = pos_units(scale, 1, 16 + (int)c->d - POS_FRAC);
         if (c->perspective) c->leaf_side = leaf;
         else c->splat = pos_footprint(leaf);
@@ -512,36 +429,18 @@ static int32_t setup_vectors(ctx *c, const mc_view *v)
     return (radius >> c->zshift) + MC_MAX_DEPTH;   /* one depth unit of room per level's rounding */
 }
 
-void mc_clear(const mc_target *t)
+int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,
+                     const mc_target *t, mc_abort_fn abort, void *user, mc_stats *stats)
 {
-    /* locals, and one loop per buffer: the compiler cannot prove the two buffers do not alias
-     * t itself, and would otherwise reload both pointers and store one element at a time */
-    uint32_t n = (uint32_t)t->width * t->height;
-    uint16_t *depth = t->depth;
-    uint8_t *color = t->color;
-    uint32_t i = 0;
-    /* eight adjacent constant stores per step: compilers merge them into wide stores (freestanding
-     * code gets no memset, and -O2 does not vectorise a loop of unknown length) */
-    for (; i + 8 <= n; i += 8) {
-        depth[i] = MC_DEPTH_EMPTY; depth[i + 1] = MC_DEPTH_EMPTY; depth[i + 2] = MC_DEPTH_EMPTY;
-        depth[i + 3] = MC_DEPTH_EMPTY; depth[i + 4] = MC_DEPTH_EMPTY; depth[i + 5] = MC_DEPTH_EMPTY;
-        depth[i + 6] = MC_DEPTH_EMPTY; depth[i + 7] = MC_DEPTH_EMPTY;
-        color[i] = 0; color[i + 1] = 0; color[i + 2] = 0; color[i + 3] = 0;
-        color[i + 4] = 0; color[i + 5] = 0; color[i + 6] = 0; color[i + 7] = 0;
-    }
-    for (; i < n; i++) { depth[i] = MC_DEPTH_EMPTY; color[i] = 0; }
-}
-
-int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const mc_target *t,
-              mc_abort_fn abort, void *user, mc_stats *stats)
-{
-    if (!scene || !view || !t || !t->color || !t->depth) return MC_ERR_ARG;
-    if (depth < 1 || depth > scene->depth || depth > MC_MAX_DEPTH) return MC_ERR_DEPTH;
+    if (!octree || !view || !t || !t->color || !t->depth) return MC_ERR_ARG;
+    if (depth < 1 || depth > octree->depth || depth > MC_MAX_DEPTH) return MC_ERR_DEPTH;
     if (t->width == 0 || t->height == 0 || t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX)
         return MC_ERR_SIZE;
 
     ctx c;
     mc_view v = mc_view_clamp(view, t->width, t->height);
+    mc_splat splat = opt ? opt->splat : MC_SPLAT_DEFAULT;
+    if (splat != MC_SPLAT_PIXEL && splat != MC_SPLAT_ZOOM) splat = MC_SPLAT_DEFAULT;
     c.fb = t->color;
     c.zb = t->depth;
     c.w = t->width;
@@ -554,9 +453,11 @@ int mc_render(const mc_scene *scene, const mc_view *view, unsigned depth, const 
     c.user = user;
     c.points = c.polls = 0;
     c.aborted = 0;
-    for (unsigned l = 0; l < depth; l++) cursor_init(&c.mask[l], scene->levels[l].masks);
-    cursor_init(&c.color, scene->levels[depth].colors ? scene->levels[depth].colors : mono_chunks);
-    const int32_t zroot = setup_vectors(&c, &v);
+    for (unsigned l = 0; l < depth; l++) mc_cursor_init(&c.mask[l], octree->levels[l].masks);
+    /* a monochrome octree stores no colours (octree.h): every leaf reads palette index 0 */
+    if (octree->levels[depth].colors) mc_cursor_init(&c.color, octree->levels[depth].colors);
+    else mc_cursor_init_zeros(&c.color);
+    const int32_t zroot = setup_vectors(&c, &v, splat);
     c.poll_level = depth >= MC_ABORT_LEVEL + 3 ? MC_ABORT_LEVEL : depth >= 3 ? depth - 3 : 0;
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis

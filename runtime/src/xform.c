@@ -1,6 +1,5 @@
-/* View defaults, clamping and the rotation matrix. */
-#include "modelc/view.h"
-#include "modelc/render.h"
+/* View defaults, clamping and the rotation matrix: see modelc/xform.h. */
+#include "modelc/xform.h"
 
 mc_view mc_view_default(void)
 {
@@ -12,7 +11,6 @@ mc_view mc_view_default(void)
     v.tx = v.ty = 0;
     v.projection = MC_ORTHOGRAPHIC;
     v.eye = 2 * MC_ZOOM_ONE;
-    v.splat = MC_SPLAT_DEFAULT;
     return v;
 }
 
@@ -36,7 +34,6 @@ mc_view mc_view_clamp(const mc_view *v, uint32_t width, uint32_t height)
     c.ty = clamp32(v->ty, -MC_COORD_LIMIT / 4, MC_COORD_LIMIT / 4);
     c.eye = clamp32(v->eye, MC_EYE_MIN, MC_EYE_MAX);
     c.projection = v->projection == MC_PERSPECTIVE ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
-    c.splat = v->splat == MC_SPLAT_PIXEL || v->splat == MC_SPLAT_ZOOM ? v->splat : MC_SPLAT_DEFAULT;
     return c;
 }
 

@@ -1,4 +1,4 @@
-/* The baked model: what the generator emits and the renderer reads.
+/* The octree part of a baked model: what the generator emits and octree_render.h reads.
  *
  * An octree of depth D is stored level by level. Level l holds one entry per node at depth l, in
  * depth-first order (which, restricted to one level, is also left-to-right order). Each internal node
@@ -11,35 +11,30 @@
  * coarse image drawn while the view moves and the fine image drawn after.
  *
  * Every array is split into chunks (at most the generator's --chunk-bytes each) that may live in
- * different translation units; a chunk list ends with a {0, 0} sentinel. Chunks end only where the
+ * different translation units (chunk.h); a chunk list ends with a {0, 0} sentinel. Chunks end only where the
  * renderer may cross them: mask chunks between sibling groups (the children of one node), colour
  * chunks between cousin groups (the grandchildren of one node), so the renderer checks for the end
  * of a chunk once per group instead of once per byte.
  */
-#ifndef MODELC_SCENE_H
-#define MODELC_SCENE_H
+#ifndef MODELC_OCTREE_H
+#define MODELC_OCTREE_H
 
 #include <stdint.h>
 #include "config.h"
+#include "chunk.h"
 
-typedef struct mc_chunk {
-    const uint8_t *data;
-    uint32_t size;
-} mc_chunk;
-
-typedef struct mc_level {
+typedef struct mc_octree_level {
     uint32_t nodes;          /* nodes at this depth */
     const mc_chunk *masks;   /* child masks, one byte per node; NULL at the deepest level */
     const mc_chunk *colors;  /* palette index per node; NULL at level 0, and at every level of a
-                              * monochrome scene (palette_size 1): every node is entry 0 */
-} mc_level;
+                              * monochrome octree (palette_size 1): every node is entry 0 */
+} mc_octree_level;
 
-typedef struct mc_scene {
-    const char *name;
-    uint8_t depth;           /* D: levels 0..D, leaves at D */
-    uint16_t palette_size;   /* 1..256 */
-    const uint8_t *palette;  /* palette_size RGB triplets */
-    const mc_level *levels;  /* D + 1 entries */
-} mc_scene;
+typedef struct mc_octree {
+    uint8_t depth;                   /* D: levels 0..D, leaves at D */
+    uint16_t palette_size;           /* 1..256 */
+    const uint8_t *palette;          /* palette_size RGB triplets */
+    const mc_octree_level *levels;   /* D + 1 entries */
+} mc_octree;
 
 #endif

@@ -7,20 +7,20 @@
  * mc_mul_shift64), so a checksum mismatch on any of them shows an architecture-dependent result.
  * Header only, freestanding (<stdint.h> and the runtime's headers).
  */
-#ifndef MODELC_FW_VIEWS_H
-#define MODELC_FW_VIEWS_H
+#ifndef MODELC_FRONT_VIEWS_H
+#define MODELC_FRONT_VIEWS_H
 
 #include <stdint.h>
-#include <modelc/view.h>
+#include <modelc/xform.h>
 
-typedef struct mc_fw_view {
+typedef struct mc_front_view {
     int32_t yaw, pitch, roll;   /* MC_ANGLE_FULL (4096) units per turn */
     int32_t zoom;               /* Q16 */
     int32_t tx, ty;             /* pixels */
     int32_t eye;                /* Q16 cube sides; 0 = orthographic */
-} mc_fw_view;
+} mc_front_view;
 
-static const mc_fw_view mc_fw_views[] = {
+static const mc_front_view mc_front_views[] = {
     {0, 0, 0, 65536, 0, 0, 0},               /* frontal, as the source paper measures */
     {341, 114, 0, 65536, 0, 0, 0},           /* yaw ~30 deg, pitch ~10 deg */
     {1024, 0, 0, 65536, 0, 0, 0},            /* side */
@@ -32,14 +32,14 @@ static const mc_fw_view mc_fw_views[] = {
     {900, -100, 0, 52429, 0, 0, 49152},      /* perspective, eye 0.75: the near plane cuts */
 };
 
-#define MC_FW_VIEW_COUNT ((unsigned)(sizeof mc_fw_views / sizeof mc_fw_views[0]))
+#define MC_FRONT_VIEW_COUNT ((unsigned)(sizeof mc_front_views / sizeof mc_front_views[0]))
 
 /* The view whose frame the firmware writes out (and the host --checksums --ppm writes). */
-#define MC_FW_PPM_VIEW 1u
+#define MC_FRONT_PPM_VIEW 1u
 
-static inline mc_view mc_fw_view_get(unsigned i)
+static inline mc_view mc_front_view_get(unsigned i)
 {
-    const mc_fw_view *f = &mc_fw_views[i];
+    const mc_front_view *f = &mc_front_views[i];
     mc_view v = mc_view_default();
     v.yaw = f->yaw;
     v.pitch = f->pitch;

@@ -1,4 +1,9 @@
-/* A view of a model: rotation, zoom, translation and projection.
+/* View transforms: a camera (rotation, zoom, translation, projection) and what it means in fixed point.
+ *
+ * Promise: mc_view is the camera only, the same for every part a model has (what a renderer draws
+ * per leaf or per line is its own options' business, e.g. octree_render.h's mc_octree_options).
+ * mc_view_clamp turns any mc_view into one every renderer can draw without overflow, and
+ * mc_view_rotation gives its exact Q30 rotation matrix.
  *
  * The model's bounding cube is centred on the screen; at zoom 1 its side spans the shorter side of
  * the target. Screen x grows to the right, y downwards; the model's +y is up and +z faces the viewer
@@ -10,7 +15,7 @@
  * translations to +-MC_COORD_LIMIT / 4 pixels, the perspective eye distance to [1/16, 256] cube sides.
  *
  * Representable ranges (MC_COORD_LIMIT = 2^(30 - MC_FRAC_BITS) pixels; at the default MC_FRAC_BITS 15:
- * 32768 pixels), all enforced by mc_view_clamp and mc_render, never by wrapping:
+ * 32768 pixels), all enforced by mc_view_clamp and the renderers, never by wrapping:
  *   - largest model extent on screen: the bounding cube's side S = zoom * min(width, height) is at
  *     most MC_COORD_LIMIT / 2 pixels (16384 at F = 15), so the bounding sphere (S * sqrt(3) / 2) plus
  *     half the screen plus the translation stays below MC_COORD_LIMIT and every fixed-point sum on
@@ -20,7 +25,7 @@
  *     up to 256 pixels, 34.1 at 480 pixels, 4 at MC_TARGET_MAX (4096 pixels); smallest zoom 1/64;
  *   - translations: +-MC_COORD_LIMIT / 4 pixels (+-8192 at F = 15), far enough to move the model
  *     wholly off any target;
- *   - target sides: 1..MC_TARGET_MAX pixels (4096 at F = 15; mc_render refuses larger targets);
+ *   - target sides: 1..MC_TARGET_MAX pixels (4096 at F = 15; renderers refuse larger targets, target.h);
  *   - perspective eye distance: [1/16, 256] cube sides; inside the model's bounding sphere (below
  *     sqrt(3)/2) parts of the model lie behind the eye and are not drawn; points nearer than 1/64
  *     cube side in front of the eye are not drawn either (the near plane);
@@ -28,8 +33,8 @@
  * tests/stress/stress.c renders random views across and beyond these ranges and checks that nothing
  * is written outside the target and every point lies within a stated bound of its exact position.
  */
-#ifndef MODELC_VIEW_H
-#define MODELC_VIEW_H
+#ifndef MODELC_XFORM_H
+#define MODELC_XFORM_H
 
 #include <stdint.h>
 #include "fixed.h"
@@ -37,24 +42,12 @@
 
 typedef enum mc_projection { MC_ORTHOGRAPHIC = 0, MC_PERSPECTIVE = 1 } mc_projection;
 
-/* How many pixels a leaf covers (the splat). The source paper draws one pixel per leaf; above zoom 1
- * a leaf spans more than a pixel and one-pixel splats leave a lattice of holes.
- *   MC_SPLAT_PIXEL: one pixel per leaf, the paper's (and the fastest) drawing.
- *   MC_SPLAT_ZOOM: an s x s square centred on the leaf, s = ceil(leaf side on screen) in pixels, at
- *     most MC_SPLAT_MAX; chosen once per frame (per point in perspective, where the leaf side grows
- *     with its magnification). s = 1 draws exactly what MC_SPLAT_PIXEL draws, on the same fast path.
- *     A leaf is drawn when its centre is on the target; its square is clipped to the target.
- *   MC_SPLAT_DEFAULT (0, what a zeroed view holds): MC_SPLAT_DEFAULT_MODE from config.h.
- * Other values are taken as MC_SPLAT_DEFAULT. */
-typedef enum mc_splat { MC_SPLAT_DEFAULT = 0, MC_SPLAT_PIXEL = 1, MC_SPLAT_ZOOM = 2 } mc_splat;
-
 typedef struct mc_view {
     int32_t yaw, pitch, roll;   /* MC_ANGLE_FULL units per turn */
     int32_t zoom;               /* Q16: 65536 = 1 */
     int32_t tx, ty;             /* pixels, applied after projection */
     mc_projection projection;
     int32_t eye;                /* perspective only: eye distance from the model centre, Q16 cube sides */
-    mc_splat splat;             /* leaf footprint (see mc_splat) */
 } mc_view;
 
 #define MC_ZOOM_ONE 65536
@@ -63,12 +56,12 @@ typedef struct mc_view {
 #define MC_EYE_MIN (MC_ZOOM_ONE / 16)
 #define MC_EYE_MAX (MC_ZOOM_ONE * 256)
 
-/* Frontal, zoom 1, orthographic, eye 2 cube sides away, the default splat. */
+/* Frontal, zoom 1, orthographic, eye 2 cube sides away. */
 mc_view mc_view_default(void);
 
 /* The view the renderer really draws for a target of width x height pixels: v with every field
  * clamped to what the fixed-point format represents (projections other than MC_PERSPECTIVE become
- * MC_ORTHOGRAPHIC, splats other than MC_SPLAT_PIXEL and MC_SPLAT_ZOOM become MC_SPLAT_DEFAULT). */
+ * MC_ORTHOGRAPHIC). */
 mc_view mc_view_clamp(const mc_view *v, uint32_t width, uint32_t height);
 
 /* Rotation matrix for the view's angles, Q30 entries (row-major r[row][col]). */

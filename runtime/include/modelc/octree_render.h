@@ -1,0 +1,50 @@
+/* Point-octree renderer (Barth, Schwanecke & Wild; after Botsch et al. 2002).
+ *
+ * Walks the octree depth first. Each level has eight displacement vectors, already rotated, scaled
+ * and projected, so a child's screen position is its parent's plus one vector: additions only. The
+ * level above the drawn one sets pixels directly instead of recursing (the paper's Algorithm 2),
+ * its children visited by walking the set bits of the mask. Each drawn leaf is one pixel (or a
+ * footprint, mc_splat), depth tested. Subtrees whose bounding sphere lies wholly off screen are
+ * skipped (their data is stepped over, not decoded); subtrees wholly on screen are drawn without
+ * per-point bounds checks.
+ *
+ * No heap, no floating point, no recursion deeper than the drawn depth (at most MC_MAX_DEPTH frames
+ * of the renderer's internal node function). Buffers belong to the caller; while mc_octree_render
+ * runs they may hold values it puts back before returning (the select form of the depth test parks
+ * losing leaves on a spare pixel).
+ */
+#ifndef MODELC_OCTREE_RENDER_H
+#define MODELC_OCTREE_RENDER_H
+
+#include <stdint.h>
+#include "octree.h"
+#include "target.h"
+#include "xform.h"
+
+/* How many pixels a leaf covers (the splat). The source paper draws one pixel per leaf; above zoom 1
+ * a leaf spans more than a pixel and one-pixel splats leave a lattice of holes.
+ *   MC_SPLAT_PIXEL: one pixel per leaf, the paper's (and the fastest) drawing.
+ *   MC_SPLAT_ZOOM: an s x s square centred on the leaf, s = ceil(leaf side on screen) in pixels, at
+ *     most MC_SPLAT_MAX; chosen once per frame (per point in perspective, where the leaf side grows
+ *     with its magnification). s = 1 draws exactly what MC_SPLAT_PIXEL draws, on the same fast path.
+ *     A leaf is drawn when its centre is on the target; its square is clipped to the target.
+ *   MC_SPLAT_DEFAULT (0, what zeroed options hold): MC_SPLAT_DEFAULT_MODE from config.h.
+ * Other values are taken as MC_SPLAT_DEFAULT. */
+typedef enum mc_splat { MC_SPLAT_DEFAULT = 0, MC_SPLAT_PIXEL = 1, MC_SPLAT_ZOOM = 2 } mc_splat;
+
+/* How the octree is drawn, beside the camera (mc_view). A NULL pointer, or a zeroed struct, means
+ * the defaults. */
+typedef struct mc_octree_options {
+    mc_splat splat;   /* leaf footprint */
+} mc_octree_options;
+
+/* Draws octree at depth `depth` (1..octree->depth) seen through view into t, on top of what t holds
+ * (call mc_clear first for a fresh frame). opt, abort and stats may be NULL. abort is polled every
+ * time the walk enters a node at depth min(MC_ABORT_LEVEL, depth - 3) (depth 0, once, when depth
+ * <= 3); stats->points counts the leaves that landed on the target.
+ * Returns MC_OK, or MC_ERR_ARG for NULL pointers, MC_ERR_DEPTH for a depth the octree does not
+ * have, MC_ERR_SIZE for a target larger than MC_TARGET_MAX on a side or empty. */
+int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,
+                     const mc_target *t, mc_abort_fn abort, void *user, mc_stats *stats);
+
+#endif

@@ -1,0 +1,152 @@
+/* Number helpers against independent references: bits.h (popcount, lowest set bit, leading zeros)
+ * against bit-by-bit loops, rng.h (PCG32) against the reference implementation's published demo
+ * output, and chunk.h's cursor against the bytes of its chunks read one by one.
+ *
+ * PCG32 reference: pcg-c-basic's pcg32-demo seeds with pcg32_srandom_r(&rng, 42u, 54u) and prints
+ * 0xa15c02b7 0x7b47f409 0xba1d3330 0x83d2f293 0xbfa4784b 0xcbed606e as its first six numbers
+ * (M. E. O'Neill, pcg-random.org; the same six numbers are the expected values of other ports'
+ * test suites).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <cmocka.h>
+
+#include <modelc/bits.h>
+#include <modelc/chunk.h>
+#include <modelc/rng.h>
+
+static unsigned naive_popcount(uint32_t v)
+{
+    unsigned n = 0;
+    for (int i = 0; i < 32; i++) n += (v >> i) & 1u;
+    return n;
+}
+
+static unsigned naive_ctz(uint32_t v)
+{
+    unsigned i = 0;
+    while (i < 32 && !((v >> i) & 1u)) i++;
+    return i;
+}
+
+static unsigned naive_clz(uint32_t v)
+{
+    unsigned n = 0;
+    for (int i = 31; i >= 0 && !((v >> i) & 1u); i--) n++;
+    return n;
+}
+
+/* a fixed sequence of test words, independent of rng.h */
+static uint32_t words_state = 0x12345678u;
+static uint32_t next_word(void)
+{
+    words_state ^= words_state << 13;
+    words_state ^= words_state >> 17;
+    words_state ^= words_state << 5;
+    return words_state;
+}
+
+static void test_bits(void **state)
+{
+    (void)state;
+    for (unsigned m = 0; m < 256; m++) {
+        assert_int_equal(mc_popcount8(m), naive_popcount(m));
+        assert_int_equal(MC_POPCOUNT8(m), naive_popcount(m));
+        if (m) assert_int_equal(mc_ctz(m), naive_ctz(m));
+    }
+    assert_int_equal(mc_clz32(0), 32);
+    assert_int_equal(mc_popcount32(0), 0);
+    assert_int_equal(mc_popcount32(0xFFFFFFFFu), 32);
+    for (int i = 0; i < 32; i++) {
+        const uint32_t b = (uint32_t)1 << i;
+        assert_int_equal(mc_ctz(b), (unsigned)i);
+        assert_int_equal(mc_clz32(b), 31u - (unsigned)i);
+        assert_int_equal(mc_clz32(b | (b - 1u)), 31u - (unsigned)i);
+    }
+    for (int i = 0; i < 100000; i++) {
+        const uint32_t v = next_word() >> (i % 32);
+        assert_int_equal(mc_popcount32(v), naive_popcount(v));
+        assert_int_equal(mc_clz32(v), naive_clz(v));
+        if (v) assert_int_equal(mc_ctz(v), naive_ctz(v));
+    }
+}
+
+static void test_rng_reference(void **state)
+{
+    (void)state;
+    static const uint32_t want[6] = {0xa15c02b7u, 0x7b47f409u, 0xba1d3330u, 0x83d2f293u, 0xbfa4784bu, 0xcbed606eu};
+    mc_rng r;
+    mc_rng_seed(&r, 42u, 54u);
+    for (int i = 0; i < 6; i++) assert_int_equal(mc_rng_next(&r), want[i]);
+}
+
+static void test_rng_streams_and_bounds(void **state)
+{
+    (void)state;
+    mc_rng a, b, c;
+    mc_rng_seed(&a, 7, 1);
+    mc_rng_seed(&b, 7, 1);
+    mc_rng_seed(&c, 7, 2);
+    int differ = 0;
+    for (int i = 0; i < 1000; i++) {
+        const uint32_t x = mc_rng_next(&a);
+        assert_int_equal(x, mc_rng_next(&b));   /* same seed and stream: the same numbers */
+        differ += x != mc_rng_next(&c);
+    }
+    assert_true(differ > 990);                  /* another stream: another sequence */
+    assert_int_equal(mc_rng_below(&a, 0), 0);
+    assert_int_equal(mc_rng_below(&a, 1), 0);
+    /* uniform over 0..5: each value within 5 % of 1/6 of 60000 draws (about 6 standard deviations) */
+    unsigned count[6] = {0};
+    for (int i = 0; i < 60000; i++) {
+        const uint32_t v = mc_rng_below(&a, 6);
+        assert_true(v < 6);
+        count[v]++;
+    }
+    for (int k = 0; k < 6; k++) assert_true(count[k] > 9500 && count[k] < 10500);
+    /* a bound just above 2^31 rejects almost half the draws and still returns values below it */
+    for (int i = 0; i < 1000; i++) assert_true(mc_rng_below(&a, 0x80000001u) < 0x80000001u);
+}
+
+static void test_cursor(void **state)
+{
+    (void)state;
+    static const uint8_t c0[] = {1, 2, 3}, c2[] = {4, 5, 6, 7, 8};
+    const mc_chunk list[] = {{c0, 3}, {c0, 0}, {c2, 5}, {0, 0}};
+    mc_cursor c;
+    mc_cursor_init(&c, list);
+    const uint8_t *p = mc_cursor_take(&c, 3);   /* a group of 3 in the first chunk */
+    assert_int_equal(p[0], 1);
+    assert_int_equal(p[2], 3);
+    p = mc_cursor_take(&c, 2);                  /* the empty chunk is stepped over */
+    assert_int_equal(p[0], 4);
+    assert_int_equal(p[1], 5);
+    mc_cursor_skip(&c, 2);
+    assert_int_equal(*mc_cursor_take(&c, 1), 8);
+    mc_cursor_init(&c, list);
+    mc_cursor_skip(&c, 100);                    /* past the end: stops at the sentinel */
+    assert_ptr_equal(c.p, c.end);
+
+    mc_cursor_init_zeros(&c);                   /* the zero run: groups of up to 64 zeros, forever */
+    for (int i = 0; i < 1000; i++) {
+        const uint32_t n = 1u + (uint32_t)(i * 7) % MC_CHUNK_ZERO_RUN;
+        p = mc_cursor_take(&c, n);
+        for (uint32_t k = 0; k < n; k++) assert_int_equal(p[k], 0);
+        mc_cursor_skip(&c, n);
+    }
+}
+
+int main(void)
+{
+    setvbuf(stdout, NULL, _IONBF, 0);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bits),
+        cmocka_unit_test(test_rng_reference),
+        cmocka_unit_test(test_rng_streams_and_bounds),
+        cmocka_unit_test(test_cursor),
+    };
+    return cmocka_run_group_tests_name("bits", tests, NULL, NULL);
+}
