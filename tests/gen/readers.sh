@@ -116,6 +116,12 @@ same "PLY: big endian, double coordinates, int list counts" "$d/be.ply" "$d/plai
   perl -e 'print pack("(f< f< f< f< C C f<)4", 0,9,0,0,255,1,7, 1,9,0,0,255,1,7, 0,9,1,0,255,1,7, 0,9,0,1,255,1,7)' \
     -e '; print pack("(S< S< l<3 C f<2)4", 1,3,0,2,1,2,.5,.5, 1,3,0,1,3,2,.5,.5, 1,3,0,3,2,2,.5,.5, 1,3,1,2,3,2,.5,.5), pack("l<2", 0, 1)'; } >"$d/extra.ply"
 same "PLY: comments, obj_info, extra properties and lists, a third element" "$d/extra.ply" "$d/plain.ply"
+{ lines ply 'format ascii 1.0' 'element material 1' 'property uchar ambient_red' 'property list uint8 float coefficients' \
+    'element vertex 4' 'property float32 x' 'property float32 y' 'property float32 z' 'property uchar diffuse_red' \
+    'property uchar diffuse_green' 'property uchar diffuse_blue' 'property float s' 'property float t' \
+    'element face 4' 'property list uint8 int32 vertex_index' end_header '7 2 0.5 0.25' \
+    '0 0 0 1 2 3 0 0' '1 0 0 1 2 3 1 0' '0 1 0 1 2 3 0 1' '0 0 1 1 2 3 1 1' '3 0 2 1' '3 0 1 3' '3 0 3 2' '3 1 2 3'; } >"$d/material.ply"
+same "PLY: an element before the vertices, diffuse colours and s t read past, type aliases, vertex_index" "$d/material.ply" "$d/plain.ply"
 { ply_plain binary_little_endian | sed 's/$/\r/; s/^property float/property  float/'; perl -e "print $TETRA_LE"; } >"$d/crlf-bin.ply"
 same "PLY: binary data after a CRLF header with doubled spaces" "$d/crlf-bin.ply" "$d/plain.ply"
 { ply_plain ascii | crlf; lines '0 0 0' '1 0 0' '' '0 1 0' '0 0 1' '3 0 2 1' '3 0 1 3' '3 0 3 2' '3 1 2 3' | crlf; } >"$d/crlf.ply"
