@@ -78,7 +78,7 @@ mstch::map model_data(const Voxels &vox, const EmitOptions &opt) {
     mstch::map m = common(opt);
     m.emplace("centre_q", q32(c[0]) + ", " + q32(c[1]) + ", " + q32(c[2]));
     m.emplace("side_q", q32(side));
-    m.emplace("centre_text", g9(c[0]) + ", " + g9(c[1]) + ", " + g9(c[2]));
+    m.emplace("centre_text", g9(c[0] + 0.0) + ", " + g9(c[1] + 0.0) + ", " + g9(c[2] + 0.0));   // no "-0"
     m.emplace("side_text", g9(side));
     m.emplace("up", std::string(1, opt.up == 'z' ? 'z' : 'y'));
     m.emplace("up_code", std::string(opt.up == 'z' ? "MC_UP_Z" : "MC_UP_Y"));

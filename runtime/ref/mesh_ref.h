@@ -10,7 +10,7 @@
  *   double side, origin[3] (the model-frame grid, informational); double radius (points: splat radius
  *   in cube sides); nverts x {double pos[3], normal[3], rgb[3] (0..255)}; ntris x uint32[3].
  *
- * Rendering follows modelc/view.h exactly as runtime/ref/ref.c does (the same clamped view, the same
+ * Rendering follows modelc/xform.h exactly as runtime/ref/ref.c does (the same clamped view, the same
  * angles, pixel i covering [i, i+1), depth 1 - z in cube sides, smaller nearer):
  *   - meshes: every triangle, two-sided, z-buffered; a pixel is covered when its centre (x + 1/2,
  *     y + 1/2) lies in a triangle (edges shared by two triangles cover a centre once). Its colour is

@@ -1,5 +1,5 @@
 /* Double-precision reference renderer of a baked octree, for tests and benchmarks only: never
- * linked into a viewer or firmware. It follows the conventions of modelc/view.h exactly (same
+ * linked into a viewer or firmware. It follows the conventions of modelc/xform.h exactly (same
  * clamped view, same integer angles, same screen mapping), computing every leaf's position from its
  * integer cell coordinates in double precision instead of by fixed-point additions. */
 #ifndef MODELC_REF_H
@@ -16,7 +16,7 @@ typedef struct mc_ref_point {
 
 typedef void (*mc_ref_fn)(const mc_ref_point *p, void *user);
 
-/* The view's rotation R = Rz(roll) * Rx(pitch) * Ry(yaw) (modelc/view.h) in double precision, from
+/* The view's rotation R = Rz(roll) * Rx(pitch) * Ry(yaw) (modelc/xform.h) in double precision, from
  * the already clamped view v. Shared by the reference renderers. */
 void mc_ref_rotation(const mc_view *v, double r[3][3]);
 

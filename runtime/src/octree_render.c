@@ -23,7 +23,7 @@ typedef struct levelvec {
 
 typedef struct ctx {
     mc_cursor mask[MC_MAX_DEPTH];
-    mc_cursor color;                        /* colours of the drawn level */
+    mc_cursor color;                     /* colours of the drawn level */
     levelvec v[MC_MAX_DEPTH];            /* level-l node -> child k */
     mc_pos radius;                       /* bounding sphere of the model, Q F pixels */
     /* how far the drawn leaves under a level-l node can lie from its centre, per screen axis: the

@@ -10,7 +10,7 @@
 #   - "exact": the double-precision octree walk of runtime/ref (mc_ref_points, exact leaf positions)
 #     with the runtime's footprints and finishing, depth 5..10: the error floor (acc.c)
 #   - fixed point, MC_FRAC_BITS 8 10 12 14 16 18 at depth 8, and 8 12 18 at depth 10
-#   - fixed point, MC_FRAC_BITS 19..24 at depth 8: compiled and run, but at 320x240 mc_render refuses
+#   - fixed point, MC_FRAC_BITS 19..24 at depth 8: compiled and run, but at 320x240 mc_octree_render refuses
 #     the target (MC_TARGET_MAX = 2^(27 - F) pixels), recorded as status "size"
 # Each setting renders 12 views (yaw 0/20/40/60 degrees with pitch 0/5/10/15, zoom 1, 1.5, 2) with
 # each splat and fill the runtime has, against the mesh reference (runtime/ref/mesh_ref.c), and times

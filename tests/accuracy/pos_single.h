@@ -4,7 +4,7 @@
  *   -DMC_POS_HEADER='"pos_single.h"' -Itests/accuracy -DMC_FLOAT=1
  * (MC_FLOAT tells the test programs, which receive float pixels from MC_PLOT_HOOK). It lives here,
  * beside the benchmark, because the runtime itself has no floating point (DESIGN.md). Positions are
- * pixels; the walk, culling, depth test and footprints are render.c's, unchanged. Views are still
+ * pixels; the walk, culling, depth test and footprints are octree_render.c's, unchanged. Views are still
  * clamped to MC_COORD_LIMIT, which keeps every conversion to an integer defined.
  */
 #ifndef MODELC_POS_SINGLE_H

@@ -243,7 +243,7 @@ def main():
             L.append("")
             L.append(f"F = {', '.join(map(str, bad))}: compiled, but not rendered at {a.size}: status "
                      + ", ".join(sorted({f'{st}' for k, st in status.items() if k[0] == m}))
-                     + " (`size`: mc_render refuses a target side above MC_TARGET_MAX = 2^(27 - F) pixels: "
+                     + " (`size`: mc_octree_render refuses a target side above MC_TARGET_MAX = 2^(27 - F) pixels: "
                      "256 at F = 19, 8 at F = 24).")
         L.append("")
         front = sorted((r for r in mo if r["pareto"]), key=lambda r: r["cpu_ms"])

@@ -1,6 +1,6 @@
 /* Benchmark helper: decodes a baked scene's leaf cells, independently of the runtime's renderer.
  *
- * Follows modelc/scene.h only: level l holds one child-mask byte per node (levels 0..D-1) and one
+ * Follows modelc/octree.h only: level l holds one child-mask byte per node (levels 0..D-1) and one
  * palette index per node (levels 1..D), each level in depth-first order, split into chunks ending
  * with a {0, 0} sentinel. A depth-first walk with one read cursor per level meets every level's
  * entries in stored order. Child k of a node is offset by +-1/4 of the node's side along x (bit 0),

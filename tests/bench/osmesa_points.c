@@ -3,7 +3,7 @@
  * Links against a bake's generated sources (for mc_app_model.model->octree) but not against the runtime's
  * renderer: the cells are decoded by tests/bench/cells.h in double precision and uploaded once into a
  * vertex buffer as one-pixel GL_POINTS with per-point colours (in the order mc_octree_render draws them).
- * The view matches modelc's (modelc/view.h): orthographic, the model's bounding cube centred with its
+ * The view matches modelc's (modelc/xform.h): orthographic, the model's bounding cube centred with its
  * side spanning the shorter screen side at zoom 1, screen y down, +z toward the viewer,
  * R = Rz(roll) * Rx(pitch) * Ry(yaw); depth test GL_LESS on a 16-bit depth buffer like modelc's.
  *

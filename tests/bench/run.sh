@@ -106,7 +106,7 @@ INC="-I$SNAP/include -I$SNAP/front/host"
 for f in "$SNAP"/src/*.c; do
     run $CC $OPT $RT_FLAGS $INC -c -o "$OBJ/rt/$(basename "${f%.c}").o" "$f"
 done
-for f in "$SNAP"/front/host/*.c; do
+for f in "$SNAP"/front/host/*.c "$SNAP"/front/common/*.c; do
     run $CC $OPT $HOST_FLAGS $INC -c -o "$OBJ/host/$(basename "${f%.c}").o" "$f"
 done
 

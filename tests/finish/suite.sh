@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hole filling and splats (modelc/finish.h, view.h):
+# Hole filling and splats (modelc/finish.h, octree_render.h):
 #   - test_holes.c on synthetic images: hole types 1-4 closed, border holes (type 5) left open, the
 #     criterion against a brute-force evaluation, zoom footprints (also under ASan + UBSan)
 #   - psnr.c for bunny00 and nefertiti: every splat and fill against the double-precision reference of

@@ -121,7 +121,7 @@ sha = hashlib.sha256(open("runtime/src/octree_render.c", "rb").read()).hexdigest
 A(f"- {qv}; {gv}, `-O2`, picolibc 1.8 (semihosting); host: valgrind callgrind on the same bake, gcc -O2 x86-64; "
   f"runtime/src/octree_render.c sha256 {sha}")
 A(f"- model {model}, each board's bake (`make firmware MODEL={model} BOARD=...`): mps2-an386 depth 8 at 320x240, "
-  "lm3s6965evb depth 7 at 160x128; the nine views of `runtime/front/fw/views.h` (the checksum views)")
+  "lm3s6965evb depth 7 at 160x128; the nine views of `runtime/front/common/views.h` (the checksum views)")
 A("- **instructions, not cycles**: QEMU counts executed instructions (`-icount shift=0`: 1 ns of virtual time per "
   "instruction, read through SysTick at each stage boundary and calibrated with a loop of known length, exact to "
   "one tick = 80 instructions on lm3s6965evb, 40 on mps2-an386). A real Cortex-M3/M4 takes more cycles than "

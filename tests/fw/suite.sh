@@ -126,7 +126,7 @@ EOF
     run=$dir/$model.run.txt
     check "$b: make firmware-run: QEMU runs the firmware to \"done\", exit status 0" \
         "$([ $st -eq 0 ] && grep -q '^done' "$run" 2>/dev/null || echo "exit $st: $(tail -5 "$out/$b.run.txt" | oneline)")"
-    nviews=$(grep -c '^    {' runtime/front/fw/views.h)
+    nviews=$(grep -c '^    {' runtime/front/common/views.h)
     grep '^frame ' "$run" >"$out/$b.fw-frames.txt" 2>/dev/null
     $dir/$model/$model-view --checksums --ppm "$out/$b.host.ppm" >"$out/$b.host-frames.txt" 2>"$out/$b.host-err.txt"
     hst=$?

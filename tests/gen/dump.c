@@ -72,7 +72,11 @@ static int check_groups(const mc_octree *s, const mc_chunk *chunks, unsigned l, 
 
 int main(int argc, char **argv)
 {
-    const mc_octree *s = mc_app_model.model->octree;
+    const mc_model *model = mc_app_model.model;
+    printf("model %s up %s octree %s pmesh %s edges %s\n", model->name, model->up == MC_UP_Z ? "z" : "y",
+           model->octree ? "yes" : "no", model->pmesh ? "yes" : "no", model->edges ? "yes" : "no");
+    const mc_octree *s = model->octree;
+    if (!s) return 1;
     unsigned long limit = argc > 1 ? strtoul(argv[1], NULL, 10) : 65536;
     int bad = 0;
     build_prefixes(s);

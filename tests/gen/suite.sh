@@ -63,6 +63,35 @@ assert pal == 3 * b["palette_entries"] and 1 <= b["palette_entries"] <= 256
 assert b["ram"]["total"] == 3 * b["screen"][0] * b["screen"][1]
 PY
 
+# the model descriptor: name, parts, and the normalization against the file's own bounding box
+check "model descriptor: name bunny, up y, an octree, no pmesh or edges" grep -qx 'model bunny up y octree yes pmesh no edges no' "$tmp/dump65536.txt"
+"$modelc" build/models/man.off -o "$tmp/up" -q --depth 5 --up z
+# a tetrahedron off the origin with a different extent per axis: a centre or side taken in the
+# generator's turned (y-up) frame instead of the file's would be caught
+printf 'OFF\n4 4 0\n10 20 30\n11 20 30\n10 22 30\n10 20 33\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' >"$tmp/tet.off"
+"$modelc" "$tmp/tet.off" -o "$tmp/up" -q --depth 4 --up z --name tet
+check "model descriptor: centre and side (Q32.32) are the file's bounding cube, up axis recorded (bunny00 up y; man, a tetrahedron up z)" \
+    python3 - "$tmp/chunk65536/bunny/bunny_model.c" build/models/bunny00.off y "$tmp/up/man/man_model.c" build/models/man.off z \
+    "$tmp/up/tet/tet_model.c" "$tmp/tet.off" z <<'PY'
+import re, sys
+args = sys.argv[1:]
+for model_c, off, up in zip(args[0::3], args[1::3], args[2::3]):
+    text = open(model_c).read()
+    q = [int(v) for v in re.findall(r"INT64_C\((-?\d+)\)", text)]
+    assert len(q) == 4, q
+    centre, side = [v / 2**32 for v in q[:3]], q[3] / 2**32
+    words = open(off).read().split()
+    nv = int(words[1])
+    pts = [[float(w) for w in words[4 + 3 * i:7 + 3 * i]] for i in range(nv)]
+    lo = [min(p[a] for p in pts) for a in range(3)]
+    hi = [max(p[a] for p in pts) for a in range(3)]
+    ext = max(h - l for l, h in zip(lo, hi))
+    for a in range(3):   # in the file's own axes, whatever the up axis
+        assert abs(centre[a] - (lo[a] + hi[a]) / 2) < 1e-6 * ext, (model_c, a, centre, lo, hi)
+    assert abs(side - ext) < 1e-6 * ext, (model_c, side, ext)
+    assert ("MC_UP_Z" if up == "z" else "MC_UP_Y") in text, (model_c, up)
+PY
+
 # palette: --palette 16 quantizes to at most 16 entries and still renders
 "$modelc" build/models/b9_training.ply -o "$tmp/pal" -q --palette 16 --depth 6
 check "--palette 16 gives at most 16 entries" python3 -c "import json,sys; sys.exit(json.load(open('$tmp/pal/b9_training/budget.json'))['palette_entries'] > 16)"

@@ -27,7 +27,7 @@ done
 
 # a viewer for one bake, linked like the Makefile's link_view
 link() {
-    cc -O2 -std=c99 -Iruntime/include -o "$1/view" "$1"/*.c runtime/src/*.c runtime/front/host/*.c -lm
+    cc -O2 -std=c99 -Iruntime/include -o "$1/view" "$1"/*.c runtime/src/*.c runtime/front/host/*.c runtime/front/common/*.c -lm
 }
 # frontal images of two bakes, byte for byte: sizes x depths x finishing
 same_front() {

@@ -146,7 +146,7 @@ else
         $cc $SAN_FLAGS $rt_cflags -c -o "$o" "$f" >"$o.log" 2>&1 || problems+="$f: $(head -n 2 "$o.log" | oneline); "
         objs+=("$o")
     done
-    for f in runtime/front/host/*.c; do
+    for f in runtime/front/host/*.c runtime/front/common/*.c; do
         o=$san/viewer/host-$(basename "$f" .c).o
         # shellcheck disable=SC2086
         $cc $SAN_FLAGS $host_cflags -c -o "$o" "$f" >"$o.log" 2>&1 || problems+="$f: $(head -n 2 "$o.log" | oneline); "

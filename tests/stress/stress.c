@@ -27,7 +27,7 @@
  *     perspective, clearly in front of the near plane) is drawn, unless the frame was aborted;
  *  4. mc_stats.points equals the number of points the hook saw, and mc_octree_render returns MC_OK (or
  *     MC_ERR_SIZE for a target over MC_TARGET_MAX, then writing nothing);
- *  5. with -DSTRESS_ALT=1 (tests/stress/suite.sh links a second copy of render.c built with the other
+ *  5. with -DSTRESS_ALT=1 (tests/stress/suite.sh links a second copy of octree_render.c built with the other
  *     form of the depth test, MC_DEPTH_SELECT, its entry points renamed mc_octree_render_alt/mc_clear_alt):
  *     the other form, drawing the same frames into a second target, leaves both buffers byte for byte
  *     equal to this one's. The select form parks losing leaves on a spare pixel and puts it back, so

@@ -1,5 +1,5 @@
 /* View clamping, mc_octree_render's argument checks and contract on hand-made and random scenes, and the
- * one-pixel hole filler (modelc/view.h, render.h, finish.h).
+ * one-pixel hole filler (modelc/xform.h, octree_render.h, finish.h).
  *
  * The runtime is compiled into this test with MC_PLOT_HOOK pointing at mc_test_plot_hook (see
  * tests/unit/suite.sh), so every point the renderer reports as on screen is checked to really lie on
@@ -118,7 +118,7 @@ typedef struct tree {
 
 /* Splits a level's array into chunks, each in its own heap block of exactly its size. A chunk may end
  * only where the grandparent changes (between cousin groups), which is also a sibling-group boundary,
- * so the chunks are valid under scene.h's rules for masks and for colours. */
+ * so the chunks are valid under octree.h's rules for masks and for colours. */
 static mc_chunk *make_chunks(const uint8_t *data, uint32_t n, const tree *t, unsigned level, int split)
 {
     mc_chunk *ch = calloc(n + 2, sizeof *ch);
@@ -613,7 +613,7 @@ static void test_render_abort(void **state)
         assert_int_equal(st.polls, 0);
         assert_int_equal(st.aborted, 0);
         /* a callback that never aborts: the same image; the polls are one per node at one level of
-         * the walk (render.h: MC_ABORT_LEVEL, where the walk goes that deep) */
+         * the walk (octree_render.h: MC_ABORT_LEVEL, where the walk goes that deep) */
         abort_after = 1 << 30;
         poll_count = 0;
         mc_clear(&g.t);
