@@ -8,6 +8,7 @@
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
 #   make stress                  10^7 random views against the double-precision reference (about 13 min)
+#   make fuzz                    libFuzzer + ASan + UBSan on each reader and the whole bake, FUZZ_SECONDS=600 each
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
@@ -26,6 +27,7 @@ GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
 # Debian packages: the build, the tests and the benchmarks
 DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
+  libclang-rt-14-dev \
   libosmesa6-dev draco python3 perl strace bsdutils coreutils \
   gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
@@ -152,6 +154,46 @@ stress: $(MODELC) $(BUILD)/models/bunny00.off
 
 clean:
 	rm -rf $(BUILD)
+
+# ---- fuzzing: tests/fuzz/ (README there) -------------------------------------------------------
+# Every generator source but gen/main.cpp, compiled by clang with coverage for libFuzzer, ASan and
+# UBSan; one target per reader (tests/fuzz/fuzz_reader.cpp with the extension compiled in) and one
+# for the whole bake (tests/fuzz/fuzz_bake.cpp, with gen/main.cpp's main renamed so it is callable).
+#   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz bake"]   findings: tests/fuzz/regress/
+FUZZ_CXX ?= clang++
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CXXFLAGS := -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(GEN_CXXFLAGS)
+FUZZ_READERS := off obj ply stl xyz
+FUZZ_TARGETS ?= $(FUZZ_READERS) bake
+FUZZ_SECONDS ?= 600
+FUZZ_DIR := $(BUILD)/fuzz
+FUZZ_GEN_SRC := $(filter-out gen/main.cpp,$(GEN_SRC))
+FUZZ_GEN_OBJ := $(patsubst gen/%.cpp,$(FUZZ_DIR)/gen/%.o,$(FUZZ_GEN_SRC)) $(FUZZ_DIR)/gen/templates.o
+FUZZ_BINS := $(foreach t,$(FUZZ_TARGETS),$(FUZZ_DIR)/fuzz-$(t))
+$(FUZZ_DIR)/gen/%.o: gen/%.cpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(FUZZ_DIR)/gen/templates.o: $(BUILD)/gen/templates.cpp
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(FUZZ_DIR)/main.o: gen/main.cpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -Dmain=mc_fuzz_modelc_main -c -o $@ $<
+$(FUZZ_DIR)/reader-%.o: tests/fuzz/fuzz_reader.cpp tests/fuzz/fuzz_file.hpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -DMC_FUZZ_EXT='"$*"' -c -o $@ $<
+$(FUZZ_DIR)/bake.o: tests/fuzz/fuzz_bake.cpp tests/fuzz/fuzz_file.hpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(foreach r,$(FUZZ_READERS),$(FUZZ_DIR)/fuzz-$(r)): $(FUZZ_DIR)/fuzz-%: $(FUZZ_DIR)/reader-%.o $(FUZZ_GEN_OBJ)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+$(FUZZ_DIR)/fuzz-bake: $(FUZZ_DIR)/bake.o $(FUZZ_DIR)/main.o $(FUZZ_GEN_OBJ)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+
+.PHONY: fuzz fuzz-build
+fuzz-build: $(FUZZ_BINS)
+fuzz: fuzz-build models
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/fuzz.sh $(FUZZ_TARGETS)
 
 # ---- firmware (issue 4): Cortex-M images run under QEMU ---------------------------------------------
 #   make firmware MODEL=m BOARD=b      bake catalogue model m for board b, cross-compile, check the ELF
