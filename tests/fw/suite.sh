@@ -20,9 +20,8 @@ out=build/tests/fw
 rm -rf "$out"
 mkdir -p "$out"
 TAP_PREFIX="fw: "
-. tests/tap.sh
+. tests/lib.sh
 check() { check_problems "$@"; }   # check NAME PROBLEMS
-mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1" "${@:2}"; }
 model=bunny00
 
 # ---- the toolchain ----------------------------------------------------------------------------------

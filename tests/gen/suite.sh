@@ -4,10 +4,9 @@
 set -u
 cd "$(dirname "$0")/../.."
 modelc=${1:-build/bin/modelc}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 TAP_PREFIX="gen: "
-. tests/tap.sh
+. tests/lib.sh
+temp_dir
 nok() { notok "$1"; }
 check() { check_cmd "$@"; }   # check NAME COMMAND...
 

@@ -9,7 +9,7 @@ out=build/views-test
 rm -rf "$out"
 mkdir -p "$out"
 TAP_PREFIX="views: "
-. tests/tap.sh
+. tests/lib.sh
 nok() { notok "$1"; }
 check() { check_cmd "$@"; }   # check NAME COMMAND...
 

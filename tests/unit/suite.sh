@@ -8,18 +8,16 @@
 set -u
 cd "$(dirname "$0")/../.." || exit 1
 
+TAP_PREFIX=""
+. tests/lib.sh
 out=build/tests/unit
 flags="-O2 -g"
 if [ "${SANITIZE:-0}" = 1 ]; then
     out=build/san/unit
-    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-    export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:halt_on_error=1:detect_leaks=1}"
-    export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
+    flags=$SAN_FLAGS
 fi
 mkdir -p "$out"
 CC_UNIT=${CC_UNIT:-gcc}
-TAP_PREFIX=""
-. tests/tap.sh
 
 # ---- cmocka programs ---------------------------------------------------------------------------
 # The runtime is compiled into each test program. test_view's copy reports every plotted point to
