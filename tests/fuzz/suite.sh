@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Replays every fuzzer finding (tests/fuzz/regress/TARGET/*, written by make fuzz) through the
-# generator as a user would run it, with the bake fuzzer's options (--depth 5, and --views front:40
-# for NAME.views.EXT). Each must end in exit status 0 (with its output written and nothing on
-# stderr) or 1 (exactly one stderr line "modelc: ...", not "out of memory", no output left), never
-# a signal, a sanitizer report or a hang (FUZZ_REPLAY_TIMEOUT, 20 s), within FUZZ_REPLAY_MEM_MB
-# (2048) of address space for the normal build, or of one allocation for a sanitized one
+# Replays every fuzzer finding (tests/fuzz/regress/TARGET/*, written by make fuzz) and every absurd
+# header (tests/fuzz/absurd/*: tiny files whose counts are just under the readers' limits, where a
+# reader that allocates what the header says would take gigabytes) through the generator as a user
+# would run it, with the bake fuzzer's options (--depth 5, and --views front:40 for NAME.views.EXT).
+# Each must end in exit status 0 (with its output written and nothing on stderr) or 1 (exactly one
+# stderr line "modelc: ...", not "out of memory", no output left), never a signal, a sanitizer
+# report or a hang (FUZZ_REPLAY_TIMEOUT, 20 s), within FUZZ_REPLAY_MEM_MB (256; a small bake needs
+# under 128) of address space for the normal build, or of one allocation for a sanitized one
 # (tests/sanitize/suite.sh replays them with build/san/bin/modelc).
 #
 # usage: tests/fuzz/suite.sh [MODELC]        (default build/bin/modelc)
@@ -16,7 +18,7 @@ TAP_PREFIX="fuzz: "
 . tests/lib.sh
 temp_dir
 TIMEOUT=${FUZZ_REPLAY_TIMEOUT:-20}
-MEM_MB=${FUZZ_REPLAY_MEM_MB:-2048}
+MEM_MB=${FUZZ_REPLAY_MEM_MB:-256}
 [ -x "$MODELC" ] || { notok "setup" "$MODELC is not an executable (make gen)"; exit 1; }
 # a sanitized build reserves terabytes of address space for its shadow memory: bound one
 # allocation instead (an over-large one is then a report, so a failure)
@@ -48,7 +50,7 @@ judge() {
 }
 
 n=0
-for f in tests/fuzz/regress/*/*; do
+for f in tests/fuzz/regress/*/* tests/fuzz/absurd/*; do
     [ -f "$f" ] || continue
     n=$((n + 1))
     out=$tmp/out/$n
@@ -62,8 +64,8 @@ for f in tests/fuzz/regress/*/*; do
         (ulimit -v $((MEM_MB * 1024)) && exec timeout "$TIMEOUT" "$MODELC" "$f" -o "$out" "${args[@]}") \
             >/dev/null 2>"$tmp/stderr" || rc=$?
     fi
-    check_problems "${f#tests/fuzz/regress/}: exit 0 or 1 with one 'modelc:' line, no signal, hang or output left" \
+    check_problems "${f#tests/fuzz/}: exit 0 or 1 with one 'modelc:' line, no signal, hang or output left" \
         "$(judge "$rc" "$out")"
 done
-[ "$n" -gt 0 ] || notok "regression files" "none under tests/fuzz/regress/"
+[ "$n" -gt 0 ] || notok "regression files" "none under tests/fuzz/regress/ or tests/fuzz/absurd/"
 exit $status

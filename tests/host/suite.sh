@@ -10,11 +10,10 @@
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
-out=build/tests/host
-rm -rf "$out"
-mkdir -p "$out"
 TAP_PREFIX="host: "
 . tests/lib.sh
+out=build/tests/host
+fresh_dir "$out"
 check() { check_problems "$@"; }   # check NAME PROBLEMS
 
 # Makefile variables (mkvar) are read from the Makefile itself so the re-link below is the real one
