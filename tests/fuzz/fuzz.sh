@@ -11,6 +11,7 @@
 #   FUZZ_TIMEOUT=10    seconds one input may take before it is a hang
 #   FUZZ_RSS_MB=2048   resident memory, and FUZZ_MALLOC_MB=512 one allocation, before it is a finding
 #   FUZZ_MAX_LEN=4096  largest input in bytes: tiny files, where a bad header does the most harm
+#   FUZZ_WORK=build/fuzz  where seeds, corpus and raw findings go (the targets are build/fuzz/fuzz-*)
 # Exits 1 when a target found something not already in tests/fuzz/regress/.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
@@ -23,7 +24,8 @@ MALLOC_MB=${FUZZ_MALLOC_MB:-512}
 MAX_LEN=${FUZZ_MAX_LEN:-4096}
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl xyz bake)
-dir=build/fuzz
+bins=build/fuzz
+dir=${FUZZ_WORK:-build/fuzz}
 exts=(off obj ply stl xyz)   # the bake target's format byte, as in fuzz_bake.cpp
 limits=(-timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -malloc_limit_mb="$MALLOC_MB")
 export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1:detect_leaks=1:allocator_may_return_null=0"
@@ -31,7 +33,7 @@ export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1:detect_leaks=1:allocator_m
 # ---- seeds ------------------------------------------------------------------------------------
 seeds=$dir/seeds
 rm -rf "$seeds"
-mkdir -p "$seeds"
+mkdir -p "$seeds/bake"
 python3 tests/fuzz/seeds.py build/models "$seeds" || { echo "fuzz: tests/fuzz/seeds.py failed" >&2; exit 2; }
 # the malformed-input table: errors.sh run with a stand-in generator that keeps each input file
 collect=$dir/collect-input.sh
@@ -52,10 +54,14 @@ done
 # signature FILE TARGET: what a finding's report says, without addresses or sizes, and the first
 # frame in the generator's own code: two findings with one signature are one bug
 signature() {
-    "$dir/fuzz-$2" "${limits[@]}" "$1" >"$dir/sig.log" 2>&1
+    "$bins/fuzz-$2" "${limits[@]}" "$1" >"$dir/sig.log" 2>&1
     local what frame
     what=$(grep -m1 -oE 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer): [a-z-]+|runtime error: [^0-9]*|terminate called [a-z ]*|CGAL ERROR: [a-z ]+|ERROR: libFuzzer: [a-z-]+' "$dir/sig.log")
     frame=$(grep -m1 -E '^ *#[0-9]+ .* in .*(/|^)gen/' "$dir/sig.log" | sed -E 's/.* in ([^ ]+).*/\1/')
+    # else the first frame outside libFuzzer, the sanitizers and libc (a library's own code)
+    [ -n "$frame" ] || frame=$(grep -E '^ *#[0-9]+ 0x[0-9a-f]+ in ' "$dir/sig.log" |
+        grep -vE 'fuzzer::|__sanitizer|__asan|__ubsan|libc\.so|compiler-rt|/libFuzzer|in (abort|raise|__GI_|__pthread_kill)' |
+        head -n 1 | sed -E 's/.* in ([^ ]+).*/\1/')
     [ -n "$what" ] || return 1   # not reproducible
     echo "$what @ ${frame:-?}"
 }
@@ -90,11 +96,11 @@ bake_input() {
 
 new_total=0
 for t in "${targets[@]}"; do
-    bin=$dir/fuzz-$t
+    bin=$bins/fuzz-$t
     [ -x "$bin" ] || { echo "fuzz: $bin missing (make fuzz-build)" >&2; exit 2; }
     corpus=$dir/corpus/$t
     found=$dir/findings/$t
-    mkdir -p "$corpus"
+    mkdir -p "$corpus" "$seeds/$t"
     rm -rf "$found"
     mkdir -p "$found"
     close=0
@@ -104,7 +110,7 @@ for t in "${targets[@]}"; do
         -max_total_time="$SECS" -max_len="$MAX_LEN" "${limits[@]}" -use_value_profile=1 \
         -close_fd_mask=$close -artifact_prefix="$found/" -print_final_stats=1 \
         "$corpus" "$seeds/$t" >"$dir/$t.log" 2>&1
-    grep -E '^#[0-9]+.*(DONE|INITED)|cov:' "$dir/$t.log" | tail -n 1 | sed "s/^/fuzz: $t: /"
+    grep -E '^#[0-9]+:? .*cov:' "$dir/$t.log" | tail -n 1 | sed "s/^/fuzz: $t: /"
     # the signatures already covered by regression files
     known=()
     for f in tests/fuzz/regress/"$t"/*; do
