@@ -149,8 +149,10 @@ bench-accuracy: $(MODELC) models
 # 10^7 random views (tests/stress/stress.c), on two processes with their own seeds, plus the F=8/24
 # and ASan + UBSan runs of tests/stress/suite.sh
 STRESS_VIEWS ?= 10000000
+# and the freestanding builds of the runtime at every optimisation level (make test: -O0 -O2 -Os)
 stress: $(MODELC) $(BUILD)/models/bunny00.off
-	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 tests/stress/suite.sh
+	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 tests/stress/suite.sh; s=$$?; \
+	  UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh && exit $$s
 
 clean:
 	rm -rf $(BUILD)
@@ -192,8 +194,11 @@ $(FUZZ_DIR)/fuzz-bake: $(FUZZ_DIR)/bake.o $(FUZZ_DIR)/main.o $(FUZZ_GEN_OBJ)
 
 .PHONY: fuzz fuzz-build
 fuzz-build: $(FUZZ_BINS)
-fuzz: fuzz-build models
-	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/fuzz.sh $(FUZZ_TARGETS)
+# first the generator built with g++'s ASan + UBSan (tests/sanitize/suite.sh SAN_PARTS=generator: the
+# error table, the findings and a real bake), then the fuzzers
+fuzz: fuzz-build models $(MODELC)
+	@SAN_PARTS=generator tests/sanitize/suite.sh; s=$$?; \
+	  FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/fuzz.sh $(FUZZ_TARGETS) && exit $$s
 
 # ---- firmware (issue 4): Cortex-M images run under QEMU ---------------------------------------------
 #   make firmware MODEL=m BOARD=b      bake catalogue model m for board b, cross-compile, check the ELF

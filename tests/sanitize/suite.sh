@@ -8,6 +8,9 @@
 #     fuzzers' findings (tests/fuzz/suite.sh) replayed through it
 #   - a sanitized bunny00 viewer: a few views, --png and --bench 20, with the same pictures as the
 #     normal viewer
+# SAN_PARTS chooses: "runtime" (the default, in make test: unit, render, viewer) and/or "generator"
+# (make fuzz runs it: the sanitized generator takes minutes to compile, and the fuzzers run the
+# generator under the same sanitizers).
 # Any sanitizer report fails the check it happens in (the programs halt on the first one).
 # Passed-through lines are prefixed "san: " so their names stay unique.
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
@@ -19,6 +22,8 @@ TAP_PREFIX="san: "
 . tests/lib.sh
 check() { check_problems "$@"; }   # check NAME PROBLEMS
 jobs_max=$(nproc 2>/dev/null || echo 2)
+SAN_PARTS=${SAN_PARTS:-runtime}
+has_part() { [[ " $SAN_PARTS " == *" $1 "* ]]; }
 
 # pass_through LABEL LOG STATUS [PREFIX]: the suite's check lines with "san: PREFIX" added; a failing
 # suite that reported no failure (a crash, a sanitizer abort outside a check) is one more failure
@@ -33,14 +38,17 @@ pass_through() {
 }
 
 # ---- the unit and render suites ----------------------------------------------------------------
+if has_part runtime; then
 SANITIZE=1 tests/unit/suite.sh >"$san/unit-suite.log" 2>&1
 pass_through "unit suite" "$san/unit-suite.log" $?
 if [ -e tests/render/suite.sh ]; then
     SANITIZE=1 tests/render/suite.sh >"$san/render-suite.log" 2>&1
     pass_through "render suite" "$san/render-suite.log" $? "render: "
 fi
+fi   # runtime
 
 # ---- sanitized generator -----------------------------------------------------------------------
+if has_part generator; then
 # compiled like the Makefile's $(BUILD)/gen/%.o, objects rebuilt when a source, a header or the flags
 # changed; several at a time, as they are slow
 build_generator() {
@@ -123,8 +131,10 @@ if [ -z "$problems" ]; then
         fi
     fi
 fi
+fi   # generator
 
 # ---- sanitized viewer --------------------------------------------------------------------------
+if has_part runtime; then
 m=bunny00
 v=$san/viewer/$m-view
 name="viewer $m builds with $SAN_FLAGS"
@@ -204,5 +214,6 @@ else
         done
     fi
 fi
+fi   # runtime
 
 exit $status

@@ -5,6 +5,9 @@
 #
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
 # SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit).
+# UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds, "-O0 -O2 -Os" by default (no
+# inlining, the firmware's level, the size level: where helper calls differ most); make stress
+# runs all five.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
 
@@ -99,6 +102,7 @@ if [ "${SANITIZE:-0}" != 1 ]; then
     # Not the memory functions (memcpy, memset, __aeabi_memcpy...): those come from a libc.
     helpers='^(__(u?(div|mod|mul)[sdt]i3|u?divmod[sdt]i4|(ash[lr]|lshr)[sdt]i3|(popcount|ctz|clz|parity|ffs|bswap)[sdt]i2|cmp[dt]i2|ucmp[dt]i2|neg[dt]i2|aeabi_(l|ui|i|ul)(div|divmod|mul|asr|lsl|lsr|cmp|ucmp)|aeabi_(idiv|uidiv|idivmod|uidivmod|ldivmod|uldivmod|lmul|llsl|llsr|lasr|lcmp|ulcmp))|_GLOBAL_OFFSET_TABLE_)$'
 
+    levels=${UNIT_OPT_LEVELS:--O0 -O2 -Os}
     # fs_build TAG "CC FLAGS...": compiles every runtime/src/*.c at several optimisation levels into
     # $fs/TAG/O*/, with only the compiler's own headers on the include path (-nostdinc), and prints
     # the problems, if any
@@ -106,7 +110,7 @@ if [ "${SANITIZE:-0}" != 1 ]; then
         local tag=$1 cc=$2 inc o f dir
         inc=$($cc -print-file-name=include 2>/dev/null)
         case $cc in clang*) inc="$(clang -print-resource-dir)/include" ;; esac
-        for o in -O0 -O1 -O2 -O3 -Os; do
+        for o in $levels; do
             dir="$fs/$tag/O${o#-O}"
             mkdir -p "$dir"
             for f in runtime/src/*.c; do
@@ -145,9 +149,9 @@ if [ "${SANITIZE:-0}" != 1 ]; then
         IFS='|' read -r tag cc ld nm <<<"$t"
         problems=$(fs_build "$tag" "$cc")
         if [ -z "$problems" ]; then
-            ok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at -O0..-O3,-Os"
+            ok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at $levels"
         else
-            notok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at -O0..-O3,-Os" \
+            notok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at $levels" \
                 "$(echo "$problems" | oneline)"
             continue
         fi
