@@ -2,13 +2,13 @@
 #
 #   make deps                    install the Debian packages that are missing (apt-get, sudo when not root)
 #   make demo                    deps + generator + bake the default model + its viewer + a PNG and stats
-#   make test                    the whole test suite; last line "N passed, N failed"
+#   make test                    the whole test suite, two suites at a time; last line "N passed, N failed, N skipped"
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
-#   make stress                  10^7 random views against the double-precision reference (about 13 min)
-#   make fuzz                    libFuzzer + ASan + UBSan on each reader and the whole bake, FUZZ_SECONDS=600 each
+#   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
+#   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
