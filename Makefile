@@ -2,12 +2,13 @@
 #
 #   make deps                    install the Debian packages that are missing (apt-get, sudo when not root)
 #   make demo                    deps + generator + bake the default model + its viewer + a PNG and stats
-#   make test                    the whole test suite; last line "N passed, N failed"
+#   make test                    the whole test suite, two suites at a time; last line "N passed, N failed, N skipped"
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
-#   make stress                  10^7 random views against the double-precision reference (about 13 min)
+#   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
+#   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
@@ -26,6 +27,7 @@ GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
 # Debian packages: the build, the tests and the benchmarks
 DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
+  libclang-rt-14-dev \
   libosmesa6-dev draco python3 perl strace bsdutils coreutils \
   gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
@@ -154,11 +156,56 @@ bench-accuracy: $(MODELC) models
 # 10^7 random views (tests/stress/stress.c), on two processes with their own seeds, plus the F=8/24
 # and ASan + UBSan runs of tests/stress/suite.sh
 STRESS_VIEWS ?= 10000000
+# and the freestanding builds of the runtime at every optimisation level (make test: -O0 -O2 -Os)
 stress: $(MODELC) $(BUILD)/models/bunny00.off
-	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 tests/stress/suite.sh
+	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 tests/stress/suite.sh; s=$$?; \
+	  UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh && exit $$s
 
 clean:
 	rm -rf $(BUILD)
+
+# ---- fuzzing: tests/fuzz/ (README there) -------------------------------------------------------
+# Every generator source but gen/main.cpp, compiled by clang with coverage for libFuzzer, ASan and
+# UBSan; one target per reader (tests/fuzz/fuzz_reader.cpp with the extension compiled in) and one
+# for the whole bake (tests/fuzz/fuzz_bake.cpp, with gen/main.cpp's main renamed so it is callable).
+#   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz bake"]   findings: tests/fuzz/regress/
+FUZZ_CXX ?= clang++
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CXXFLAGS := -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(GEN_CXXFLAGS)
+FUZZ_READERS := off obj ply stl xyz
+FUZZ_TARGETS ?= $(FUZZ_READERS) bake
+FUZZ_SECONDS ?= 600
+FUZZ_DIR := $(BUILD)/fuzz
+FUZZ_GEN_SRC := $(filter-out gen/main.cpp,$(GEN_SRC))
+FUZZ_GEN_OBJ := $(patsubst gen/%.cpp,$(FUZZ_DIR)/gen/%.o,$(FUZZ_GEN_SRC)) $(FUZZ_DIR)/gen/templates.o
+FUZZ_BINS := $(foreach t,$(FUZZ_TARGETS),$(FUZZ_DIR)/fuzz-$(t))
+$(FUZZ_DIR)/gen/%.o: gen/%.cpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(FUZZ_DIR)/gen/templates.o: $(BUILD)/gen/templates.cpp
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(FUZZ_DIR)/main.o: gen/main.cpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -Dmain=mc_fuzz_modelc_main -c -o $@ $<
+$(FUZZ_DIR)/reader-%.o: tests/fuzz/fuzz_reader.cpp tests/fuzz/fuzz_file.hpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -DMC_FUZZ_EXT='"$*"' -c -o $@ $<
+$(FUZZ_DIR)/bake.o: tests/fuzz/fuzz_bake.cpp tests/fuzz/fuzz_file.hpp $(GEN_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(foreach r,$(FUZZ_READERS),$(FUZZ_DIR)/fuzz-$(r)): $(FUZZ_DIR)/fuzz-%: $(FUZZ_DIR)/reader-%.o $(FUZZ_GEN_OBJ)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+$(FUZZ_DIR)/fuzz-bake: $(FUZZ_DIR)/bake.o $(FUZZ_DIR)/main.o $(FUZZ_GEN_OBJ)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+
+.PHONY: fuzz fuzz-build
+fuzz-build: $(FUZZ_BINS)
+# first the generator built with g++'s ASan + UBSan (tests/sanitize/suite.sh SAN_PARTS=generator: the
+# error table, the findings and a real bake), then the fuzzers
+fuzz: fuzz-build models $(MODELC)
+	@SAN_PARTS=generator tests/sanitize/suite.sh; s=$$?; \
+	  FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/fuzz.sh $(FUZZ_TARGETS) && exit $$s
 
 # ---- firmware (issue 4): Cortex-M images run under QEMU ---------------------------------------------
 #   make firmware MODEL=m BOARD=b      bake catalogue model m for board b, cross-compile, check the ELF

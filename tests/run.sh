@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The whole test suite (make test). Builds what the tests need, runs every suite, and ends with one
-# line "N passed, N failed". A suite is a program or script that prints one line per check,
-# "ok - NAME" or "not ok - NAME: why" (TAP style); a suite that exits non-zero without reporting a
-# failure counts as one failed check, so a crash is never a pass.
+# The whole test suite (make test). Builds what the tests need, runs every suite, prints each
+# suite's checks, counts and time, and ends with exactly one line "N passed, N failed, N skipped".
+# A suite prints one line per check (tests/tap.sh): "ok - NAME" (passed), "not ok - NAME: why"
+# (failed) or "ok - NAME # SKIP why" (skipped: counted apart, never as a pass). A suite that exits
+# non-zero without reporting a failure counts as one failed check, so a crash is never a pass.
+# Exits non-zero when anything failed.
 set -u
 cd "$(dirname "$0")/.."
 logdir=build/tests
@@ -11,7 +13,7 @@ mkdir -p "$logdir"
 echo "building the generator, the runtime and the catalogue's viewers..."
 if ! make -s -j"$(nproc)" gen views >"$logdir/build.log" 2>&1; then
     tail -n 30 "$logdir/build.log"
-    echo "0 passed, 1 failed"
+    echo "0 passed, 1 failed, 0 skipped"
     exit 1
 fi
 
@@ -22,6 +24,7 @@ suites=(
     tests/gen/suite.sh        # determinism, chunks, budget
     tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
+    tests/fuzz/suite.sh       # the fuzzers' findings (tests/fuzz/regress/) replayed through modelc
     tests/render/suite.sh     # renders against the double-precision reference
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
@@ -31,22 +34,73 @@ suites=(
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
 )
 
-pass=0 fail=0
+skip_re='^ok .*# *[Ss][Kk][Ii][Pp]'
+# TEST_JOBS suites run at once (default 2: most suites use one core, and each writes only its own
+# directories under build/); TEST_JOBS=1 runs them one after another. Each suite's block is printed
+# in the order above as soon as it and those before it are done.
+jobs_max=${TEST_JOBS:-2}
+log_of() { echo "$logdir/$(echo "$1" | tr '/' '_').log"; }
+start() {   # runs suite $1 in the background: its log, wall and CPU time, exit status
+    local s=$1 log
+    log=$(log_of "$s")
+    rm -f "$log.status"
+    (
+        TIMEFORMAT='%R %U %S'
+        if [ -x "$s" ]; then
+            { time "$s" >"$log" 2>&1; } 2>"$log.time"
+            echo $? >"$log.status.tmp"
+        else
+            echo "not ok - $s: missing or not executable" >"$log"
+            echo "0 0 0" >"$log.time"
+            echo 1 >"$log.status.tmp"
+        fi
+        mv "$log.status.tmp" "$log.status"
+    ) &
+}
+pass=0 fail=0 skip=0 times=() next=0
+report() {   # prints the finished suites, in order, up to the first unfinished one
+    local s label log status wall user sys p f k cpu line
+    while [ "$next" -lt "${#suites[@]}" ]; do
+        s=${suites[$next]}
+        log=$(log_of "$s")
+        [ -f "$log.status" ] || return 0
+        next=$((next + 1))
+        label=${s#tests/}
+        label=${label%.sh}
+        label=${label%/suite}
+        status=$(cat "$log.status")
+        read -r wall user sys < <(tail -n 1 "$log.time")
+        grep -E '^(ok|not ok) ' "$log" | sed "s|^|[$label] |"
+        p=$(grep -E '^ok ' "$log" | grep -cvE "$skip_re")
+        k=$(grep -cE "$skip_re" "$log")
+        f=$(grep -c '^not ok ' "$log")
+        if [ "$status" -ne 0 ] && [ "$f" -eq 0 ]; then
+            echo "not ok - $s exited with status $status without reporting a failure (see $log)"
+            tail -n 5 "$log" | sed 's/^/#   /'
+            f=1
+        fi
+        cpu=$(echo "$user $sys" | awk '{ printf "%.1f", $1 + $2 }')
+        line=$(printf '[%s] %.1f s wall, %s s CPU: %d passed, %d failed, %d skipped' "$label" "$wall" "$cpu" "$p" "$f" "$k")
+        echo "$line"
+        times+=("$line")
+        pass=$((pass + p))
+        fail=$((fail + f))
+        skip=$((skip + k))
+    done
+}
+t0=$(date +%s)
 for s in "${suites[@]}"; do
-    [ -x "$s" ] || { echo "not ok - $s: missing or not executable"; fail=$((fail + 1)); continue; }
-    log="$logdir/$(echo "$s" | tr '/' '_').log"
-    "$s" >"$log" 2>&1
-    status=$?
-    p=$(grep -c '^ok ' "$log")
-    f=$(grep -c '^not ok ' "$log")
-    grep -E '^(ok|not ok) ' "$log" | sed "s|^|[$(basename "$(dirname "$s")")] |"
-    if [ "$status" -ne 0 ] && [ "$f" -eq 0 ]; then
-        echo "not ok - $s exited with status $status without reporting a failure (see $log)"
-        tail -n 5 "$log"
-        f=1
-    fi
-    pass=$((pass + p))
-    fail=$((fail + f))
+    while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do
+        wait -n
+        report
+    done
+    start "$s"
 done
-echo "$pass passed, $fail failed"
+while [ "$next" -lt "${#suites[@]}" ]; do
+    wait -n 2>/dev/null || sleep 1
+    report
+done
+echo "times ($jobs_max at once, $(($(date +%s) - t0)) s in all):"
+printf '  %s\n' "${times[@]}"
+echo "$pass passed, $fail failed, $skip skipped"
 [ "$fail" -eq 0 ]

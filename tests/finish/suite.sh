@@ -11,7 +11,7 @@ cd "$(dirname "$0")/../.." || exit 1
 out=build/finish
 mkdir -p "$out"
 TAP_PREFIX="finish: "
-. tests/tap.sh
+. tests/lib.sh
 CFLAGS_T="-std=c99 -Wall -Wextra -Werror -Iruntime/include"
 
 run() {   # run LABEL PROGRAM ARGS...: passes the check lines through, one failure if it dies silently
@@ -34,9 +34,8 @@ if gcc $CFLAGS_T -O2 -g -o "$out/test_holes" tests/finish/test_holes.c runtime/s
 else
     notok "test_holes build" "$(head -n 3 "$out/test_holes.build.log" | oneline)"
 fi
-export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1" UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # shellcheck disable=SC2086
-if gcc $CFLAGS_T -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer \
+if gcc $CFLAGS_T $SAN_FLAGS \
     -o "$out/test_holes-san" tests/finish/test_holes.c runtime/src/*.c >"$out/test_holes-san.build.log" 2>&1; then
     "$out/test_holes-san" >"$out/test_holes-san.log" 2>&1
     rc=$?

@@ -16,13 +16,11 @@
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
-out=build/tests/fw
-rm -rf "$out"
-mkdir -p "$out"
 TAP_PREFIX="fw: "
-. tests/tap.sh
+. tests/lib.sh
+out=build/tests/fw
+fresh_dir "$out"
 check() { check_problems "$@"; }   # check NAME PROBLEMS
-mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1" "${@:2}"; }
 model=bunny00
 
 # ---- the toolchain ----------------------------------------------------------------------------------

@@ -8,10 +8,9 @@
 set -u
 cd "$(dirname "$0")/../.."
 modelc=${1:-build/bin/modelc}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 TAP_PREFIX="budget: "
-. tests/tap.sh
+. tests/lib.sh
+temp_dir
 nok() { notok "$1"; }
 check() { check_cmd "$@"; }   # check NAME COMMAND...
 json() { python3 -c "import json,sys; b=json.load(open(sys.argv[1])); print($2)" "$1"; }
@@ -205,7 +204,7 @@ if command -v arm-none-eabi-gcc >/dev/null; then
         nok "arm -fstack-usage build of runtime/src"
     fi
 else
-    ok "arm tables # SKIP arm-none-eabi-gcc not installed (make deps)"
+    skip "arm tables" "arm-none-eabi-gcc not installed (make deps)"
 fi
 
 # --- bunny00 on lm3s6965evb ---------------------------------------------------------------------

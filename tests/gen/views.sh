@@ -5,11 +5,10 @@
 set -u
 cd "$(dirname "$0")/../.."
 modelc=${1:-build/bin/modelc}
-out=build/views-test
-rm -rf "$out"
-mkdir -p "$out"
 TAP_PREFIX="views: "
-. tests/tap.sh
+. tests/lib.sh
+out=build/views-test
+fresh_dir "$out"
 nok() { notok "$1"; }
 check() { check_cmd "$@"; }   # check NAME COMMAND...
 

@@ -3,10 +3,11 @@
 # checked and why the tolerances are what they are). SANITIZE=1 builds with ASan + UBSan.
 set -u
 cd "$(dirname "$0")/../.."
+. tests/lib.sh
 flags="-O2 -g"
 out=build/tests/render
 if [ "${SANITIZE:-0}" = 1 ]; then
-    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    flags=$SAN_FLAGS
     out=build/san/render
 fi
 mkdir -p "$out"

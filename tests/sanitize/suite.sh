@@ -2,11 +2,15 @@
 # The test suite once more under AddressSanitizer and UndefinedBehaviorSanitizer:
 #   - tests/unit/suite.sh and tests/render/suite.sh (if present) with SANITIZE=1: each builds its own
 #     programs with the sanitizers into build/san/...
-#   - a sanitized generator build/san/bin/modelc (gen/*.cpp + build/gen/templates.cpp, compiled as the
-#     Makefile does plus the sanitizer flags): tests/gen/errors.sh (if present) with it, and one real
-#     bake of nefertiti, which must give the same files as the normal generator's bake
+#   - a sanitized generator build/san/bin/modelc (the Makefile's GEN_SRC + build/gen/templates.cpp,
+#     compiled as the Makefile does plus the sanitizer flags): tests/gen/errors.sh (if present) with it, and one real
+#     bake of nefertiti, which must give the same files as the normal generator's bake; and the
+#     fuzzers' findings (tests/fuzz/suite.sh) replayed through it
 #   - a sanitized bunny00 viewer: a few views, --png and --bench 20, with the same pictures as the
 #     normal viewer
+# SAN_PARTS chooses: "runtime" (the default, in make test: unit, render, viewer) and/or "generator"
+# (make fuzz runs it: the sanitized generator takes minutes to compile, and the fuzzers run the
+# generator under the same sanitizers).
 # Any sanitizer report fails the check it happens in (the programs halt on the first one).
 # Passed-through lines are prefixed "san: " so their names stay unique.
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
@@ -14,17 +18,12 @@ set -u
 cd "$(dirname "$0")/../.." || exit 1
 san=build/san
 mkdir -p "$san/bin" "$san/gen" "$san/viewer"
-SAN_FLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 TAP_PREFIX="san: "
-. tests/tap.sh
+. tests/lib.sh
 check() { check_problems "$@"; }   # check NAME PROBLEMS
-sanitizer_report() {   # the first line of a sanitizer report in file $1, if any
-    grep -m1 -E 'runtime error:|ERROR: AddressSanitizer|ERROR: LeakSanitizer|SUMMARY: (Address|Undefined|Leak)' "$1" | oneline
-}
-mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1"; }
 jobs_max=$(nproc 2>/dev/null || echo 2)
+SAN_PARTS=${SAN_PARTS:-runtime}
+has_part() { [[ " $SAN_PARTS " == *" $1 "* ]]; }
 
 # pass_through LABEL LOG STATUS [PREFIX]: the suite's check lines with "san: PREFIX" added; a failing
 # suite that reported no failure (a crash, a sanitizer abort outside a check) is one more failure
@@ -39,18 +38,21 @@ pass_through() {
 }
 
 # ---- the unit and render suites ----------------------------------------------------------------
+if has_part runtime; then
 SANITIZE=1 tests/unit/suite.sh >"$san/unit-suite.log" 2>&1
 pass_through "unit suite" "$san/unit-suite.log" $?
 if [ -e tests/render/suite.sh ]; then
     SANITIZE=1 tests/render/suite.sh >"$san/render-suite.log" 2>&1
     pass_through "render suite" "$san/render-suite.log" $? "render: "
 fi
+fi   # runtime
 
 # ---- sanitized generator -----------------------------------------------------------------------
+if has_part generator; then
 # compiled like the Makefile's $(BUILD)/gen/%.o, objects rebuilt when a source, a header or the flags
 # changed; several at a time, as they are slow
 build_generator() {
-    local cxx cxxflags libs src obj flags_now failed=0 pids=() logs=()
+    local cxx cxxflags libs src obj flags_now failed=0 pids=() srcs=() objs=()
     cxx=$(mkvar CXX)
     cxxflags="$(mkvar GEN_CXXFLAGS) $SAN_FLAGS"
     libs=$(mkvar GEN_LIBS)
@@ -62,9 +64,11 @@ build_generator() {
     [ "$(cat "$san/gen/flags" 2>/dev/null)" = "$flags_now" ] || rm -f "$san"/gen/*.o
     echo "$flags_now" >"$san/gen/flags"
     local newest_hdr
-    newest_hdr=$(ls -t gen/*.hpp gen/*.h 2>/dev/null | head -n 1)
-    for src in gen/*.cpp build/gen/templates.cpp; do
-        obj=$san/gen/$(basename "$src" .cpp).o
+    newest_hdr=$(ls -t $(mkvar GEN_HDR) 2>/dev/null | head -n 1)
+    rm -f "$san"/gen/*.o.tmp
+    for src in $(mkvar GEN_SRC) build/gen/templates.cpp; do
+        obj=$san/gen/$(echo "${src%.cpp}" | tr '/' '_').o
+        objs+=("$obj")
         if [ -f "$obj" ] && [ "$obj" -nt "$src" ] && { [ -z "$newest_hdr" ] || [ "$obj" -nt "$newest_hdr" ]; }; then
             continue
         fi
@@ -72,28 +76,29 @@ build_generator() {
         # shellcheck disable=SC2086
         ($cxx $cxxflags -c -o "$obj.tmp" "$src" >"$obj.log" 2>&1 && mv "$obj.tmp" "$obj") &
         pids+=($!)
-        logs+=("$obj.log")
+        srcs+=("$src")
     done
     local i
     for i in "${!pids[@]}"; do
         if ! wait "${pids[$i]}"; then
-            echo "compiling ${logs[$i]%.o.log}.cpp failed: $(grep -m3 -E 'error' "${logs[$i]}" | oneline)"
+            echo "compiling ${srcs[$i]} failed: $(grep -m3 -E 'error' "$san/gen/$(echo "${srcs[$i]%.cpp}" | tr '/' '_').o.log" | oneline)"
             failed=1
         fi
     done
     [ "$failed" = 0 ] || return 1
     # shellcheck disable=SC2086
-    $cxx $cxxflags -o "$san/bin/modelc" "$san"/gen/*.o $libs >"$san/gen/link.log" 2>&1 ||
+    $cxx $cxxflags -o "$san/bin/modelc" "${objs[@]}" $libs >"$san/gen/link.log" 2>&1 ||
         { echo "link failed: $(head -n 3 "$san/gen/link.log" | oneline)"; return 1; }
 }
 problems=$(build_generator)
 check "generator builds with $SAN_FLAGS into $san/bin/modelc" "$problems"
 if [ -z "$problems" ]; then
-    # errors.sh takes the generator as $1 (written separately; skipped when absent)
-    if [ -e tests/gen/errors.sh ]; then
-        bash tests/gen/errors.sh "$san/bin/modelc" >"$san/gen-errors.log" 2>&1
-        pass_through "gen errors.sh with the sanitized generator" "$san/gen-errors.log" $? "gen errors: "
-    fi
+    # errors.sh takes the generator as $1
+    bash tests/gen/errors.sh "$san/bin/modelc" >"$san/gen-errors.log" 2>&1
+    pass_through "gen errors.sh with the sanitized generator" "$san/gen-errors.log" $? "gen errors: "
+    # the fuzzers' findings (tests/fuzz/regress/), replayed the same way
+    tests/fuzz/suite.sh "$san/bin/modelc" >"$san/fuzz-regress.log" 2>&1
+    pass_through "fuzz regressions with the sanitized generator" "$san/fuzz-regress.log" $?
     # one real bake: nefertiti, with the catalogue's options
     model=nefertiti
     src=build/models/$(basename "$(mkvar "$model.src")")
@@ -122,12 +127,14 @@ if [ -z "$problems" ]; then
             done
             check "$name" "${diffs:+differ: $diffs}"
         else
-            echo "# skipped: $name (build/$model is older than the generator: run make views)"
+            skip "$name" "build/$model is older than the generator: run make views"
         fi
     fi
 fi
+fi   # generator
 
 # ---- sanitized viewer --------------------------------------------------------------------------
+if has_part runtime; then
 m=bunny00
 v=$san/viewer/$m-view
 name="viewer $m builds with $SAN_FLAGS"
@@ -207,5 +214,6 @@ else
         done
     fi
 fi
+fi   # runtime
 
 exit $status

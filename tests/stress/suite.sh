@@ -22,7 +22,7 @@ out=build/stress
 model=bunny00
 bake=$out/$model
 TAP_PREFIX="stress: "
-. tests/tap.sh
+. tests/lib.sh
 mkdir -p "$out"
 
 src=build/models/bunny00.off
@@ -117,7 +117,7 @@ san_run() {
         local rc=$? rep
         grep -E '^(ok|not ok) ' "$out/run.$name.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
         grep '^#' "$out/run.$name.log"
-        rep=$(grep -m1 -E 'runtime error:|ERROR: AddressSanitizer' "$out/run.$name.log" | oneline)
+        rep=$(sanitizer_report "$out/run.$name.log")
         if [ "$rc" -ne 0 ] || [ -n "$rep" ]; then
             grep -q '^not ok' "$out/run.$name.log" || notok "$SAN_VIEWS views of $what under $san" "status $rc: ${rep:-see $out/run.$name.log}"
             status=1
@@ -129,8 +129,6 @@ san_run() {
     fi
 }
 if [ "$SAN_VIEWS" -gt 0 ]; then
-    export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1"
-    export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
     san_run san 1000 "the runtime" address,undefined
     # the float build, with float-to-integer conversions out of range and divisions by zero trapped too
     san_run fsan 2000 "the float build" address,undefined,float-cast-overflow,float-divide-by-zero "${float_flags[@]}"

@@ -5,21 +5,22 @@
 #
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
 # SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit).
+# UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds, "-O0 -O2 -Os" by default (no
+# inlining, the firmware's level, the size level: where helper calls differ most); make stress
+# runs all five.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
 
+TAP_PREFIX=""
+. tests/lib.sh
 out=build/tests/unit
 flags="-O2 -g"
 if [ "${SANITIZE:-0}" = 1 ]; then
     out=build/san/unit
-    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-    export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:halt_on_error=1:detect_leaks=1}"
-    export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
+    flags=$SAN_FLAGS
 fi
 mkdir -p "$out"
 CC_UNIT=${CC_UNIT:-gcc}
-TAP_PREFIX=""
-. tests/tap.sh
 
 # ---- cmocka programs ---------------------------------------------------------------------------
 # The runtime is compiled into each test program. test_view's copy reports every plotted point to
@@ -102,6 +103,7 @@ if [ "${SANITIZE:-0}" != 1 ]; then
     # Not the memory functions (memcpy, memset, __aeabi_memcpy...): those come from a libc.
     helpers='^(__(u?(div|mod|mul)[sdt]i3|u?divmod[sdt]i4|(ash[lr]|lshr)[sdt]i3|(popcount|ctz|clz|parity|ffs|bswap)[sdt]i2|cmp[dt]i2|ucmp[dt]i2|neg[dt]i2|aeabi_(l|ui|i|ul)(div|divmod|mul|asr|lsl|lsr|cmp|ucmp)|aeabi_(idiv|uidiv|idivmod|uidivmod|ldivmod|uldivmod|lmul|llsl|llsr|lasr|lcmp|ulcmp))|_GLOBAL_OFFSET_TABLE_)$'
 
+    levels=${UNIT_OPT_LEVELS:--O0 -O2 -Os}
     # fs_build TAG "CC FLAGS...": compiles every runtime/src/*.c at several optimisation levels into
     # $fs/TAG/O*/, with only the compiler's own headers on the include path (-nostdinc), and prints
     # the problems, if any
@@ -109,7 +111,7 @@ if [ "${SANITIZE:-0}" != 1 ]; then
         local tag=$1 cc=$2 inc o f dir
         inc=$($cc -print-file-name=include 2>/dev/null)
         case $cc in clang*) inc="$(clang -print-resource-dir)/include" ;; esac
-        for o in -O0 -O1 -O2 -O3 -Os; do
+        for o in $levels; do
             dir="$fs/$tag/O${o#-O}"
             mkdir -p "$dir"
             for f in runtime/src/*.c; do
@@ -148,9 +150,9 @@ if [ "${SANITIZE:-0}" != 1 ]; then
         IFS='|' read -r tag cc ld nm <<<"$t"
         problems=$(fs_build "$tag" "$cc")
         if [ -z "$problems" ]; then
-            ok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at -O0..-O3,-Os"
+            ok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at $levels"
         else
-            notok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at -O0..-O3,-Os" \
+            notok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at $levels" \
                 "$(echo "$problems" | oneline)"
             continue
         fi

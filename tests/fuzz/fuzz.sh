@@ -1,0 +1,143 @@
+#!/usr/bin/env bash
+# make fuzz: each fuzz target (build/fuzz/fuzz-TARGET, built by make fuzz-build) under libFuzzer for
+# FUZZ_SECONDS, from seeds written now (tests/fuzz/seeds.py from the catalogue, and the inputs of
+# tests/gen/errors.sh's malformed-input table); then every finding (crash, sanitizer report, abort,
+# timeout, allocation over the limit) minimized and, one per distinct report, added to
+# tests/fuzz/regress/TARGET/, which tests/fuzz/suite.sh replays in make test.
+#
+# usage: tests/fuzz/fuzz.sh [TARGET...]       (default: off obj ply stl xyz bake)
+#   FUZZ_SECONDS=600   seconds per target
+#   FUZZ_JOBS=1        libFuzzer worker processes per target (-fork)
+#   FUZZ_TIMEOUT=10    seconds one input may take before it is a hang
+#   FUZZ_RSS_MB=2048   resident memory, and FUZZ_MALLOC_MB=512 one allocation, before it is a finding
+#   FUZZ_MAX_LEN=4096  largest input in bytes: tiny files, where a bad header does the most harm
+#   FUZZ_WORK=build/fuzz  where seeds, corpus and raw findings go (the targets are build/fuzz/fuzz-*)
+# Exits 1 when a target found something not already in tests/fuzz/regress/.
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+. tests/lib.sh
+SECS=${FUZZ_SECONDS:-600}
+JOBS=${FUZZ_JOBS:-1}
+TIMEOUT=${FUZZ_TIMEOUT:-10}
+RSS_MB=${FUZZ_RSS_MB:-2048}
+MALLOC_MB=${FUZZ_MALLOC_MB:-512}
+MAX_LEN=${FUZZ_MAX_LEN:-4096}
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl xyz bake)
+bins=build/fuzz
+dir=${FUZZ_WORK:-build/fuzz}
+exts=(off obj ply stl xyz)   # the bake target's format byte, as in fuzz_bake.cpp
+limits=(-timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -malloc_limit_mb="$MALLOC_MB")
+export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1:detect_leaks=1:allocator_may_return_null=0"
+
+# ---- seeds ------------------------------------------------------------------------------------
+seeds=$dir/seeds
+rm -rf "$seeds"
+mkdir -p "$seeds/bake"
+python3 tests/fuzz/seeds.py build/models "$seeds" || { echo "fuzz: tests/fuzz/seeds.py failed" >&2; exit 2; }
+# the malformed-input table: errors.sh run with a stand-in generator that keeps each input file
+collect=$dir/collect-input.sh
+cat >"$collect" <<'SH'
+#!/usr/bin/env bash
+f=$1; ext=$(echo "${f##*.}" | tr 'A-Z' 'a-z')
+[ -f "$f" ] && [ -d "$FUZZ_SEEDS/$ext" ] && cp "$f" "$FUZZ_SEEDS/$ext/errors-$(basename "$f")"
+exit 1
+SH
+chmod +x "$collect"
+FUZZ_SEEDS=$PWD/$seeds bash tests/gen/errors.sh "$PWD/$collect" >/dev/null 2>&1
+for i in "${!exts[@]}"; do
+    for f in "$seeds/${exts[$i]}"/errors-*; do
+        [ -f "$f" ] && { printf "\\x$(printf %02x "$i")"; cat "$f"; } >"$seeds/bake/$(basename "$f")"
+    done
+done
+
+# signature FILE TARGET: what a finding's report says, without addresses or sizes, and the first
+# frame in the generator's own code: two findings with one signature are one bug
+signature() {
+    "$bins/fuzz-$2" "${limits[@]}" "$1" >"$dir/sig.log" 2>&1
+    local what frame
+    what=$(grep -m1 -oE 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer): [a-z-]+|runtime error: [^0-9]*|terminate called [a-z ]*|CGAL ERROR: [a-z ]+|ERROR: libFuzzer: [a-z-]+' "$dir/sig.log")
+    frame=$(grep -m1 -E '^ *#[0-9]+ .* in .*(/|^)gen/' "$dir/sig.log" | sed -E 's/.* in ([^ ]+).*/\1/')
+    # else the first frame outside libFuzzer, the sanitizers and libc (a library's own code)
+    [ -n "$frame" ] || frame=$(grep -E '^ *#[0-9]+ 0x[0-9a-f]+ in ' "$dir/sig.log" |
+        grep -vE 'fuzzer::|__sanitizer|__asan|__ubsan|libc\.so|compiler-rt|/libFuzzer|in (abort|raise|__GI_|__pthread_kill)' |
+        head -n 1 | sed -E 's/.* in ([^ ]+).*/\1/')
+    [ -n "$what" ] || return 1   # not reproducible
+    echo "$what @ ${frame:-?}"
+}
+
+# regress_name FILE TARGET KIND: the regression file's name: KIND-SHA.EXT, the bake's format byte
+# turned into the extension (and ".views" for bit 7)
+install_finding() {
+    local f=$1 t=$2 kind=$3 sha ext b views=""
+    sha=$(sha1sum "$f" | cut -c1-12)
+    mkdir -p "tests/fuzz/regress/$t"
+    if [ "$t" = bake ]; then
+        b=$(head -c 1 "$f" | od -An -tu1 | tr -d ' ')
+        [ -n "$b" ] || return
+        [ $((b & 128)) -ne 0 ] && views=.views
+        ext=${exts[$((b % 5))]}
+        tail -c +2 "$f" >"tests/fuzz/regress/$t/$kind-$sha$views.$ext"
+        echo "tests/fuzz/regress/$t/$kind-$sha$views.$ext"
+    else
+        cp "$f" "tests/fuzz/regress/$t/$kind-$sha.$t"
+        echo "tests/fuzz/regress/$t/$kind-$sha.$t"
+    fi
+}
+# the bake target's form of a regression file (the format byte back in front)
+bake_input() {
+    local f=$1 base ext i b=0
+    base=$(basename "$f")
+    ext=${base##*.}
+    for i in "${!exts[@]}"; do [ "${exts[$i]}" = "$ext" ] && b=$i; done
+    case $base in *.views.*) b=$((b | 128)) ;; esac
+    { printf "\\x$(printf %02x "$b")"; cat "$f"; }
+}
+
+new_total=0
+for t in "${targets[@]}"; do
+    bin=$bins/fuzz-$t
+    [ -x "$bin" ] || { echo "fuzz: $bin missing (make fuzz-build)" >&2; exit 2; }
+    corpus=$dir/corpus/$t
+    found=$dir/findings/$t
+    mkdir -p "$corpus" "$seeds/$t"
+    rm -rf "$found"
+    mkdir -p "$found"
+    close=0
+    [ "$t" = bake ] && close=3   # the bake's own "modelc: ..." lines would flood the log
+    echo "fuzz: $t for $SECS s ($JOBS job(s)), seeds $seeds/$t, corpus $corpus"
+    nice -n 10 "$bin" -fork="$JOBS" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+        -max_total_time="$SECS" -max_len="$MAX_LEN" "${limits[@]}" -use_value_profile=1 \
+        -close_fd_mask=$close -artifact_prefix="$found/" -print_final_stats=1 \
+        "$corpus" "$seeds/$t" >"$dir/$t.log" 2>&1
+    grep -E '^#[0-9]+:? .*cov:' "$dir/$t.log" | tail -n 1 | sed "s/^/fuzz: $t: /"
+    # the signatures already covered by regression files
+    known=()
+    for f in tests/fuzz/regress/"$t"/*; do
+        [ -f "$f" ] || continue
+        if [ "$t" = bake ]; then bake_input "$f" >"$dir/known.in"; else cp "$f" "$dir/known.in"; fi
+        s=$(signature "$dir/known.in" "$t") && known+=("$s")
+    done
+    new=0
+    for a in "$found"/crash-* "$found"/timeout-* "$found"/oom-* "$found"/leak-*; do
+        [ -f "$a" ] || continue
+        kind=$(basename "$a" | cut -d- -f1)
+        min=$a.min
+        # shellcheck disable=SC2086
+        nice -n 10 "$bin" -minimize_crash=1 -max_total_time=60 "${limits[@]}" -exact_artifact_path="$min" \
+            "$a" >"$a.minimize.log" 2>&1
+        [ -s "$min" ] || cp "$a" "$min"
+        s=$(signature "$min" "$t") || { echo "fuzz: $t: $a does not reproduce alone (kept in $found)"; continue; }
+        seen=0
+        for k in "${known[@]}"; do [ "$k" = "$s" ] && seen=1; done
+        [ "$seen" = 1 ] && continue
+        known+=("$s")
+        f=$(install_finding "$min" "$t" "$kind")
+        echo "fuzz: $t: new finding $f: $s"
+        new=$((new + 1))
+    done
+    echo "fuzz: $t: $new new finding(s)"
+    new_total=$((new_total + new))
+done
+[ "$new_total" -eq 0 ] || { echo "fuzz: $new_total new finding(s) in tests/fuzz/regress/: commit them with the fix"; exit 1; }
+echo "fuzz: no new findings"

@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Seed inputs for the fuzzers, written at fuzz time from the catalogue (nothing here is data).
+
+usage: seeds.py MODELS_DIR OUT_DIR
+
+Writes OUT_DIR/{off,obj,ply,stl,xyz}/: small valid files cut from the catalogue's models (the first
+faces of a mesh with their vertices renumbered, the first points of a point set), the same meshes
+in every format the generator reads (OBJ, ASCII and binary STL, ASCII and binary PLY, with and
+without colours), and truncated prefixes of the originals; and OUT_DIR/bake/, each of those with
+the bake fuzzer's leading format byte (tests/fuzz/fuzz_bake.cpp). Valid seeds let the mutations
+start deep in each reader instead of at its first header check.
+"""
+import os
+import struct
+import sys
+
+EXTS = ["off", "obj", "ply", "stl", "xyz"]
+
+
+def read_off(path, faces_wanted):
+    """The first FACES_WANTED faces of an OFF file and the vertices they use, renumbered."""
+    with open(path) as f:
+        words = f.read().split()
+    assert words[0] == "OFF"
+    nv, nf = int(words[1]), int(words[2])
+    verts = [tuple(float(w) for w in words[4 + 3 * i:7 + 3 * i]) for i in range(nv)]
+    pos, faces = 4 + 3 * nv, []
+    for _ in range(min(nf, faces_wanted)):
+        n = int(words[pos])
+        faces.append([int(w) for w in words[pos + 1:pos + 1 + n]])
+        pos += 1 + n
+    used = sorted({i for face in faces for i in face})
+    renum = {old: new for new, old in enumerate(used)}
+    return [verts[i] for i in used], [[renum[i] for i in face] for face in faces]
+
+
+def tris(faces):
+    return [(f[0], f[k], f[k + 1]) for f in faces for k in range(1, len(f) - 1)]
+
+
+def colour(i):
+    return (37 * i % 256, 91 * i % 256, 173 * i % 256)
+
+
+def write(path, data):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+
+def mesh_files(name, v, faces, out):
+    t = tris(faces)
+    off = "OFF\n%d %d 0\n" % (len(v), len(faces))
+    off += "".join("%g %g %g\n" % p for p in v)
+    off += "".join("%d %s\n" % (len(f), " ".join(map(str, f))) for f in faces)
+    write(f"{out}/off/{name}.off", off)
+    coff = "COFF\n%d %d 0\n" % (len(v), len(faces))
+    coff += "".join("%g %g %g %d %d %d 255\n" % (p + colour(i)) for i, p in enumerate(v))
+    coff += "".join("%d %s\n" % (len(f), " ".join(map(str, f))) for f in faces)
+    write(f"{out}/off/{name}-colour.off", coff)
+    obj = "# %s\n" % name + "".join("v %g %g %g\n" % p for p in v)
+    obj += "".join("f %s\n" % " ".join(str(i + 1) for i in f) for f in faces)
+    write(f"{out}/obj/{name}.obj", obj)
+    obj = "".join("v %g %g %g %g %g %g\n" % (p + tuple(c / 255 for c in colour(i))) for i, p in enumerate(v))
+    obj += "".join("f %s\n" % " ".join("%d/%d/%d" % (i + 1, i + 1, i + 1) for i in f) for f in faces)
+    write(f"{out}/obj/{name}-colour.obj", obj)
+    stl = "solid %s\n" % name
+    for a, b, c in t:
+        stl += " facet normal 0 0 0\n  outer loop\n"
+        stl += "".join("   vertex %g %g %g\n" % v[i] for i in (a, b, c))
+        stl += "  endloop\n endfacet\n"
+    write(f"{out}/stl/{name}-ascii.stl", stl + "endsolid %s\n" % name)
+    b = b"binary seed".ljust(80, b" ") + struct.pack("<I", len(t))
+    for tri in t:
+        b += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *v[i]) for i in tri) + b"\0\0"
+    write(f"{out}/stl/{name}-binary.stl", b)
+    head = "ply\nformat %s 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+    colours = "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+    tail = "element face %d\nproperty list uchar int vertex_indices\nend_header\n" % len(faces)
+    ply = (head % ("ascii", len(v))) + colours + tail
+    ply += "".join("%g %g %g %d %d %d\n" % (p + colour(i)) for i, p in enumerate(v))
+    ply += "".join("%d %s\n" % (len(f), " ".join(map(str, f))) for f in faces)
+    write(f"{out}/ply/{name}-ascii.ply", ply)
+    ply = ((head % ("binary_little_endian", len(v))) + tail).encode()
+    ply += b"".join(struct.pack("<3f", *p) for p in v)
+    ply += b"".join(struct.pack("<B%di" % len(f), len(f), *f) for f in faces)
+    write(f"{out}/ply/{name}-binary.ply", ply)
+
+
+def main():
+    models, out = sys.argv[1], sys.argv[2]
+    for name in ["nefertiti", "head", "fandisk"]:
+        path = f"{models}/{name}.off"
+        if not os.path.exists(path):
+            continue
+        v, faces = read_off(path, 16)
+        mesh_files(name, v, faces, out)
+        with open(path, "rb") as f:
+            write(f"{out}/off/{name}-prefix.off", f.read(700))  # a file cut short
+    path = f"{models}/kitten.xyz"
+    if os.path.exists(path):
+        with open(path) as f:
+            lines = f.read().splitlines()
+        write(f"{out}/xyz/kitten-normals.xyz", "\n".join(lines[:40]) + "\n")
+        write(f"{out}/xyz/kitten.xyz", "\n".join(" ".join(l.split()[:3]) for l in lines[:40]) + "\n")
+        pts = ["%s 0 0 0" % " ".join(l.split()[:3]) for l in lines[:20]]
+        ply = "ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n" \
+              "property float nx\nproperty float ny\nproperty float nz\nend_header\n" % len(pts)
+        write(f"{out}/ply/kitten-points.ply", ply + "\n".join(pts) + "\n")
+    path = f"{models}/b9_training.ply"
+    if os.path.exists(path):
+        with open(path, "rb") as f:
+            data = f.read()
+        end = data.index(b"end_header\n") + len(b"end_header\n")
+        header = data[:end].replace(b"element vertex 22300", b"element vertex 30")
+        rec = 3 * 8 + 3 + 4  # x y z doubles, red green blue uchar, label int
+        write(f"{out}/ply/b9_training-points.ply", header + data[end:end + 30 * rec])
+    # the bake target: every seed again behind its format byte (bit 7: with --views)
+    for i, ext in enumerate(EXTS):
+        d = f"{out}/{ext}"
+        if not os.path.isdir(d):
+            continue
+        for k, fname in enumerate(sorted(os.listdir(d))):
+            with open(f"{d}/{fname}", "rb") as f:
+                data = f.read()
+            write(f"{out}/bake/{fname}", bytes([i]) + data)
+            if k % 2 == 0:
+                write(f"{out}/bake/views-{fname}", bytes([i | 0x80]) + data)
+
+
+main()

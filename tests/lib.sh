@@ -1,0 +1,35 @@
+# The suites' shared pieces. A suite cd's to the top of the checkout, sets TAP_PREFIX if it wants
+# one, then sources this file, which brings in tests/tap.sh (ok, notok, skip, check_*, oneline).
+# shellcheck shell=bash
+. tests/tap.sh
+
+# mkvar NAME [VAR=value...]: a Makefile variable as make computes it (so a test compiles or links
+# exactly as the build does), with optional overrides such as BOARD=...
+mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1" "${@:2}"; }
+
+# ASan + UBSan, halting at the first report: the flags every sanitized test build uses, and the
+# runtime options that make a report end the program.
+SAN_FLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:halt_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
+sanitizer_report() {   # FILE: the first line of a sanitizer report in it, if any
+    grep -m1 -E 'runtime error:|ERROR: AddressSanitizer|ERROR: LeakSanitizer|SUMMARY: (Address|Undefined|Leak)' "$1" | oneline
+}
+
+# fresh_dir DIR: DIR emptied (a suite's own output under build/, so a stale file never passes)
+fresh_dir() { rm -rf "$1" && mkdir -p "$1"; }
+
+# temp_dir: sets $tmp to a new temporary directory removed when the suite exits
+temp_dir() {
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/modelc-test.XXXXXX") || exit 1
+    trap 'rm -rf "$tmp"' EXIT
+}
+
+# model_file NAME: the path of catalogue model NAME's source file under build/models/, extracted
+# (make models) when missing; prints nothing and fails when it cannot be had
+model_file() {
+    local f
+    f=build/models/$(basename "$(mkvar "$1.src")")
+    [ -f "$f" ] || make -s "$f" >/dev/null 2>&1 || return 1
+    echo "$f"
+}
