@@ -192,7 +192,7 @@ using Files = std::vector<std::pair<std::string, std::string>>;
 // Everything the templates are filled with, and the files they make (all but budget.json), rendered
 // in memory: nothing touches the disk until all of it succeeded. chunk_files: which data file holds
 // each array, for budget.json.
-Files fill_templates(const Octree &t, [[maybe_unused]] const Voxels &vox, const EmitOptions &opt, const Plan &plan,
+Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt, const Plan &plan,
                      const Budget &bud, const std::vector<std::vector<const Array *>> &files,
                      nlohmann::json &chunk_files) {
     const int D = t.depth;
