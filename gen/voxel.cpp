@@ -69,6 +69,26 @@ struct SampleSink {
     }
 };
 
+// PMP::locate_with_AABB_tree, except on a face without area (two corners at one position, or all
+// three on a line), where CGAL's barycentric coordinates fail an assertion: there the nearest
+// corner takes the whole weight. Models without such faces never reach the fallback.
+template <class Tree>
+PMP::Face_location<Mesh, double> locate(const Point &p, const Tree &tree, const Mesh &mesh) {
+    try {
+        return PMP::locate_with_AABB_tree(p, tree, mesh);
+    } catch (const CGAL::Failure_exception &) {
+        const auto face = tree.closest_point_and_primitive(p).second;
+        const auto h = mesh.halfedge(face);
+        const Mesh::Vertex_index vs[3] = {mesh.source(h), mesh.target(h), mesh.target(mesh.next(h))};
+        int best = 0;
+        for (int i = 1; i < 3; i++)
+            if (CGAL::squared_distance(p, mesh.point(vs[i])) < CGAL::squared_distance(p, mesh.point(vs[best]))) best = i;
+        PMP::Barycentric_coordinates<double> w{0, 0, 0};
+        w[best] = 1;
+        return {face, w};
+    }
+}
+
 void voxelize_mesh(const Model &m, const std::string &file, const Grid &grid, const VoxelOptions &opt,
                    Progress &progress, std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples) {
     Mesh mesh = to_cgal(m);
@@ -100,7 +120,7 @@ void voxelize_mesh(const Model &m, const std::string &file, const Grid &grid, co
     for (auto &kv : cells) {
         Cell &c = kv.second;
         Point centroid(c.sum[0] / c.count, c.sum[1] / c.count, c.sum[2] / c.count);
-        auto loc = PMP::locate_with_AABB_tree(centroid, tree, mesh);
+        auto loc = locate(centroid, tree, mesh);
         auto h = mesh.halfedge(loc.first);
         Mesh::Vertex_index vs[3] = {mesh.source(h), mesh.target(h), mesh.target(mesh.next(h))};
         double rgb[3] = {0, 0, 0};

@@ -7,7 +7,8 @@
 // face, zero extent) are load_model's (load.cpp). What each reader stores:
 //   meshes (OFF, OBJ, PLY with faces, STL): coordinates rounded to float, vertices in file order
 //     (STL: equal corners merged, in order of first use), faces in file order with any face that
-//     names a vertex twice dropped, polygons fan-triangulated from their first corner
+//     names a vertex twice dropped (OBJ first keeps each vertex's first mention, see obj.cpp),
+//     polygons fan-triangulated from their first corner
 //     (faces.hpp), RGB vertex colours when the file has them;
 //   point sets (XYZ, PLY without faces): coordinates and normals as double, RGB colours.
 #pragma once

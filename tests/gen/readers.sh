@@ -158,6 +158,17 @@ lines '0.1 0 0 0 0 1' '1 0 0 0 1 0' >"$d/normals.xyz"
 gives "XYZ: coordinates and normals as double" "$d/normals.xyz" "$(lines 'point set points 2 triangles 0 colours 0 normals 2' \
     'v 0x1.999999999999ap-4 0x0p+0 0x0p+0 n 0x0p+0 0x0p+0 0x1p+0' 'v 0x1p+0 0x0p+0 0x0p+0 n 0x0p+0 0x1p+0 0x0p+0')"
 
+# ---------------------------------------------------------------------------------- faces without area
+# Vertices 2 and 4 share a position, so several faces have no area; some samples lie nearest to
+# one of them, where CGAL's barycentric coordinates used to fail an assertion mid-bake.
+lines OFF '5 12 0' '-0.000105088999 -0.000569254975 2' '-0.961000025 0 -0.0879999995' '2 0.823000014 4.07189608' '3 0 -4' \
+    '2 0.823000014 4.07189608' '3 0 1 2' '3 3 0 2' '3 2 1 4' '3 1 2 4' '3 1 4 0' '3 2 4 1' '3 2 0 1' '3 3 0 2' \
+    '3 2 1 4' '3 1 2 4' '3 1 4 0' '3 2 4 1' >"$d/no-area.off"
+rc=0
+"$modelc" "$d/no-area.off" -o "$tmp/out" --name noarea --depth 3 -q 2>"$tmp/err.txt" || rc=$?
+check_problems "a mesh with faces of no area nearest to some samples bakes" \
+    "$( [ "$rc" = 0 ] && [ -s "$tmp/out/noarea/budget.json" ] || echo "exit $rc: $(head -c 200 "$tmp/err.txt" | oneline)")"
+
 # ---------------------------------------------------------------------------------- absurd headers
 # Each file is a few dozen bytes that declare up to the element limit; modelc runs with a small
 # address space and must still stop with one error line (a reader that trusted the count would
