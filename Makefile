@@ -22,9 +22,10 @@ CXXFLAGS ?= -O2 -g
 RT_CFLAGS := -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
 HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -Iruntime/include
 GEN_CXXFLAGS := -std=c++17 -Wall -Wextra -Igen -Iruntime/include -DCGAL_DISABLE_GMP=1 -DCGAL_NO_GMP=1
-GEN_LIBS := -lOpenMeshCore -lmstch -lpthread
+GEN_LIBS := -lmstch -lpthread
 
-# Debian packages: the build, the tests and the benchmarks
+# Debian packages: the build, the tests and the benchmarks (libopenmesh-dev: the mesh part's
+# progressive meshes and decimation; the readers in gen/input/ do not use it)
 DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
   libclang-rt-14-dev \
