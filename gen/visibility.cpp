@@ -240,7 +240,7 @@ void merge_views(const Model &model, const Voxels &vox, const std::vector<Dir> &
 // column, which needs one kept leaf under it.
 //
 // Depth-buffer rounding: a leaf's orthographic depth is a sum of d per-level vectors each rounded
-// once (render.c setup_vectors), so it is off by at most d/2 units, while neighbouring cells of a
+// once (octree_render.c setup_vectors), so it is off by at most d/2 units, while neighbouring cells of a
 // column lie A / 2^d units apart, A = the cube's side in depth units >= kDepthSpanMin / sqrt(3) (the
 // bounding sphere's 2 * radius = sqrt(3) A spans at least kDepthSpanMin units). Cells further than
 // d 2^d / A cells behind the front one can never tie with it: for d <= 10 only the front cell can
