@@ -148,7 +148,7 @@ test:
 bench: $(MODELC) models
 	@tests/bench/run.sh
 
-# run time against error (issue 3): depth 5..10, MC_FRAC_BITS 8..24, the float build (tests/accuracy/pos_single.h) and
+# run time against error: depth 5..10, MC_FRAC_BITS 8..24, the float build (tests/accuracy/pos_single.h) and
 # exact double-precision positions against the mesh reference: tests/bench/accuracy.{csv,png} and a RESULTS.md section (tests/accuracy/bench.sh)
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models
@@ -208,7 +208,7 @@ fuzz: fuzz-build models $(MODELC)
 	@SAN_PARTS=generator tests/sanitize/suite.sh; s=$$?; \
 	  FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/fuzz.sh $(FUZZ_TARGETS) && exit $$s
 
-# ---- firmware (issue 4): Cortex-M images run under QEMU ---------------------------------------------
+# ---- firmware: Cortex-M images run under QEMU ---------------------------------------------
 #   make firmware MODEL=m BOARD=b      bake catalogue model m for board b, cross-compile, check the ELF
 #   make firmware-run MODEL=m BOARD=b  run it under qemu-system-arm; compare its checksums with the host's
 #   make bench-firmware                instructions per frame and per point under QEMU (RESULTS.md section)

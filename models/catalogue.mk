@@ -5,7 +5,6 @@
 # For each NAME in CATALOGUE:
 #   NAME.src   the file's path inside data.tar.gz
 #   NAME.opts  its bake options (modelc --help)
-#   NAME.views a few frames the tests and the README render: "yaw,pitch,zoom" triples
 
 CGAL_DATA ?= /usr/share/doc/libcgal-dev/data.tar.gz
 DEFAULT_MODEL := bunny00

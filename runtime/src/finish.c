@@ -1,4 +1,4 @@
-/* One-pixel hole filling: see modelc/finish.h. */
+/* Hole filling, the four-neighbour and the scanline criteria: see modelc/finish.h. */
 #include "modelc/finish.h"
 
 uint32_t mc_finish_pixel_holes(const mc_target *t)

@@ -1,4 +1,4 @@
-/* Accuracy and cost of one runtime build against the mesh reference (issue 3, item 4; make
+/* Accuracy and cost of one runtime build against the mesh reference (make
  * bench-accuracy, tests/accuracy/bench.sh):
  *
  *   acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH] [--dump DIR]

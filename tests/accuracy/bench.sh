@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make bench-accuracy: run time against error (issue 3, item 4).
+# make bench-accuracy: run time against error.
 #
 # For each model (ACC_MODELS, default "bunny00 nefertiti") it bakes the octree at depths 5..10, dumps
 # the original mesh once (modelc --dump-reference) and builds tests/accuracy/acc.c for each setting:

@@ -1,4 +1,4 @@
-/* Interaction timing (issue 3, item 6): the coarse frame drawn while the view moves (depth D-1), the
+/* Interaction timing: the coarse frame drawn while the view moves (depth D-1), the
  * fine frame drawn when it stops (depth D), and the abort latency of the fine frame, for one bake
  * (mc_app_model) at 320x240, next to the source paper's 100 ms frame period and 300 ms limit.
  *

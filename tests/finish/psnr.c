@@ -1,4 +1,4 @@
-/* Hole filling and splats against a reference image (issue 3, item 2), for one model:
+/* Hole filling and splats against a reference image, for one model:
  *
  *   psnr [--frames N]
  *
@@ -6,8 +6,9 @@
  * same model baked at depth D + 1. The reference image is the double-precision renderer
  * (runtime/ref, mc_ref_render: z-buffered, one pixel per leaf, exact positions) of the depth D + 1
  * octree: its leaves are half the size, so at 320x240 they are under a pixel up to zoom 2 (0.94 px)
- * and it has (almost) no holes; it is the best reference available until a triangle-mesh reference
- * exists. Colours are compared in RGB through each bake's own palette; the background is (0, 0, 0)
+ * and it has (almost) no holes. Against it the score measures what filling and splats change, apart
+ * from the sampling error that tests/accuracy measures against the original triangles
+ * (runtime/ref/mesh_ref.h). Colours are compared in RGB through each bake's own palette; the background is (0, 0, 0)
  * in both.
  *
  * For each view (30 degrees of yaw at zoom 1, frontal at zoom 2, 30 degrees at zoom 2) and each splat

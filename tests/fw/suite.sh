@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Firmware on Cortex-M under QEMU (issue 4), for bunny00 on both boards (mps2-an386: Cortex-M4F,
+# Firmware on Cortex-M under QEMU, for bunny00 on both boards (mps2-an386: Cortex-M4F,
 # depth 8 at 320x240; lm3s6965evb: Cortex-M3 with 256 KiB flash and 64 KiB RAM, depth 7 at 160x128):
 #   - make firmware builds it and its checks pass: no heap symbols, model arrays and frame buffers of
 #     exactly budget.json's sizes, flash and RAM within the stated margins of budget.json's totals,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Budgets, --fit, --emit lib, monochrome scenes and palettes (issue 4): budget failures name every
+# Budgets, --fit, --emit lib, monochrome scenes and palettes: budget failures name every
 # item over budget with the right numbers and leave no output; --fit picks the finest depth that
 # fits (bunny00 on lm3s6965evb: 256 KiB flash, 64 KiB RAM) and depth + 1 does not fit; --emit lib
 # writes no app binding and the README's library example compiles, links and renders; a monochrome

@@ -1,4 +1,4 @@
-/* Numerical stress: random views of one baked model (issue 3, item 5).
+/* Numerical stress: random views of one baked model.
  *
  *   stress N [SEED]      renders N random views; prints one "ok - ..." / "not ok - ...: why" line per
  *                        property and a summary line "# views ... seconds ..."
