@@ -4,7 +4,8 @@
 # A suite prints one line per check (tests/tap.sh): "ok - NAME" (passed), "not ok - NAME: why"
 # (failed) or "ok - NAME # SKIP why" (skipped: counted apart, never as a pass). A suite that exits
 # non-zero without reporting a failure counts as one failed check, so a crash is never a pass.
-# Exits non-zero when anything failed.
+# Exits non-zero when anything failed. With arguments (tests/run.sh tests/gen/suite.sh ...), runs only
+# those suites.
 set -u
 cd "$(dirname "$0")/.."
 logdir=build/tests
@@ -33,6 +34,7 @@ suites=(
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
 )
 
+[ $# -eq 0 ] || suites=("$@")   # tests/run.sh SUITE...: only those
 skip_re='^ok .*# *[Ss][Kk][Ii][Pp]'
 # TEST_JOBS suites run at once (default 2: most suites use one core, and each writes only its own
 # directories under build/); TEST_JOBS=1 runs them one after another. Each suite's block is printed
