@@ -29,7 +29,7 @@ suites=(
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
-    tests/stress/suite.sh     # 10^5 random views: guard zones, error bound, ASan + UBSan run
+    tests/stress/suite.sh     # 3x10^4 random views: guard zones, error bound, ASan + UBSan run
     tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
 )
