@@ -159,7 +159,7 @@ bench-accuracy: $(MODELC) models
 STRESS_VIEWS ?= 10000000
 # and the freestanding builds of the runtime at every optimisation level (make test: -O0 -O2 -Os)
 stress: $(MODELC) $(BUILD)/models/bunny00.off
-	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 tests/stress/suite.sh; s=$$?; \
+	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 STRESS_SAN_VIEWS=10000 tests/stress/suite.sh; s=$$?; \
 	  UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh && exit $$s
 
 clean:

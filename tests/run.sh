@@ -4,7 +4,8 @@
 # A suite prints one line per check (tests/tap.sh): "ok - NAME" (passed), "not ok - NAME: why"
 # (failed) or "ok - NAME # SKIP why" (skipped: counted apart, never as a pass). A suite that exits
 # non-zero without reporting a failure counts as one failed check, so a crash is never a pass.
-# Exits non-zero when anything failed.
+# Exits non-zero when anything failed. With arguments (tests/run.sh tests/gen/suite.sh ...), runs only
+# those suites.
 set -u
 cd "$(dirname "$0")/.."
 logdir=build/tests
@@ -29,11 +30,12 @@ suites=(
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
-    tests/stress/suite.sh     # 10^5 random views: guard zones, error bound, ASan + UBSan run
+    tests/stress/suite.sh     # 3x10^4 random views: guard zones, error bound, ASan + UBSan run
     tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
 )
 
+[ $# -eq 0 ] || suites=("$@")   # tests/run.sh SUITE...: only those
 skip_re='^ok .*# *[Ss][Kk][Ii][Pp]'
 # TEST_JOBS suites run at once (default 2: most suites use one core, and each writes only its own
 # directories under build/); TEST_JOBS=1 runs them one after another. Each suite's block is printed

@@ -4,9 +4,9 @@
 // target follows however the stages are split into functions).
 //
 // Input layout: byte 0 chooses the format (kExt[byte % 5]) and, with bit 7 set, --views front:40
-// (the visibility pass); the rest is the file. tests/fuzz/fuzz.sh stores findings in that form
-// as regress/bake/NAME.EXT or NAME.views.EXT, which tests/fuzz/suite.sh replays with the same
-// options (kBakeArgs there).
+// (the visibility pass); the rest is the file. tests/fuzz/fuzz.sh stores a finding as
+// regress/bake/NAME.EXT or NAME.views.EXT (the byte turned into the name), which
+// tests/fuzz/suite.sh replays with the same options.
 //
 // Promise: the reader answers with the value or an InputError only (as in fuzz_reader.cpp), and
 // the bake returns 0 or 1; a crash, sanitizer report, abort, allocation over -malloc_limit_mb or
