@@ -13,20 +13,49 @@ fi
 mkdir -p "$out"
 models=$(make -s -f models/catalogue.mk -f - <<<'print: ; @echo $(CATALOGUE)' print)
 # Under the sanitizers (tests/sanitize/suite.sh) one model of each kind, a mesh, a coloured point set
-# and a point set with normals, stands for the catalogue: every build compiles the renderer with
-# ASan + UBSan, which costs half a minute, and the plain run of this suite compares all eight.
+# and a point set with normals, stands for the catalogue: each comparison runs several times slower
+# under ASan + UBSan, and the plain run of this suite compares all eight.
 [ "${SANITIZE:-0}" = 1 ] && models=${RENDER_SAN_MODELS:-bunny00 b9_training kitten}
 status=0
+hook=('-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h)
+# compile FORM FILE FLAGS...: FILE's object for one form of the renderer, built once (the runtime,
+# the reference and compare.c are the same for every model: only the model's data is linked anew)
+compile() {
+    local form=$1 src=$2 obj
+    shift 2
+    obj=$out/obj-$form/$(echo "${src%.c}" | tr '/' '_').o
+    mkdir -p "$out/obj-$form"
+    if [ ! -f "$obj" ]; then
+        # shellcheck disable=SC2086
+        gcc -std=c99 $flags -Wall -Wextra -Werror "$@" -Iruntime/include -Iruntime/ref "${hook[@]}" \
+            -c -o "$obj.tmp" "$src" 2>>"$out/build-$form.log" && mv "$obj.tmp" "$obj" || return 1
+    fi
+    echo "$obj"
+}
+# build FORM MODEL FLAGS...: links $out/compare-[FORM-]MODEL; prints why on failure
+build() {
+    local form=$1 m=$2 objs=() f o
+    shift 2
+    rm -rf "$out/obj-$form-$m"
+    for f in tests/render/compare.c runtime/ref/ref.c runtime/src/*.c; do
+        o=$(compile "$form" "$f" "$@") || { head -n 3 "$out/build-$form.log" | tr '\n' ' '; return 1; }
+        objs+=("$o")
+    done
+    for f in "build/$m"/*.c; do
+        o=$(compile "$form-$m" "$f" "$@") || { head -n 3 "$out/build-$form-$m.log" | tr '\n' ' '; return 1; }
+        objs+=("$o")
+    done
+    gcc $flags -o "$out/compare-${form#default-}$m" "${objs[@]}" -lm 2>"$out/link-$form-$m.log" ||
+        { head -n 3 "$out/link-$form-$m.log" | tr '\n' ' '; return 1; }
+}
+rm -rf "$out"/obj-* "$out"/build-*.log
 for m in $models; do
     if [ ! -f "build/$m/budget.json" ]; then
         echo "not ok - $m: not baked (run make views)"; status=1; continue
     fi
     # the runtime is compiled into the test with the plot hook pointing at the recorder
-    if ! gcc -std=c99 $flags -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref \
-        '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \
-        -o "$out/compare-$m" tests/render/compare.c runtime/ref/ref.c runtime/src/*.c "build/$m"/*.c -lm \
-        2>"$out/compare-$m.log"; then
-        echo "not ok - $m: test build failed: $(head -n 3 "$out/compare-$m.log" | tr '\n' ' ')"; status=1; continue
+    if ! why=$(build default- "$m"); then
+        echo "not ok - $m: test build failed: $why"; status=1; continue
     fi
     "$out/compare-$m" || status=1
 done
@@ -42,14 +71,11 @@ for name in branch select float; do
         select) vflags=(-DMC_DEPTH_SELECT=1) ;;
         float) vflags=("${float_flags[@]}") ;;
     esac
-    if gcc -std=c99 $flags -Wall -Wextra -Werror "${vflags[@]}" -Iruntime/include -Iruntime/ref \
-        '-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h \
-        -o "$out/compare-$name-$m" tests/render/compare.c runtime/ref/ref.c runtime/src/*.c "build/$m"/*.c -lm \
-        2>"$out/compare-$name-$m.log"; then
+    if why=$(build "$name-" "$m" "${vflags[@]}"); then
         "$out/compare-$name-$m" | sed -E "s/^(ok|not ok) - /\1 - $name: /"
         [ "${PIPESTATUS[0]}" = 0 ] || status=1
     else
-        echo "not ok - $name: $m: test build failed: $(head -n 3 "$out/compare-$name-$m.log" | tr '\n' ' ')"; status=1
+        echo "not ok - $name: $m: test build failed: $why"; status=1
     fi
 done
 exit $status
