@@ -71,17 +71,19 @@ std::string g9(double v) {
 // the file's turned to y-up when --up z: (x, y, z) -> (x, z, -y), so turned back here) and the
 // up axis (modelc/model.h).
 mstch::map model_data(const Voxels &vox, const EmitOptions &opt) {
-    const double side = vox.cell * std::ldexp(1.0, vox.depth);
+    const GridCube cube = vox.cube();
+    const double side = cube.side;
     std::array<double, 3> c{};
-    for (int i = 0; i < 3; i++) c[i] = vox.origin[i] + side / 2;
-    if (opt.up == 'z') c = {c[0], -c[2], c[1]};
+    for (int i = 0; i < 3; i++) c[i] = cube.origin[i] + side / 2;
+    c = file_frame(c, opt.up);
     mstch::map m = common(opt);
     m.emplace("centre_q", q32(c[0]) + ", " + q32(c[1]) + ", " + q32(c[2]));
     m.emplace("side_q", q32(side));
     m.emplace("centre_text", g9(c[0] + 0.0) + ", " + g9(c[1] + 0.0) + ", " + g9(c[2] + 0.0));   // no "-0"
     m.emplace("side_text", g9(side));
-    m.emplace("up", std::string(1, opt.up == 'z' ? 'z' : 'y'));
-    m.emplace("up_code", std::string(opt.up == 'z' ? "MC_UP_Z" : "MC_UP_Y"));
+    const bool z = opt.up == UpAxis::z;
+    m.emplace("up", std::string(z ? "z" : "y"));
+    m.emplace("up_code", std::string(z ? "MC_UP_Z" : "MC_UP_Y"));
     return m;
 }
 

@@ -20,7 +20,7 @@ struct EmitOptions {
     size_t file_bytes = 262144;
     int screen_w = 640, screen_h = 480;
     bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
-    char up = 'y';             // the file's axis shown as up (--up): recorded in the model descriptor
+    UpAxis up = UpAxis::y;     // the file's axis shown as up (--up): recorded in the model descriptor
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
     Limits limits;             // recorded in budget.json (checked by the caller)
     std::string fit_note;      // what --fit chose, recorded in budget.json

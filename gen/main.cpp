@@ -124,7 +124,7 @@ int main(int argc, char **argv) {
     if (fit && !limits.flash && !limits.ram && !limits.stack)
         return fail("--fit needs at least one of --flash-budget, --ram-budget, --stack-budget", 2);
     emit.lib = emit_kind == "lib";
-    emit.up = up == "z" ? 'z' : 'y';
+    emit.up = up == "z" ? mc::UpAxis::z : mc::UpAxis::y;
     if (name.empty()) name = name_from_path(input);
     if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")))
         return fail("--name " + name + ": must be a C identifier of at most 64 characters", 2);
@@ -133,7 +133,7 @@ int main(int argc, char **argv) {
         mc::Progress progress(quiet);
         progress.step("loading");
         mc::Model model = mc::load_model(input);
-        const mc::GridCube cube = mc::normalize(model, up == "z" ? mc::UpAxis::z : mc::UpAxis::y);
+        const mc::GridCube cube = mc::normalize(model, emit.up);
         mc::Voxels voxels = mc::voxelize(model, cube, input, vox, progress);
         if (!dump_reference.empty()) mc::dump_reference(model, voxels, dump_reference);
         // --views: the cells to keep, whatever depth and palette the octree gets (empty: keep all)

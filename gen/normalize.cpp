@@ -10,6 +10,10 @@ void make_z_up_y_up(Model &m) {
         for (auto &p : *v) p = {p[0], p[2], -p[1]};
 }
 
+std::array<double, 3> file_frame(const std::array<double, 3> &p, UpAxis up) {
+    return up == UpAxis::z ? std::array<double, 3>{p[0], -p[2], p[1]} : p;
+}
+
 GridCube grid_cube(const Model &m) {
     std::array<double, 3> lo = m.points[0], hi = m.points[0];
     for (const auto &p : m.points)

@@ -30,6 +30,10 @@ struct GridCube {
 // and normals alike (a rotation, so orientation is kept).
 void make_z_up_y_up(Model &m);
 
+// The inverse for one point: a y-up point back in the file's frame, (x, y, z) -> (x, -z, y) when up
+// is z, unchanged when it is y.
+std::array<double, 3> file_frame(const std::array<double, 3> &p, UpAxis up);
+
 // The grid cube of m's points. m has at least one point (every reader guarantees it).
 GridCube grid_cube(const Model &m);
 
