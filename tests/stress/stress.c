@@ -27,11 +27,12 @@
  *     perspective, clearly in front of the near plane) is drawn, unless the frame was aborted;
  *  4. mc_stats.points equals the number of points the hook saw, and mc_octree_render returns MC_OK (or
  *     MC_ERR_SIZE for a target over MC_TARGET_MAX, then writing nothing);
- *  5. with -DSTRESS_ALT=1 (tests/stress/suite.sh links a second copy of octree_render.c built with the other
- *     form of the depth test, MC_DEPTH_SELECT, its entry points renamed mc_octree_render_alt/mc_clear_alt):
- *     the other form, drawing the same frames into a second target, leaves both buffers byte for byte
- *     equal to this one's. The select form parks losing leaves on a spare pixel and puts it back, so
- *     a wrong spare would show here as one changed pixel, which the reference checks cannot see.
+ *  5. with -DSTRESS_ALT=1 (tests/stress/suite.sh links a second copy of octree_render.c built in another
+ *     form, STRESS_ALT_FORM: the other depth test, MC_DEPTH_SELECT, and/or the other leaf walk,
+ *     MC_LEAF_SWITCH; its entry points renamed mc_octree_render_alt/mc_clear_alt): the other form,
+ *     drawing the same frames into a second target, leaves both buffers byte for byte equal to this
+ *     one's. The select form parks losing leaves on a spare pixel and puts it back, so a wrong spare
+ *     would show here as one changed pixel, which the reference checks cannot see.
  *
  * The bound, per axis, in pixels (S = the clamped zoom times the shorter target side: the cube's
  * screen side; d = drawn depth; F = MC_FRAC_BITS):
@@ -89,7 +90,10 @@
 static uint8_t color_mem[GUARD + MAXW * MAXH + GUARD];
 static uint16_t depth_mem[GUARD + MAXW * MAXH + GUARD];
 #if STRESS_ALT
-/* the other depth-test form (check 5) */
+/* the other form of the renderer (check 5) */
+#ifndef STRESS_ALT_FORM
+#define STRESS_ALT_FORM "the branch depth test (MC_DEPTH_SELECT=0)"
+#endif
 void mc_clear_alt(const mc_target *t);
 int mc_octree_render_alt(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,
                          const mc_target *t, mc_abort_fn abort, void *user, mc_stats *stats);
@@ -297,7 +301,7 @@ static void one_view(const mc_octree *scene, counters *k)
     k->frames_drawn += (uint64_t)repeat;
 #if STRESS_ALT
     {
-        /* 5: the other form of the depth test, the same frames (the same polls, so the same aborts) */
+        /* 5: the other form of the renderer, the same frames (the same polls, so the same aborts) */
         mc_target at = {alt_color, alt_depth, (uint16_t)w, (uint16_t)h};
         abort_state ab2 = {0, ab.give_up_after};
         mc_clear_alt(&at);
@@ -306,7 +310,7 @@ static void one_view(const mc_octree *scene, counters *k)
         if (memcmp(at.color, t.color, n) || memcmp(at.depth, t.depth, n * sizeof at.depth[0])) {
             size_t p = 0;
             while (p < n && at.color[p] == t.color[p] && at.depth[p] == t.depth[p]) p++;
-            fail(&k->alt_fail, "the other depth-test form differs at pixel %zu (%zu, %zu): %s", p, p % w, p / w, what);
+            fail(&k->alt_fail, STRESS_ALT_FORM " differs at pixel %zu (%zu, %zu): %s", p, p % w, p / w, what);
         }
         k->alt_frames++;
     }
@@ -446,7 +450,7 @@ int main(int argc, char **argv)
     REPORT(!k.rc_fail, "mc_octree_render returns MC_OK, and MC_ERR_SIZE for targets over MC_TARGET_MAX", k.rc_fail);
 #if STRESS_ALT
     REPORT(!k.alt_fail && k.alt_frames == k.views,
-           "the other depth-test form (MC_DEPTH_SELECT) draws byte-identical colour and depth buffers", k.alt_fail);
+           STRESS_ALT_FORM " draws byte-identical colour and depth buffers", k.alt_fail);
 #endif
     printf("# views %" PRIu64 " frames %" PRIu64 " (perspective %" PRIu64 ", aborted %" PRIu64 ", oversize refused %" PRIu64
            ") points %" PRIu64 " checked %" PRIu64 " reference on-screen %" PRIu64 " near-plane disagreements %" PRIu64 "\n",

@@ -37,20 +37,22 @@ if [ ! -f "$bake/budget.json" ] || [ "$bake/budget.json" -ot build/bin/modelc ];
     fi
 fi
 
-build() {   # build OUTPUT FLAGS...
-    # the runtime with the select form of the depth test, plus a second copy of octree_render.c (and
-    # target.c's mc_clear) with the
-    # branch form (entry points renamed, no plot hook) that stress.c checks against it (check 5)
+# build OUTPUT FLAGS...: the runtime (the select form of the depth test, plus LEAVES) with the plot
+# hook into the test, and a second copy of octree_render.c (and target.c's mc_clear) in the form ALT
+# (named ALT_NAME; entry points renamed, no plot hook) that stress.c checks against it (check 5)
+LEAVES=() ALT=(-DMC_DEPTH_SELECT=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)"
+build() {
     local prog=$1
     shift
     # shellcheck disable=SC2068
-    gcc -std=c99 "$@" -DMC_DEPTH_SELECT=0 -Dmc_octree_render=mc_octree_render_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
+    gcc -std=c99 "$@" "${ALT[@]}" -Dmc_octree_render=mc_octree_render_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
         -Iruntime/include -c -o "$prog.alt.o" runtime/src/octree_render.c >"$prog.log" 2>&1 || return 1
     # shellcheck disable=SC2068
     gcc -std=c99 "$@" -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
         -Iruntime/include -c -o "$prog.alt-target.o" runtime/src/target.c >>"$prog.log" 2>&1 || return 1
     # shellcheck disable=SC2068
-    gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" -DMC_DEPTH_SELECT=1 -DSTRESS_ALT=1 -Wall -Wextra -Werror \
+    gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" "${LEAVES[@]}" -DMC_DEPTH_SELECT=1 -DSTRESS_ALT=1 \
+        "-DSTRESS_ALT_FORM=\"$ALT_NAME\"" -Wall -Wextra -Werror \
         -Iruntime/include -Iruntime/ref '-DMC_PLOT_HOOK(fx,fy,c)=stress_point(fx,fy,c)' -include tests/stress/hook.h \
         -o "$prog" tests/stress/stress.c runtime/ref/ref.c runtime/src/*.c "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
 }
@@ -85,10 +87,15 @@ fi
 # 24), and the float build (tests/accuracy/pos_single.h, held to its own bound: stress.c) ------------
 float_flags=(-DMC_FLOAT=1 '-DMC_POS_HEADER="pos_single.h"' -Itests/accuracy)
 for name in F=8 F=24 float; do
+    # each against another form: the loop walk of the leaves at F=8, the loop and the branch at F=24
     case $name in
-        F=8) vflags=(-DMC_FRAC_BITS=8) seed_off=108 ;;
-        F=24) vflags=(-DMC_FRAC_BITS=24) seed_off=124 ;;
-        float) vflags=("${float_flags[@]}") seed_off=200 ;;
+        F=8) vflags=(-DMC_FRAC_BITS=8) seed_off=108
+            ALT=(-DMC_DEPTH_SELECT=1 -DMC_LEAF_SWITCH=0) ALT_NAME="the unrolled leaf loop (MC_LEAF_SWITCH=0)" ;;
+        F=24) vflags=(-DMC_FRAC_BITS=24) seed_off=124
+            ALT=(-DMC_DEPTH_SELECT=0 -DMC_LEAF_SWITCH=0)
+            ALT_NAME="the unrolled leaf loop with the branch depth test (MC_LEAF_SWITCH=0, MC_DEPTH_SELECT=0)" ;;
+        float) vflags=("${float_flags[@]}") seed_off=200
+            ALT=(-DMC_DEPTH_SELECT=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)" ;;
     esac
     flag="${vflags[*]}"
     if build "$out/stress-$name" -O2 -g "${vflags[@]}"; then
@@ -128,7 +135,11 @@ san_run() {
         notok "build ($what, sanitizers)" "$(head -n 5 "$out/stress-$name.log" | oneline)"
     fi
 }
+# Both copies take the loop walk of the leaves there (the same per-leaf code as the switch, which
+# compiles some 30 times slower under the sanitizers; tests/render/ checks the switch under them).
 if [ "$SAN_VIEWS" -gt 0 ]; then
+    LEAVES=(-DMC_LEAF_SWITCH=0)
+    ALT=(-DMC_DEPTH_SELECT=0 -DMC_LEAF_SWITCH=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)"
     san_run san 1000 "the runtime" address,undefined
     # the float build, with float-to-integer conversions out of range and divisions by zero trapped too
     san_run fsan 2000 "the float build" address,undefined,float-cast-overflow,float-divide-by-zero "${float_flags[@]}"
