@@ -203,8 +203,8 @@ $(FUZZ_DIR)/fuzz-bake: $(FUZZ_DIR)/bake.o $(FUZZ_DIR)/main.o $(FUZZ_GEN_OBJ)
 .PHONY: fuzz fuzz-build
 fuzz-build: $(FUZZ_BINS)
 # first the generator built with g++'s ASan + UBSan (tests/sanitize/suite.sh SAN_PARTS=generator: the
-# error table, the findings and a real bake), then the fuzzers
-fuzz: fuzz-build models $(MODELC)
+# error table, the findings and a real bake, compared with the normal generator's), then the fuzzers
+fuzz: fuzz-build models $(MODELC) $(BUILD)/nefertiti/budget.json
 	@SAN_PARTS=generator tests/sanitize/suite.sh; s=$$?; \
 	  FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/fuzz.sh $(FUZZ_TARGETS) && exit $$s
 
