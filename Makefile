@@ -22,7 +22,7 @@ CXXFLAGS ?= -O2 -g
 RT_CFLAGS := -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
 HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -Iruntime/include
 GEN_CXXFLAGS := -std=c++17 -Wall -Wextra -Igen -Iruntime/include -DCGAL_DISABLE_GMP=1 -DCGAL_NO_GMP=1
-GEN_LIBS := -lmstch -lpthread
+GEN_LIBS := -lmstch -lOpenMeshTools -lOpenMeshCore -lpthread
 
 # Debian packages: the build, the tests and the benchmarks (libopenmesh-dev: the mesh part's
 # progressive meshes and decimation; the readers in gen/input/ do not use it)

@@ -16,9 +16,11 @@ size_t parse_size(const std::string &option, const std::string &text) {
     return n;
 }
 
-size_t runtime_code_bytes(int leaf_switch) {
+size_t runtime_code_bytes(int leaf_switch, bool pmesh) {
     size_t code = rt::kLibgccDivision;
     for (const auto &m : rt::kModules) code += module_code_bytes(m, leaf_switch);
+    if (pmesh)
+        for (const auto &m : rt::kMeshModules) code += module_code_bytes(m, leaf_switch);
     return code;
 }
 
@@ -32,7 +34,7 @@ size_t stack_bytes(int depth) { return rt::stack_bound(depth); }
 // the octree and model descriptors and the name string.
 static size_t descriptor_bytes(const BakeSize &s) {
     return s.chunk_entries * rt::kChunkBytes + static_cast<size_t>(s.depth + 1) * rt::kLevelBytes +
-           rt::kOctreeBytes + rt::kModelBytes + s.name_bytes;
+           rt::kOctreeBytes + (s.pmesh ? rt::kPmeshBytes : 0) + rt::kModelBytes + s.name_bytes;
 }
 
 Budget budget_of(const BakeSize &s) {
@@ -41,7 +43,9 @@ Budget budget_of(const BakeSize &s) {
     b.colors = s.colors;
     b.palette = s.palette;
     b.descriptors = descriptor_bytes(s);
-    b.code = runtime_code_bytes(s.leaf_switch);
+    b.pmesh = s.pmesh;
+    b.pmesh_lod = s.pmesh_lod;
+    b.code = runtime_code_bytes(s.leaf_switch, s.pmesh > 0);
     b.color_buffer = color_buffer_bytes(s.screen_w, s.screen_h);
     b.depth_buffer = depth_buffer_bytes(s.screen_w, s.screen_h);
     b.runtime_ram = rt::kRuntimeStaticRam;

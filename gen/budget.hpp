@@ -24,12 +24,14 @@ size_t parse_size(const std::string &option, const std::string &text);
 
 struct Budget {
     size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
-    size_t descriptors = 0;                      // chunk lists, levels, octree, model, name (32-bit layout)
+    size_t pmesh = 0;                            // bytes of the progressive mesh's arrays (0: no mesh part)
+    size_t descriptors = 0;                      // chunk lists, levels, octree, pmesh, model, name (32-bit layout)
     size_t code = 0;                             // runtime modules + libgcc helpers
-    size_t flash() const { return masks + colors + palette + descriptors + code; }
-    size_t data() const { return masks + colors + palette; }
+    size_t flash() const { return data() + descriptors + code; }
+    size_t data() const { return masks + colors + palette + pmesh; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
-    size_t ram() const { return color_buffer + depth_buffer + runtime_ram; }
+    size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
+    size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod; }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
     size_t stack = 0;                            // bound for mc_octree_render at the model's depth
 };
@@ -42,6 +44,7 @@ struct BakeSize {
     size_t name_bytes = 0;                       // the model's name as a C string, NUL included
     int screen_w = 0, screen_h = 0;              // the frame the buffers are sized for
     int leaf_switch = 1;                         // the MC_LEAF_SWITCH the runtime is built with
+    size_t pmesh = 0, pmesh_lod = 0;             // the mesh part: its arrays, its state's RAM (0: none)
 };
 
 Budget budget_of(const BakeSize &s);
@@ -49,8 +52,9 @@ Budget budget_of(const BakeSize &s);
 // One runtime module's code, built with this MC_LEAF_SWITCH.
 inline size_t module_code_bytes(const rt::ModuleCode &m, int leaf_switch) { return leaf_switch ? m.bytes : m.bytes_loop; }
 
-// The runtime's code: every module it links plus the libgcc division helpers.
-size_t runtime_code_bytes(int leaf_switch);
+// The runtime's code: every module it links plus the libgcc division helpers (and the mesh part's
+// modules when the bake has one).
+size_t runtime_code_bytes(int leaf_switch, bool pmesh = false);
 
 // The frame buffers of a w x h screen: one palette-index byte and one 16-bit depth per pixel.
 size_t color_buffer_bytes(int w, int h);

@@ -113,7 +113,28 @@ struct Plan {
     nlohmann::json budget_arrays = nlohmann::json::object();
     std::vector<uint8_t> palette;   // RGB triplets
     size_t mask_bytes = 0, color_bytes = 0, chunk_entries = 0;
+    // the mesh part (pmesh.h): its arrays' bytes, chunk lists and layout
+    std::vector<std::vector<uint8_t>> pm_bytes;   // positions, tree, splits, corners
+    mstch::array pm_lists;
+    size_t pm_data = 0;
+    unsigned index_bytes = 0, record_shift = 0;
 };
+
+// The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
+void pmesh_arrays(const PMesh &pm, Plan &p) {
+    const unsigned ib = pm.vertices() <= 65535 ? 2 : 4;
+    p.index_bytes = ib;
+    p.pm_bytes.assign(4, {});
+    auto put = [](std::vector<uint8_t> &b, uint32_t v, unsigned n) {
+        for (unsigned i = 0; i < n; i++) b.push_back(static_cast<uint8_t>(v >> (8 * i)));
+    };
+    for (const auto &q : pm.positions)
+        for (uint16_t c : q) put(p.pm_bytes[0], c, 2);
+    for (size_t v = 0; v < pm.vertices(); v++) put(p.pm_bytes[1], pm.parent[v], ib), put(p.pm_bytes[1], pm.size[v], ib);
+    for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
+    for (const auto &f : pm.faces)
+        for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
+}
 
 // A monochrome octree (one palette entry) stores no colours: every level's colour list is NULL and
 // the renderer draws palette index 0 (octree.h).
@@ -152,6 +173,35 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
     }
     for (const auto &c : t.palette) p.palette.insert(p.palette.end(), c.begin(), c.end());
     p.budget_arrays["mc_" + name + "_palette"] = p.palette.size();
+    if (opt.pmesh) {
+        // every chunk of every array holds 2^record_shift whole records (the last fewer), the most
+        // that fit --chunk-bytes for the largest record (three corners)
+        pmesh_arrays(*opt.pmesh, p);
+        const size_t largest = 3 * p.index_bytes;
+        while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
+        const char *kinds[4] = {"pm_positions", "pm_tree", "pm_splits", "pm_corners"};
+        const char *whats[4] = {"vertex positions", "vertex parents and subtree sizes", "splits",
+                                "face corners"};
+        const size_t record[4] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes};
+        for (int k = 0; k < 4; k++) {
+            const std::vector<uint8_t> &bytes = p.pm_bytes[k];
+            const std::string list = "mc_" + name + "_" + kinds[k];
+            const size_t per = record[k] << p.record_shift;
+            mstch::array chunks;
+            size_t i = 0;
+            for (size_t at = 0; at < bytes.size(); at += per) {
+                const size_t size = std::min(per, bytes.size() - at);
+                std::string sym = list + "_" + std::to_string(i++);
+                p.arrays.push_back({sym, std::string("mesh ") + whats[k] + ", bytes " + std::to_string(at) + ".." +
+                                             std::to_string(at + size - 1), bytes.data() + at, size});
+                chunks.push_back(mstch::map{{"symbol", sym}, {"size", std::to_string(size)}});
+                p.budget_arrays[sym] = size;
+            }
+            p.chunk_entries += i + 1;
+            p.pm_data += bytes.size();
+            p.pm_lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
+        }
+    }
     return p;
 }
 
@@ -165,6 +215,10 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
     s.name_bytes = opt.name.size() + 1;
     s.screen_w = opt.screen_w, s.screen_h = opt.screen_h;
     s.leaf_switch = opt.leaf_switch;
+    if (opt.pmesh) {
+        s.pmesh = p.pm_data;
+        s.pmesh_lod = opt.pmesh->vertices() * p.index_bytes;
+    }
     return budget_of(s);
 }
 
@@ -226,7 +280,9 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     }
     mstch::map octree = common(opt);
     mstch::array decls;
-    for (const Array &a : arrays) decls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
+    for (const Array &a : arrays)
+        if (a.symbol.rfind("mc_" + name + "_pm_", 0) != 0)   // the mesh's are NAME_pmesh.c's
+            decls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
     octree.emplace("arrays", decls);
     octree.emplace("lists", plan.lists);
     octree.emplace("levels", plan.levels);
@@ -236,7 +292,32 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     octree.emplace("palette_bytes", std::to_string(palette.size()));
     octree.emplace("palette_lines", byte_lines(palette.data(), palette.size()));
     out.emplace_back(name + "_octree.c", mstch::render(template_text("octree.c"), octree));
-    out.emplace_back(name + "_model.c", mstch::render(template_text("model.c"), model_data(vox, opt)));
+    mstch::map model = model_data(vox, opt);
+    model.emplace("pmesh_ptr", std::string(opt.pmesh ? "&mc_pmesh_" + name : "0"));
+    out.emplace_back(name + "_model.c", mstch::render(template_text("model.c"), model));
+    mstch::map pmesh_header;
+    if (opt.pmesh) {
+        const PMesh &pm = *opt.pmesh;
+        mstch::map m = common(opt);
+        mstch::array pdecls;
+        for (const Array &a : arrays)
+            if (a.symbol.rfind("mc_" + name + "_pm_", 0) == 0)
+                pdecls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
+        pmesh_header = mstch::map{{"vertices", std::to_string(pm.vertices())},
+                                  {"faces", std::to_string(pm.faces.size())},
+                                  {"base_vertices", std::to_string(pm.base_vertices)},
+                                  {"base_faces", std::to_string(pm.base_faces)},
+                                  {"index_bits", std::to_string(8 * plan.index_bytes)},
+                                  {"lod_bytes", std::to_string(bud.pmesh_lod)}};
+        for (const auto &[k, v] : pmesh_header) m.emplace(k, v);
+        m.emplace("arrays", pdecls);
+        m.emplace("lists", plan.pm_lists);
+        m.emplace("index_bytes", std::to_string(plan.index_bytes));
+        m.emplace("record_shift", std::to_string(plan.record_shift));
+        const char *fields[4] = {"positions", "tree", "splits", "corners"};
+        for (int k = 0; k < 4; k++) m.emplace(fields[k], "mc_" + name + "_pm_" + fields[k]);
+        out.emplace_back(name + "_pmesh.c", mstch::render(template_text("pmesh.c"), m));
+    }
 
     mstch::map header = common(opt);
     header.emplace("depth", std::to_string(D));
@@ -252,6 +333,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     for (const Array &a : arrays)
         symbols.push_back(mstch::map{{"symbol", a.symbol}, {"suffix", a.symbol.substr(4 + name.size())}});
     header.emplace("symbols", symbols);
+    if (opt.pmesh) header.emplace("pmesh", mstch::array{pmesh_header});
     out.emplace_back(name + ".h", mstch::render(template_text("model.h"), header));
     if (!opt.lib) out.emplace_back(name + "_app.c", mstch::render(template_text("app.c"), header));
     return out;
@@ -275,6 +357,11 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         modules.push_back(m.name);
         runtime_code[m.name] = module_code_bytes(m, opt.leaf_switch);
     }
+    if (opt.pmesh)
+        for (const auto &m : rt::kMeshModules) {
+            modules.push_back(m.name);
+            runtime_code[m.name] = module_code_bytes(m, opt.leaf_switch);
+        }
     runtime_code["libgcc"] = rt::kLibgccDivision;
     runtime_code["leaf_switch"] = opt.leaf_switch;
     runtime_code["total"] = bud.code;
@@ -336,6 +423,28 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         if (opt.limits.ram) lim["ram"] = {{"limit", opt.limits.ram}, {"used", bud.ram()}};
         if (opt.limits.stack) lim["stack"] = {{"limit", opt.limits.stack}, {"used", bud.stack}};
         budget["budgets"] = lim;
+    }
+    if (opt.pmesh) {
+        const PMesh &pm = *opt.pmesh;
+        const size_t splits = pm.split_vertex.size();
+        budget["pmesh"] = {
+            {"vertices", pm.vertices()},
+            {"faces", pm.faces.size()},
+            {"base_vertices", pm.base_vertices},
+            {"base_faces", pm.base_faces},
+            {"splits", splits},
+            {"index_bytes", plan.index_bytes},
+            {"record_shift", plan.record_shift},
+            {"bytes", plan.pm_data},
+            {"bytes_per_split", splits ? double(plan.pm_data) / double(splits) : 0.0},
+            {"lod_ram", bud.pmesh_lod},
+            {"input",
+             {{"faces_with_a_repeated_corner", pm.dropped_faces},
+              {"vertex_copies_for_non_manifold_faces", pm.split_vertices},
+              {"collapses_applied_for_max_faces", pm.capped_collapses}}},
+        };
+        budget["flash"]["pmesh"] = plan.pm_data;
+        budget["ram"]["pmesh_lod"] = bud.pmesh_lod;
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);

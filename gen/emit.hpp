@@ -9,6 +9,7 @@
 #include <vector>
 #include "budget.hpp"
 #include "octree.hpp"
+#include "pmesh.hpp"
 
 namespace mc {
 
@@ -25,6 +26,7 @@ struct EmitOptions {
     Limits limits;             // recorded in budget.json (checked by the caller)
     std::string fit_note;      // what --fit chose, recorded in budget.json
     std::vector<std::pair<std::string, std::string>> budget_extra;  // more budget.json entries: key, JSON text
+    const PMesh *pmesh = nullptr;   // the mesh part (--as both), or none
 };
 
 // The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where

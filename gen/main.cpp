@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <regex>
 
@@ -15,6 +16,7 @@
 #include "model.hpp"
 #include "normalize.hpp"
 #include "octree.hpp"
+#include "pmesh.hpp"
 #include "progress.hpp"
 #include "reference.hpp"
 #include "visibility.hpp"
@@ -50,6 +52,9 @@ int main(int argc, char **argv) {
     int min_palette = 16;
     std::string views = "all";
     std::string dump_reference;  // hidden: tests and benchmarks only
+    std::string as = "points";
+    std::string dump_pmesh;       // hidden: tests only, N:FILE
+    mc::PMeshOptions pmesh_opt;
     app.add_option("input", input, "model file: .off .obj .ply .stl (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
@@ -88,6 +93,15 @@ int main(int argc, char **argv) {
     app.add_option("--leaf-switch", emit.leaf_switch, "MC_LEAF_SWITCH the runtime is built with (config.h): "
                    "1 costs about 56 KB more code on Cortex-M, counted in the flash budget")
         ->check(CLI::Range(0, 1))->capture_default_str();
+    app.add_option("--as", as, "the parts to bake: points (the point octree), or both (the octree and a progressive "
+                   "mesh, for triangle meshes only)")
+        ->check(CLI::IsMember({"points", "both"}))->capture_default_str();
+    app.add_option("--max-faces", pmesh_opt.max_faces, "--as both: the most faces of the mesh's finest level (0: all "
+                   "of the file's)")
+        ->check(CLI::Range(size_t(0), size_t(1) << 31))->capture_default_str();
+    app.add_option("--dump-pmesh-level", dump_pmesh, "N:FILE: write the faces OpenMesh's decimater leaves at N "
+                   "vertices (pmesh.hpp dump_decimated), for the tests")
+        ->group("");
     app.add_option("--dump-reference", dump_reference, "write the normalised original model for the tests' "
                    "mesh reference renderer (runtime/ref/mesh_ref.h)")
         ->group("");
@@ -134,6 +148,22 @@ int main(int argc, char **argv) {
         progress.step("loading");
         mc::Model model = mc::load_model(input);
         const mc::GridCube cube = mc::normalize(model, emit.up);
+        // the mesh part first: a point set asked for one stops here, before the long stages
+        mc::PMesh pmesh;
+        if (as == "both") {
+            if (!model.is_mesh)
+                throw mc::InputError(input, mc::InputError::Where::none, 0,
+                                     "a point set cannot be baked as a mesh (--as both): it has no faces");
+            progress.step("progressive mesh");
+            pmesh = mc::build_pmesh(model, cube, pmesh_opt);
+            emit.pmesh = &pmesh;
+            if (!dump_pmesh.empty()) {
+                const size_t colon = dump_pmesh.find(':');
+                std::ofstream f(dump_pmesh.substr(colon + 1));
+                mc::dump_decimated(model, cube, std::stoul(dump_pmesh.substr(0, colon)), f);
+                if (colon == std::string::npos || !f) throw std::runtime_error("--dump-pmesh-level " + dump_pmesh + ": cannot write");
+            }
+        }
         mc::Voxels voxels = mc::voxelize(model, cube, input, vox, progress);
         if (!dump_reference.empty()) mc::dump_reference(model, voxels, dump_reference);
         // --views: the cells to keep, whatever depth and palette the octree gets (empty: keep all)

@@ -39,6 +39,10 @@ inline constexpr ModuleCode kModules[] = {
     {"octree_render", 62492, 5672, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
+// The mesh part's modules, linked when a bake has one (--as both).
+inline constexpr ModuleCode kMeshModules[] = {
+    {"pmesh", 736, 736, "progressive-mesh level of detail (pmesh.c)"},
+};
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;
 
@@ -46,6 +50,8 @@ inline constexpr size_t kRuntimeStaticRam = 0;
 // arm-none-eabi-gcc): mc_chunk {pointer, uint32}, mc_octree_level {uint32, 2 pointers}, mc_octree
 // {uint8, uint16, 2 pointers}, mc_model {4 int64, 4 pointers, uint8, padded to 8}.
 inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kOctreeBytes = 12, kModelBytes = 56;
+// mc_pmesh {4 uint32, 2 uint8, 4 pointers} on a 32-bit target.
+inline constexpr size_t kPmeshBytes = 36;
 
 // -fstack-usage of every function of octree_render.c, fixed.c, trig.c and xform.c that
 // mc_octree_render can reach.

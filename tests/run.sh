@@ -28,6 +28,7 @@ suites=(
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/render/suite.sh     # renders against the double-precision reference
     tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
+    tests/gen/pmesh.sh        # the progressive mesh: every level valid, levels equal OpenMesh's decimation
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
     tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, view
-# clamping, mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
-# tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
+# Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, the
+# progressive mesh's level of detail (pmesh), view clamping, mc_octree_render's contract on hand-made
+# and random scenes, hole filling (cmocka, tests/unit/test_*.c), and the freestanding build of
+# runtime/src under gcc and clang.
 #
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
 # SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit).
@@ -95,6 +96,7 @@ for f in 15 8 24; do
 done
 build_and_run "unit: trig: " test_trig
 build_and_run "unit: bits, rng, chunk: " test_bits
+build_and_run "unit: pmesh: " test_pmesh
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to

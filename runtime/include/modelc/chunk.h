@@ -13,6 +13,11 @@
  * the sentinel of a real list is never done by a caller given a well-formed array; mc_cursor_skip
  * stops at the sentinel instead of running off.
  *
+ * Promise (indexed records): a chunked array of fixed-size records in which every chunk but the
+ * last holds exactly 2^shift records gives record i at one shift, one mask and one multiply
+ * (mc_chunk_record), with no search. Multi-byte fields are little-endian and read a byte at a time
+ * (mc_le16, mc_le32, mc_le_index), so records need no alignment and read the same everywhere.
+ *
  * Header only (static inline): the renderers' hot loops inline the cursor and keep its fields in
  * registers, so the fields are part of the contract. Freestanding.
  */
@@ -83,5 +88,20 @@ static inline void mc_cursor_skip(mc_cursor *c, uint32_t n)
     }
     c->p += n;
 }
+
+/* Record i of an indexed array: chunks of 2^shift records of size bytes each. */
+MC_ALWAYS_INLINE const uint8_t *mc_chunk_record(const mc_chunk *list, unsigned shift, uint32_t size, uint32_t i)
+{
+    return list[i >> shift].data + (i & ((UINT32_C(1) << shift) - 1u)) * size;
+}
+
+/* Little-endian fields. */
+MC_ALWAYS_INLINE uint32_t mc_le16(const uint8_t *p) { return (uint32_t)p[0] | (uint32_t)p[1] << 8; }
+MC_ALWAYS_INLINE uint32_t mc_le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+/* An index field of 2 or 4 bytes (a part's index width). */
+MC_ALWAYS_INLINE uint32_t mc_le_index(const uint8_t *p, unsigned bytes) { return bytes == 2 ? mc_le16(p) : mc_le32(p); }
 
 #endif

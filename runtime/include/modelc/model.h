@@ -2,8 +2,9 @@
  *
  * Promise: modelc writes one const mc_model per bake (mc_model_NAME, in NAME_model.c), whatever it
  * was asked to prepare. A front end asks the model what it has: a part pointer is NULL when the bake
- * did not make that part. Today every bake makes the octree; pmesh (progressive mesh) and edges (the
- * edge model for tracking) are declared for the parts to come and are NULL in every bake.
+ * did not make that part. Today every bake makes the octree; a bake with --as both adds the pmesh
+ * (progressive mesh, pmesh.h); edges (the edge model for tracking) is declared for the part to come
+ * and is NULL in every bake.
  *
  * The normalization says where the model sits in its file's coordinates, so that a front end can
  * map between file units and the unit cube every part is drawn in (xform.h: at zoom 1 the cube's
@@ -20,9 +21,9 @@
 
 #include <stdint.h>
 #include "octree.h"
+#include "pmesh.h"
 
-/* Parts to come; their descriptors are not defined yet. */
-typedef struct mc_pmesh mc_pmesh;
+/* A part to come; its descriptor is not defined yet. */
 typedef struct mc_edges mc_edges;
 
 /* The file's axis that is shown as up (the runtime's +y). */
@@ -36,7 +37,7 @@ typedef struct mc_model {
     int64_t side;               /* Q32.32 file units: its side */
     const char *name;
     const mc_octree *octree;    /* point octree (octree.h, drawn by octree_render.h), or NULL */
-    const mc_pmesh *pmesh;      /* progressive mesh: NULL in every bake today */
+    const mc_pmesh *pmesh;      /* progressive mesh (pmesh.h), or NULL */
     const mc_edges *edges;      /* edge model: NULL in every bake today */
     uint8_t up;                 /* MC_UP_Y or MC_UP_Z */
 } mc_model;

@@ -9,6 +9,7 @@
 #include "xform.h"
 #include "target.h"
 #include "octree.h"
+#include "pmesh.h"
 #include "model.h"
 #include "octree_render.h"
 #include "finish.h"

@@ -1,0 +1,57 @@
+// The progressive-mesh part: a triangle mesh decimated by half-edge collapses (OpenMesh's
+// Decimater), recorded in the layout of runtime/include/modelc/pmesh.h.
+//
+// Promise: build_pmesh turns every face of the model that has three distinct corners into a face of
+// the full level (faces OpenMesh cannot add because their edge or vertex is already used twice over
+// get their own copies of their vertices, counted in split_vertices), then collapses half-edges in
+// order of quadric error, refusing collapses that flip a face normal, until none is left or the
+// base is at most min_base_vertices vertices; the record of those collapses, reversed, is the
+// part. Level n of the result is exactly the mesh the Decimater had with n vertices. With
+// max_faces, the finest collapses are applied for good until the full level has at most that many
+// faces.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <vector>
+
+#include "model.hpp"
+#include "normalize.hpp"
+
+namespace mc {
+
+struct PMeshOptions {
+    size_t max_faces = 0;          // 0: no limit
+    size_t min_base_vertices = 0;  // stop collapsing at this many vertices (0: as far as OpenMesh allows)
+};
+
+struct PMesh {
+    // per vertex, in depth-first order of the collapse forest (pmesh.h)
+    std::vector<std::array<uint16_t, 3>> positions;   // (q - 32768) / 65536: unit-cube coordinate
+    std::vector<uint32_t> parent, size;
+    uint32_t base_vertices = 0, base_faces = 0;
+    // per split, in order: the vertex it brings back and the number of faces it adds (1 or 2)
+    std::vector<uint32_t> split_vertex;
+    std::vector<uint8_t> split_faces;
+    // per face, in creation order: corners in the full level, counter-clockwise from outside
+    std::vector<std::array<uint32_t, 3>> faces;
+    // what happened to the input
+    size_t dropped_faces = 0;    // faces with a repeated corner (no area, nothing to draw)
+    size_t split_vertices = 0;   // vertex copies made for faces OpenMesh could not add (non-manifold)
+    size_t capped_collapses = 0; // collapses applied for good by max_faces
+    size_t vertices() const { return positions.size(); }
+};
+
+// Builds the part from a mesh model (m.is_mesh, at least one triangle) normalized into cube.
+PMesh build_pmesh(const Model &m, const GridCube &cube, const PMeshOptions &opt);
+
+// Writes the faces OpenMesh's Decimater leaves when it collapses the model's mesh, as build_pmesh
+// does, down to `vertices` vertices: one line per face, its corners' quantized positions (x y z,
+// three times, in the face's order). For tests: level `vertices` of the part must be the same faces.
+void dump_decimated(const Model &m, const GridCube &cube, size_t vertices, std::ostream &out);
+
+// The faces of level n (base_vertices <= n <= vertices()), corners mapped to the vertices present
+// at n: the generator's own reading of the layout, for tests and the reference.
+std::vector<std::array<uint32_t, 3>> pmesh_level_faces(const PMesh &pm, uint32_t n);
+
+}  // namespace mc

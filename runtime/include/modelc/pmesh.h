@@ -1,0 +1,81 @@
+/* The progressive-mesh part of a baked model, and its level of detail.
+ *
+ * The generator decimates the mesh by half-edge collapses only (a removed vertex v goes into its
+ * neighbour, its parent, and every vertex keeps its original position) and records the sequence in
+ * reverse: a base mesh of V0 vertices and F0 faces, then V - V0 vertex splits, each bringing back one
+ * vertex and the one or two faces its collapse removed. Level n (V0 <= n <= V) is the mesh after the
+ * first n - V0 splits: its vertices are the base vertices and those of the first splits, its faces
+ * are a prefix of the face array, F(n) long, faces stored in the order the splits create them.
+ *
+ * Every face stores the corners it has in the full mesh. At level n a corner stands for its nearest
+ * ancestor present at n (ancestor: parent, parent's parent... in the forest of collapses; a vertex
+ * is its own ancestor), because a half-edge collapse moves every face of the removed vertex to its
+ * parent. Vertices are numbered in depth-first order of that forest (roots: the base vertices;
+ * children in the order of their splits), so a vertex's descendants are the indices just after it,
+ * [v, v + size(v)), and a split or collapse rewrites one contiguous run of the ancestor map.
+ *
+ * Promise (mc_pmesh_lod): the state of level n is the same bytes however n was reached (any sequence
+ * of refinements and coarsenings, from any level); setting a level costs the sizes of the subtrees
+ * of the vertices split or collapsed on the way, nothing else; the state is the caller's memory,
+ * MC_PMESH_LOD_BYTES of it, with no heap. Every face of level n has three distinct corners, each a
+ * vertex present at n, when the arrays are the generator's. Freestanding, no floating point.
+ *
+ * Data layout (every array chunked, chunk.h indexed records: each chunk but the last holds exactly
+ * 2^record_shift records; multi-byte fields little-endian; an index field is index_bytes wide):
+ *   positions  per vertex: x, y, z as uint16; the unit-cube coordinate is (q - 32768) / 65536
+ *              (model.h: the cube the model was normalized into; +y up)
+ *   tree       per vertex: parent index (a base vertex is its own parent), subtree size
+ *   splits     per split s = 0 .. V-V0-1: the index of the vertex it brings back, then one byte: the
+ *              number of faces it adds (1 or 2)
+ *   corners    per face, in creation order: three corner indices, counter-clockwise seen from outside
+ */
+#ifndef MODELC_PMESH_H
+#define MODELC_PMESH_H
+
+#include <stdint.h>
+#include "chunk.h"
+
+typedef struct mc_pmesh {
+    uint32_t vertices;           /* V: vertices of the full mesh */
+    uint32_t base_vertices;      /* V0: vertices of the base mesh (>= 1) */
+    uint32_t faces;              /* F: faces of the full mesh */
+    uint32_t base_faces;         /* F0: faces of the base mesh */
+    uint8_t index_bytes;         /* 2 (V <= 65535) or 4 */
+    uint8_t record_shift;        /* 2^record_shift records in each chunk but the last, every array */
+    const mc_chunk *positions;   /* V records of 6 bytes */
+    const mc_chunk *tree;        /* V records of 2 * index_bytes */
+    const mc_chunk *splits;      /* V - V0 records of index_bytes + 1 */
+    const mc_chunk *corners;     /* F records of 3 * index_bytes: the faces */
+} mc_pmesh;
+
+/* The level-of-detail state: level, face count and the ancestor map (in the caller's memory). */
+typedef struct mc_pmesh_lod {
+    const mc_pmesh *pm;
+    uint32_t level;              /* vertices present: V0 .. V */
+    uint32_t faces;              /* faces present: F(level) */
+    void *anc;                   /* V entries, uint16_t when index_bytes is 2, else uint32_t */
+} mc_pmesh_lod;
+
+/* Bytes of ancestor map a state needs (the generator writes it for each bake as a define). */
+#define MC_PMESH_LOD_BYTES(vertices, index_bytes) ((uint32_t)(vertices) * (uint32_t)(index_bytes))
+
+/* Starts at the base level: anc (MC_PMESH_LOD_BYTES, aligned for its entries) maps every vertex to
+ * its root. Work: V. */
+void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc);
+
+/* Refines or coarsens to level (clamped to V0 .. V); returns the level set. */
+uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level);
+
+/* The vertex present at the current level that vertex v (0 .. V-1) stands for. */
+static inline uint32_t mc_pmesh_lod_vertex(const mc_pmesh_lod *lod, uint32_t v)
+{
+    return lod->pm->index_bytes == 2 ? ((const uint16_t *)lod->anc)[v] : ((const uint32_t *)lod->anc)[v];
+}
+
+/* The corners of face f (0 .. lod->faces-1) at the current level. */
+void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3]);
+
+/* Vertex v's position: unit-cube coordinates in Q16 (q - 32768), -32768 .. 32767. */
+void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3]);
+
+#endif

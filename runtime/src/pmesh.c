@@ -1,0 +1,73 @@
+/* Level of detail of a progressive mesh (pmesh.h): the ancestor map, refined and coarsened. */
+#include "modelc/pmesh.h"
+
+static uint32_t tree_field(const mc_pmesh *pm, uint32_t v, unsigned k)
+{
+    const unsigned ib = pm->index_bytes;
+    return mc_le_index(mc_chunk_record(pm->tree, pm->record_shift, 2u * ib, v) + k * ib, ib);
+}
+
+static uint32_t anc_get(const mc_pmesh_lod *lod, uint32_t v) { return mc_pmesh_lod_vertex(lod, v); }
+
+/* anc[v .. v+n) = a */
+static void anc_fill(mc_pmesh_lod *lod, uint32_t v, uint32_t n, uint32_t a)
+{
+    if (lod->pm->index_bytes == 2) {
+        uint16_t *p = (uint16_t *)lod->anc + v;
+        while (n--) *p++ = (uint16_t)a;
+    } else {
+        uint32_t *p = (uint32_t *)lod->anc + v;
+        while (n--) *p++ = a;
+    }
+}
+
+void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc)
+{
+    lod->pm = pm;
+    lod->anc = anc;
+    lod->level = pm->base_vertices;
+    lod->faces = pm->base_faces;
+    /* depth-first order: a parent comes before its children, so its root is already known */
+    for (uint32_t v = 0; v < pm->vertices; v++) {
+        uint32_t p = tree_field(pm, v, 0);
+        anc_fill(lod, v, 1, p == v ? v : anc_get(lod, p));
+    }
+}
+
+uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
+{
+    const mc_pmesh *pm = lod->pm;
+    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
+    if (level < pm->base_vertices) level = pm->base_vertices;
+    if (level > pm->vertices) level = pm->vertices;
+    while (lod->level < level) {   /* split: the vertex's subtree now stands for it */
+        const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
+        uint32_t v = mc_le_index(r, ib);
+        anc_fill(lod, v, tree_field(pm, v, 1), v);
+        lod->faces += r[ib];
+        lod->level++;
+    }
+    while (lod->level > level) {   /* collapse: the subtree goes back to the parent, which split
+                                    * earlier and so is present */
+        lod->level--;
+        const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
+        uint32_t v = mc_le_index(r, ib);
+        anc_fill(lod, v, tree_field(pm, v, 1), tree_field(pm, v, 0));
+        lod->faces -= r[ib];
+    }
+    return level;
+}
+
+void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3])
+{
+    const mc_pmesh *pm = lod->pm;
+    const unsigned ib = pm->index_bytes;
+    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, f);
+    for (unsigned k = 0; k < 3; k++) corner[k] = anc_get(lod, mc_le_index(r + k * ib, ib));
+}
+
+void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
+{
+    const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, v);
+    for (unsigned k = 0; k < 3; k++) xyz[k] = (int32_t)mc_le16(r + 2 * k) - 32768;
+}

@@ -1,0 +1,204 @@
+#!/usr/bin/env bash
+# The progressive-mesh part (--as both; gen/pmesh.cpp, runtime/src/pmesh.c) on catalogue meshes and
+# on shapes made here that no catalogue model has: an open grid (borders), a thin two-sided sheet,
+# many components, non-manifold edges and vertices, repeated corners, zero-area faces and coincident
+# vertices. For each bake, tests/gen/pmesh_check.c, built with the runtime's pmesh.c and the bake:
+#   - every level (or 800 of them, shuffled): every face present has three distinct corners present
+#     at that level, F(n) faces, and the arrays' tree and split invariants hold;
+#   - at chosen levels the faces equal, as a set of oriented triangles of quantized positions, those
+#     OpenMesh's Decimater itself leaves at that many vertices (modelc --dump-pmesh-level);
+# and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
+# output; --max-faces caps the finest level; a points-only bake is unchanged by the mesh code.
+#
+# usage: tests/gen/pmesh.sh [MODELC]        (default build/bin/modelc)
+set -u
+cd "$(dirname "$0")/../.."
+modelc=${1:-build/bin/modelc}
+TAP_PREFIX="pmesh: "
+. tests/lib.sh
+temp_dir
+out=$tmp/out
+
+# canon FILE: the faces of a dump, each rotated to start at its smallest corner (orientation kept),
+# sorted: two dumps of the same oriented faces give the same text
+canon() {
+    awk '{ a = $1" "$2" "$3; b = $4" "$5" "$6; c = $7" "$8" "$9
+           if (a <= b && a <= c) print a" | "b" | "c; else if (b <= c) print b" | "c" | "a; else print c" | "a" | "b }' \
+        "$1" | LC_ALL=C sort
+}
+
+# bake_check LABEL FILE [OPTIONS...]: bakes FILE --as both, builds the checker, runs its level
+# checks; sets $bake (the output directory) and $checker; fails the check and returns 1 on any problem
+bake_check() {
+    local label=$1 file=$2 name
+    shift 2
+    name=$(echo "$label" | tr -c 'a-z0-9\n' '_')
+    bake=$out/$name
+    rm -rf "$bake"
+    if ! "$modelc" "$file" -o "$out" --name "$name" --depth 5 --as both -q "$@" >"$tmp/$name.log" 2>&1; then
+        notok "$label: bakes --as both $*" "$(oneline <"$tmp/$name.log")"
+        return 1
+    fi
+    checker=$tmp/check_$name
+    if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
+        -o "$checker" tests/gen/pmesh_check.c runtime/src/pmesh.c "$bake"/*.c >"$tmp/$name.cc" 2>&1; then
+        notok "$label: the bake compiles with the runtime (-Wall -Wextra -Werror)" "$(head -n 3 "$tmp/$name.cc" | oneline)"
+        return 1
+    fi
+    local r
+    r=$("$checker" levels 2>&1)
+    if [[ $r == ok:* ]]; then ok "$label: levels: ${r#ok: }"; else notok "$label: levels" "$r"; return 1; fi
+}
+
+# same_as_openmesh LABEL FILE N [OPTIONS...]: level N of the bake equals OpenMesh's decimation to N
+same_as_openmesh() {
+    local label=$1 file=$2 n=$3 name
+    shift 3
+    name=$(echo "$label" | tr -c 'a-z0-9\n' '_')
+    if ! "$modelc" "$file" -o "$tmp/dump" --name "$name" --depth 5 --as both -q "$@" \
+        --dump-pmesh-level "$n:$tmp/openmesh.txt" >"$tmp/dump.log" 2>&1; then
+        notok "$label: level $n equals OpenMesh's decimation" "modelc: $(oneline <"$tmp/dump.log")"
+        return
+    fi
+    "$checker" faces "$n" >"$tmp/runtime.txt"
+    local a b
+    a=$(canon "$tmp/openmesh.txt" | md5sum)
+    b=$(canon "$tmp/runtime.txt" | md5sum)
+    if [ ! -s "$tmp/openmesh.txt" ]; then notok "$label: level $n equals OpenMesh's decimation" "OpenMesh left no faces"
+    elif [ "$a" = "$b" ]; then ok "$label: level $n: its $(wc -l <"$tmp/runtime.txt") faces equal OpenMesh's decimation to $n vertices"
+    else notok "$label: level $n equals OpenMesh's decimation" \
+        "$(diff <(canon "$tmp/openmesh.txt") <(canon "$tmp/runtime.txt") | grep -c '^[<>]') faces differ"; fi
+}
+
+# budget_adds_up LABEL: budget.json's mesh figures agree with the arrays it lists
+budget_adds_up() {
+    local label=$1 problems
+    problems=$(python3 - "$bake/budget.json" <<'PY'
+import json, sys
+b = json.load(open(sys.argv[1]))
+pm, arrays = b["pmesh"], b["flash"]["arrays"]
+mesh = sum(v for k, v in arrays.items() if "_pm_" in k)
+ib, V, F, S = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"]
+want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib
+p = []
+if mesh != pm["bytes"] or mesh != want: p.append(f"mesh arrays {mesh} bytes, budget says {pm['bytes']}, layout gives {want}")
+if b["flash"]["total"] != sum(arrays.values()): p.append(f"flash total {b['flash']['total']} != arrays {sum(arrays.values())}")
+if pm["lod_ram"] != V * ib or b["ram"]["pmesh_lod"] != V * ib: p.append("lod_ram is not vertices x index_bytes")
+if S != V - pm["base_vertices"]: p.append("splits != vertices - base_vertices")
+if ib != (2 if V <= 65535 else 4): p.append(f"index_bytes {ib} for {V} vertices")
+if "pmesh" not in b["modules"]: p.append("modules lack pmesh")
+print("; ".join(p))
+PY
+)
+    check_problems "$label: budget.json's mesh figures add up (arrays, flash total, LOD RAM, modules)" "$problems"
+}
+
+# ---- catalogue meshes --------------------------------------------------------------------------
+for m in bunny00 fandisk; do
+    src=$(model_file "$m") || { notok "$m: model file" "cannot extract it (make models)"; continue; }
+    bake_check "$m" "$src" || continue
+    budget_adds_up "$m"
+    case $m in
+        bunny00) levels="100 2000" ;;
+        fandisk) levels="500" ;;
+    esac
+    for n in $levels; do same_as_openmesh "$m" "$src" "$n"; done
+done
+
+# ---- shapes made here --------------------------------------------------------------------------
+python3 - "$tmp" <<'PY'
+import math, sys
+d = sys.argv[1]
+def off(name, verts, faces):
+    with open(f"{d}/{name}.off", "w") as f:
+        f.write(f"OFF\n{len(verts)} {len(faces)} 0\n")
+        for v in verts: f.write("%.9g %.9g %.9g\n" % v)
+        for t in faces: f.write("3 %d %d %d\n" % t)
+def grid(n, z=0.0, flip=False, base=0, wave=0.1):
+    v = [(i / n, j / n, z + wave * math.sin(3 * i / n) * math.cos(2 * j / n)) for j in range(n + 1) for i in range(n + 1)]
+    f = []
+    for j in range(n):
+        for i in range(n):
+            a = base + j * (n + 1) + i; b = a + 1; c = a + n + 1; e = c + 1
+            f += [(a, c, b), (b, c, e)] if flip else [(a, b, c), (b, e, c)]
+    return v, f
+# an open surface: borders everywhere around
+v, f = grid(30); off("open_grid", v, f)
+# a thin sheet: two grids 1e-3 apart, facing away from each other, stitched along the rim
+v1, f1 = grid(20, 0.0, False); v2, f2 = grid(20, 1e-3, True, base=len(v1))
+off("thin_sheet", v1 + v2, f1 + f2)
+# many components: 40 tetrahedra in a row
+v, f = [], []
+for k in range(40):
+    b = len(v); x = k * 0.05
+    v += [(x, 0, 0), (x + 0.03, 0, 0), (x, 0.03, 0), (x, 0, 0.03)]
+    f += [(b, b + 2, b + 1), (b, b + 1, b + 3), (b, b + 3, b + 2), (b + 1, b + 2, b + 3)]
+off("components", v, f)
+# non-manifold: three fins on one edge, and two cones touching at one vertex (bowtie), on a grid
+v, f = grid(12)
+n = len(v)
+v += [(0.5, 0.5, 0.3), (0.5, 0.5, -0.3), (0.3, 0.7, 0.0)]
+e0, e1 = 6 * 13 + 6, 6 * 13 + 7          # an interior grid edge
+f += [(e0, e1, n), (e1, e0, n + 1), (e0, e1, n + 2)]
+off("non_manifold", v, f)
+# degenerate: a face with a repeated corner, zero-area faces (collinear corners), coincident vertices
+v, f = grid(10)
+n = len(v)
+v += [(2, 0, 0), (2.5, 0, 0), (3, 0, 0), (0, 0, 0)]       # collinear three, and a copy of vertex 0
+f += [(n, n + 1, n + 2), (n, n + 2, n + 1), (0, 0, 5), (n + 3, 1, 11)]
+off("degenerate", v, f)
+PY
+for s in open_grid thin_sheet components non_manifold degenerate; do
+    bake_check "$s" "$tmp/$s.off" || continue
+    budget_adds_up "$s"
+    V=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['vertices'])")
+    V0=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['base_vertices'])")
+    for n in $(printf '%s\n' "$V0" $(((V0 + V) / 2)) "$V" | uniq); do same_as_openmesh "$s" "$tmp/$s.off" "$n"; done
+done
+# what the input had, as budget.json reports it
+inputs() { python3 -c "import json; i=json.load(open('$out/$1/budget.json'))['pmesh']['input']; print(i['$2'])"; }
+r=$(python3 -c "import json; print(json.load(open('$out/degenerate/budget.json'))['pmesh']['faces'])" 2>&1)
+check_problems "degenerate: the 200 grid faces, both zero-area faces and the face on a coincident vertex are in the mesh; the face with a repeated corner is not (the reader drops it)" \
+    "$([ "$r" = 203 ] || echo "$r faces, want 203")"
+r=$(inputs non_manifold vertex_copies_for_non_manifold_faces 2>&1)
+check_problems "non_manifold: each of the three fins on an edge that already has two faces gets its own vertex copies, counted (budget.json)" \
+    "$([ "$r" = 9 ] || echo "vertex_copies_for_non_manifold_faces: $r, want 9")"
+r=$(python3 -c "import json; print(json.load(open('$out/components/budget.json'))['pmesh']['base_vertices'])" 2>&1)
+check_problems "components: every one of the 40 tetrahedra keeps at least one vertex in the base mesh" \
+    "$([ "$r" -ge 40 ] 2>/dev/null || echo "base_vertices: $r")"
+
+# ---- --max-faces ---------------------------------------------------------------------------------
+src=$(model_file bunny00)
+if bake_check "bunny00 --max-faces 10000" "$src" --max-faces 10000; then
+    r=$(python3 -c "import json; p=json.load(open('$bake/budget.json'))['pmesh']; print(p['faces'], p['vertices'])")
+    read -r F V <<<"$r"
+    check_problems "bunny00 --max-faces 10000: the finest level has 9999 or 10000 faces" \
+        "$([ "$F" -le 10000 ] && [ "$F" -ge 9999 ] || echo "$F faces")"
+    same_as_openmesh "bunny00 --max-faces 10000" "$src" "$V" --max-faces 10000
+fi
+
+# ---- a point set ---------------------------------------------------------------------------------
+src=$(model_file kitten)
+rm -rf "$out/kitten"
+"$modelc" "$src" -o "$out" --name kitten --as both -q >"$tmp/kitten.out" 2>&1
+rc=$?
+lines=$(wc -l <"$tmp/kitten.out")
+problems=""
+[ "$rc" = 1 ] || problems+="exit status $rc; "
+[ "$lines" = 1 ] || problems+="$lines lines of output; "
+grep -q "^modelc: $src: a point set cannot be baked as a mesh" "$tmp/kitten.out" || problems+="said: $(oneline <"$tmp/kitten.out"); "
+[ -e "$out/kitten" ] && problems+="wrote $out/kitten; "
+check_problems "kitten (a point set) --as both: one modelc: line, exit 1, no output" "$problems"
+
+# ---- points-only bakes untouched -----------------------------------------------------------------
+src=$(model_file fandisk)
+"$modelc" "$src" -o "$tmp/a" --name fandisk --depth 5 -q && "$modelc" "$src" -o "$tmp/b" --name fandisk --depth 5 --as points -q
+problems=$(diff -r "$tmp/a/fandisk" "$tmp/b/fandisk" >/dev/null 2>&1 || echo "--as points differs from no --as")
+for f in fandisk_octree.c; do
+    cmp -s "$tmp/a/fandisk/$f" "$out/fandisk/$f" || problems+=" $f differs between --as points and --as both"
+done
+grep -q "pmesh" "$tmp/a/fandisk/budget.json" && problems+=" a points-only budget.json mentions pmesh"
+grep -q "&mc_octree_fandisk, 0, 0," "$tmp/a/fandisk/fandisk_model.c" || problems+=" a points-only model has a pmesh pointer"
+check_problems "fandisk: --as points is the default; its octree descriptor is the same with --as both; no mesh in a points bake" "$problems"
+
+exit $status
