@@ -1,0 +1,61 @@
+/* Filled, flat-shaded triangles with a depth test: the mesh renderer's rasterizer (a scanline
+ * rasterizer, as the paper's PocketPC renderer, on a z-buffer, target.h).
+ *
+ * Promise: mc_raster_triangle colours exactly the pixels whose centres lie inside the triangle and
+ * whose depth there is strictly nearer than the target's, and writes nothing else. Coverage is
+ * decided exactly, in integers (64-bit edge functions, no rounding); depth is the triangle's plane,
+ * within 1 unit of its exact value, never outside the vertices' depths. No heap, no floating point,
+ * no 64-bit division (a Cortex-M0 has none), bounded stack. Freestanding.
+ *
+ * Coordinates. x, y are target pixels in fixed point with MC_RASTER_SUBPIXEL_BITS fraction bits
+ * (1/16 pixel); pixel (i, j) is the square [i, i+1) x [j, j+1), its centre (i + 1/2, j + 1/2); row 0
+ * is the top row (y grows downward). z is a depth 0 .. MC_DEPTH_EMPTY - 2, smaller nearer; a larger
+ * z is taken as MC_DEPTH_EMPTY - 2, so the target's promise holds whatever the caller passes.
+ * Every |x|, |y| must be at most MC_RASTER_COORD_LIMIT (2^22: 262144 pixels either side of the
+ * origin, room for any target plus a guard band): a triangle with a vertex beyond it draws nothing
+ * and returns 0. The caller clips to that band (the rasterizer clips to the target itself, so
+ * triangles partly or wholly off the target are fine inside it).
+ *
+ * Coverage (the top-left rule, as Direct3D). A pixel is covered when its centre is strictly inside
+ * the triangle, or exactly on an edge that is a top edge (horizontal, the triangle below it) or a
+ * left edge (not horizontal, the triangle to its right); a centre on a vertex is covered when both
+ * edges through it allow it. So two triangles that share an edge cover each pixel centre on it
+ * exactly once (no double writes, no cracks), and a mesh that tiles a region covers each centre
+ * inside it once. Coverage does not depend on the vertex order; zero-area triangles cover nothing.
+ *
+ * Culling. With MC_RASTER_CULL_BACK only front faces are drawn: counter-clockwise as the viewer sees
+ * them with y up, i.e. (x1-x0)(y2-y0) - (x2-x0)(y1-y0) < 0 in target coordinates (y down). Without
+ * it both orientations are drawn.
+ *
+ * Depth. At a covered centre p the exact depth is the plane through the three (x, y, z), zp. The
+ * rasterizer evaluates that plane in fixed point with MC_RASTER_DEPTH_FRAC_BITS fraction bits
+ * (gradients and the value at the triangle's first covered pixel rounded to nearest, then stepped
+ * exactly), a value zf with |zf - zp| < 1/4, and writes clamp(floor(zf + 1/2), zmin, zmax) with
+ * zmin, zmax the smallest and largest vertex z. The written depth is therefore within 3/4 of zp, and
+ * is zp rounded half up wherever zp is more than 1/4 away from a half-integer. It is written, with
+ * the colour, only where it is strictly less than the depth already there: an equal depth keeps the
+ * pixel.
+ */
+#ifndef MODELC_RASTER_H
+#define MODELC_RASTER_H
+
+#include <stdint.h>
+#include "target.h"
+
+#define MC_RASTER_SUBPIXEL_BITS 4
+#define MC_RASTER_COORD_LIMIT ((int32_t)1 << 22)
+#define MC_RASTER_DEPTH_FRAC_BITS 18
+
+/* flags */
+#define MC_RASTER_CULL_BACK 1u
+
+typedef struct mc_raster_vertex {
+    int32_t x, y;   /* 1/16 pixel */
+    uint32_t z;     /* 0 .. MC_DEPTH_EMPTY - 2 */
+} mc_raster_vertex;
+
+/* Draws v[0], v[1], v[2] in `color` with the depth test and returns the number of target pixels the
+ * triangle covers (before the depth test; 0 when culled, degenerate or out of range). */
+uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags);
+
+#endif
