@@ -39,9 +39,12 @@ inline constexpr ModuleCode kModules[] = {
     {"octree_render", 62492, 5672, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
-// The mesh part's modules, linked when a bake has one (--as both).
+// The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 736, 736, "progressive-mesh level of detail (pmesh.c)"},
+    {"xform_vertex", 1156, 1156, "vertex projection, orthographic and perspective (xform_vertex.c)"},
+    {"raster", 2060, 2060, "filled triangles with a z-buffer (raster.c)"},
+    {"line", 1236, 1236, "clipped lines with a depth test (line.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;

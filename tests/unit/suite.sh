@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, the
 # progressive mesh's level of detail (pmesh), clipped lines (line), filled triangles against their
-# double-precision reference (raster), view clamping,
+# double-precision reference (raster), vertex projection (xform), view clamping,
 # mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
@@ -102,6 +102,7 @@ build_and_run "unit: pmesh: " test_pmesh
 linehook='-DMC_LINE_STEP_HOOK()=do { extern unsigned long mc_test_line_steps; mc_test_line_steps++; } while (0)'
 build_and_run "unit: line: " test_line "$linehook"
 build_and_run "unit: raster: " test_raster runtime/ref/raster_ref.c
+build_and_run "unit: xform: " test_xform
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to

@@ -67,4 +67,46 @@ mc_view mc_view_clamp(const mc_view *v, uint32_t width, uint32_t height);
 /* Rotation matrix for the view's angles, Q30 entries (row-major r[row][col]). */
 void mc_view_rotation(const mc_view *v, int32_t r[3][3]);
 
+/* ---- Vertex projection (meshes and edge models) ------------------------------------------------
+ * Promise: mc_xform_vertex puts a unit-cube point where the point renderer puts a leaf at that
+ * position (the same clamped view, rotation and scale; runtime/ref/ref.c states it in doubles):
+ *   q = R p,  orthographic: x = cx + S q.x,  y = cy - S q.y
+ *             perspective:  the same with S * eye / (eye - q.z)
+ * with S = zoom * min(width, height) pixels per cube side and (cx, cy) = (width/2 + tx, height/2 + ty).
+ * x and y come in 1/16 pixel (MC_XFORM_SUBPIXEL_BITS, raster.h's subpixel), rounded to nearest from
+ * the fixed-point values, within 1/16 pixel of the exact double-precision projection with the same
+ * Q30 rotation. z is a 16-bit depth, smaller nearer, from 0 up to at most MC_DEPTH_EMPTY - 2:
+ *   orthographic: (7/8 - q.z) * 2^15, one unit 1/32768 cube side, for any zoom;
+ *   perspective: affine in 1/distance (so it is linear across a projected triangle, as a z-buffer
+ *     needs), 0 at the nearest distance a unit-cube point can have and MC_DEPTH_EMPTY - 2 at the
+ *     farthest, within 1 unit of the exact mapping.
+ * A point nearer the eye than the near plane (1/64 cube side, as the point renderer) is flagged
+ * MC_XFORM_NEAR and has no screen position; a point whose position would leave +-MC_XFORM_BAND
+ * pixels (a guard band far beyond any target: near the eye perspective magnifies without bound) is
+ * flagged MC_XFORM_FAR_OUT and its x, y are clamped to the band. Callers clip triangles and lines
+ * against these (raster.h, line.h take coordinates inside the band). */
+#define MC_XFORM_SUBPIXEL_BITS 4
+#define MC_XFORM_BAND ((int32_t)1 << 17)
+enum { MC_XFORM_NEAR = 1, MC_XFORM_FAR_OUT = 2 };
+
+typedef struct mc_xform {
+    int32_t r[3][3];         /* Q30 rotation */
+    int64_t scale;           /* S, Q16 pixels per cube side */
+    int64_t cx, cy;          /* the cube centre on screen, 1/16 pixel */
+    int32_t perspective;     /* 0 or 1 */
+    int64_t eye;             /* eye distance, Q30 cube sides */
+    int64_t dmin, za;        /* perspective depth: za * (d - dmin) / d, dmin Q24, za Q8 */
+} mc_xform;
+
+typedef struct mc_xvertex {
+    int32_t x, y;            /* 1/16 pixel */
+    uint32_t z;              /* depth, 0 .. MC_DEPTH_EMPTY - 2 */
+    uint32_t flags;          /* MC_XFORM_NEAR, MC_XFORM_FAR_OUT */
+} mc_xvertex;
+
+/* Sets up the projection of view v (clamped, mc_view_clamp) onto a width x height target. */
+void mc_xform_init(mc_xform *x, const mc_view *v, uint32_t width, uint32_t height);
+/* Projects p, unit-cube coordinates in Q16 (-32768 .. 32767 for -1/2 .. 1/2, pmesh.h's positions). */
+void mc_xform_vertex(const mc_xform *x, const int32_t p[3], mc_xvertex *out);
+
 #endif

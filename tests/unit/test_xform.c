@@ -1,0 +1,175 @@
+/* Vertex projection (xform.h mc_xform_vertex) against the same projection in doubles, as
+ * runtime/ref/ref.c states it for the point renderer, with the view's own Q30 rotation converted to
+ * double (so what is measured is the fixed-point projection, not the sine table):
+ *   - screen x, y within 1/16 pixel of the exact value wherever the point is inside the guard band;
+ *   - the depth within 1 unit of its formula (orthographic (7/8 - q.z) * 2^15; perspective
+ *     DEPTH_TOP * k * (d - dmin) / d), inside 0 .. MC_DEPTH_EMPTY - 2, and strictly ordered with the
+ *     distance wherever the exact depths differ by more than 2 units;
+ *   - MC_XFORM_NEAR exactly for points nearer than 1/64 cube side (away from the boundary by 2^-20),
+ *     MC_XFORM_FAR_OUT exactly for points beyond the band, their x, y clamped to it;
+ * over random views across and beyond mc_view_clamp's ranges (zoom 1/128..128, eye 1/32..512,
+ * translations, target sides 1..4096) and random points of the unit cube, its corners included.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <cmocka.h>
+
+#include <modelc/rng.h>
+#include <modelc/target.h>
+#include <modelc/xform.h>
+
+#define TOP (MC_DEPTH_EMPTY - 2.0)
+
+static int32_t rnd(mc_rng *g, int32_t lo, int32_t hi)
+{
+    return lo + (int32_t)(mc_rng_next(g) % (uint32_t)(hi - lo + 1));
+}
+
+typedef struct exact {
+    double x, y, z, d;   /* pixels; depth units; distance (cube sides) */
+    int near, out;
+} exact;
+
+static exact project(const mc_view *view, uint32_t w, uint32_t h, const int32_t p[3])
+{
+    mc_view v = mc_view_clamp(view, w, h);
+    int32_t r30[3][3];
+    mc_view_rotation(&v, r30);
+    double q[3], pd[3] = {p[0] / 65536.0, p[1] / 65536.0, p[2] / 65536.0};
+    for (int i = 0; i < 3; i++) q[i] = (r30[i][0] * pd[0] + r30[i][1] * pd[1] + r30[i][2] * pd[2]) / 1073741824.0;
+    double s = v.zoom / 65536.0 * (w < h ? w : h), cx = w / 2.0 + v.tx, cy = h / 2.0 + v.ty, eye = v.eye / 65536.0;
+    exact e = {0, 0, 0, 0, 0, 0};
+    double mag = 1;
+    if (v.projection == MC_PERSPECTIVE) {
+        e.d = eye - q[2];
+        if (e.d < 1.0 / 64) { e.near = 1; return e; }
+        mag = eye / e.d;
+        double half = 14529496.0 / 16777216.0, dmin = eye - half, dmax = eye + half;
+        if (dmin < 1.0 / 64) dmin = 1.0 / 64;
+        e.z = TOP * dmax / (dmax - dmin) * (e.d - dmin) / e.d;
+        if (e.z < 0) e.z = 0;
+    } else {
+        e.d = 1 - q[2];
+        e.z = (0.875 - q[2]) * 32768.0;
+    }
+    e.x = cx + s * q[0] * mag;
+    e.y = cy - s * q[1] * mag;
+    e.out = fabs(e.x) > MC_XFORM_BAND || fabs(e.y) > MC_XFORM_BAND;
+    return e;
+}
+
+static mc_view random_view(mc_rng *g, int perspective)
+{
+    mc_view v = mc_view_default();
+    v.yaw = rnd(g, -100000, 100000);
+    v.pitch = rnd(g, -100000, 100000);
+    v.roll = rnd(g, -100000, 100000);
+    v.zoom = (int32_t)(65536.0 * pow(2.0, rnd(g, -7000, 7000) / 1000.0));
+    v.tx = rnd(g, 0, 3) ? rnd(g, -300, 300) : rnd(g, -20000, 20000);
+    v.ty = rnd(g, 0, 3) ? rnd(g, -300, 300) : rnd(g, -20000, 20000);
+    v.projection = perspective ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
+    v.eye = (int32_t)(65536.0 * pow(2.0, rnd(g, -5000, 9000) / 1000.0));
+    return v;
+}
+
+static void random_point(mc_rng *g, int32_t p[3])
+{
+    for (int k = 0; k < 3; k++)
+        p[k] = rnd(g, 0, 7) ? rnd(g, -32768, 32767) : (rnd(g, 0, 1) ? 32767 : -32768);
+}
+
+static void check_views(int perspective, int views, int points)
+{
+    mc_rng g;
+    mc_rng_seed(&g, 1234 + (uint64_t)perspective, 77);
+    long checked = 0, near = 0, out = 0;
+    for (int k = 0; k < views; k++) {
+        mc_view v = random_view(&g, perspective);
+        uint32_t w = (uint32_t)(rnd(&g, 0, 4) ? rnd(&g, 1, 640) : rnd(&g, 1, 4096));
+        uint32_t h = (uint32_t)(rnd(&g, 0, 4) ? rnd(&g, 1, 480) : rnd(&g, 1, 4096));
+        mc_xform x;
+        mc_xform_init(&x, &v, w, h);
+        mc_xvertex prev = {0, 0, 0, 0};
+        exact eprev = {0, 0, 0, 0, 0, 0};
+        for (int i = 0; i < points; i++) {
+            int32_t p[3];
+            random_point(&g, p);
+            mc_xvertex o;
+            mc_xform_vertex(&x, p, &o);
+            exact e = project(&v, w, h, p);
+            if (perspective && fabs(e.d - 1.0 / 64) < 1.0 / 1048576) continue;   /* on the near plane */
+            if (e.near) {
+                if (!(o.flags & MC_XFORM_NEAR)) fail_msg("view %d point %d: %.9f from the eye, not flagged near", k, i, e.d);
+                near++;
+                continue;
+            }
+            if (o.flags & MC_XFORM_NEAR) fail_msg("view %d point %d: flagged near at %.9f", k, i, e.d);
+            if (o.z > MC_DEPTH_EMPTY - 2) fail_msg("view %d point %d: depth %u", k, i, o.z);
+            if (fabs(o.z - e.z) > 1.0) fail_msg("view %d point %d: depth %u, exact %.3f", k, i, o.z, e.z);
+            const double band = MC_XFORM_BAND, dx = o.x / 16.0, dy = o.y / 16.0;
+            if (fabs(fabs(e.x) - band) < 1.0 / 8 || fabs(fabs(e.y) - band) < 1.0 / 8) continue;   /* on the band */
+            if (e.out) {
+                if (!(o.flags & MC_XFORM_FAR_OUT)) fail_msg("view %d point %d: (%.1f, %.1f) not flagged out", k, i, e.x, e.y);
+                if (fabs(dx) > band || fabs(dy) > band) fail_msg("view %d point %d: not clamped to the band", k, i);
+                out++;
+                continue;
+            }
+            if (o.flags) fail_msg("view %d point %d: flags %u at (%.3f, %.3f)", k, i, o.flags, e.x, e.y);
+            if (fabs(dx - e.x) > 1.0 / 16 || fabs(dy - e.y) > 1.0 / 16)
+                fail_msg("view %d point %d: (%.5f, %.5f), exact (%.5f, %.5f)", k, i, dx, dy, e.x, e.y);
+            if (i > 0 && !eprev.near && fabs(e.z - eprev.z) > 2 && (e.z < eprev.z) != (o.z < prev.z))
+                fail_msg("view %d point %d: depth order differs from the distance's", k, i);
+            prev = o, eprev = e;
+            checked++;
+        }
+    }
+    print_message("# info: %ld points within 1/16 pixel, %ld near-plane, %ld outside the band\n", checked, near, out);
+    assert_true(checked > views * (long)points / 4);
+    if (perspective) assert_true(near > 0 && out > 0);
+}
+
+static void test_orthographic(void **state)
+{
+    (void)state;
+    check_views(0, 3000, 200);
+}
+
+static void test_perspective(void **state)
+{
+    (void)state;
+    check_views(1, 3000, 200);
+}
+
+/* The frontal default view puts the cube centre on the screen centre and +y up. */
+static void test_frontal(void **state)
+{
+    (void)state;
+    mc_view v = mc_view_default();
+    mc_xform x;
+    mc_xform_init(&x, &v, 320, 240);
+    const int32_t centre[3] = {0, 0, 0}, up[3] = {0, 16384, 0}, right[3] = {16384, 0, 0}, near[3] = {0, 0, 16384};
+    mc_xvertex o, u, r, n;
+    mc_xform_vertex(&x, centre, &o);
+    mc_xform_vertex(&x, up, &u);
+    mc_xform_vertex(&x, right, &r);
+    mc_xform_vertex(&x, near, &n);
+    assert_int_equal(o.x, 160 * 16);
+    assert_int_equal(o.y, 120 * 16);
+    assert_int_equal(u.y, (120 - 60) * 16);   /* a quarter of the cube: 240 / 4 pixels up */
+    assert_int_equal(r.x, (160 + 60) * 16);
+    assert_true(n.z < o.z);                  /* +z faces the viewer: nearer */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_frontal),
+        cmocka_unit_test(test_orthographic),
+        cmocka_unit_test(test_perspective),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
