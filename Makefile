@@ -7,6 +7,7 @@
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
+#   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -150,6 +151,12 @@ bench: $(MODELC) models
 
 # run time against error: depth 5..10, MC_FRAC_BITS 8..24, the float build (tests/accuracy/pos_single.h) and
 # exact double-precision positions against the mesh reference: tests/bench/accuracy.{csv,png} and a RESULTS.md section (tests/accuracy/bench.sh)
+# the progressive mesh: level changes against OpenMesh's vertex splits, flash per split against its
+# .pm file (a RESULTS.md section; make bench runs it too)
+.PHONY: bench-pmesh
+bench-pmesh: $(MODELC) models
+	@tests/bench/pmesh.sh
+
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models
 	@tests/accuracy/bench.sh

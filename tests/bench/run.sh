@@ -224,5 +224,7 @@ INTERACTION_RUNTIME=$SNAP tests/bench/interaction.sh tests/bench/RESULTS.md >"$R
 tests/bench/holes.sh tests/bench/RESULTS.md >"$RES/holes.log" || true
 step "depth test as a branch and as a select, side by side with Mesa: section appended"
 tests/bench/depth_select.sh tests/bench/RESULTS.md "$SNAP" >"$RES/select.log"
+step "the progressive mesh against OpenMesh: section appended"
+tests/bench/pmesh.sh tests/bench/RESULTS.md >"$RES/pmesh.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'

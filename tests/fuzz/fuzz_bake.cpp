@@ -3,9 +3,10 @@
 // own command line (gen/main.cpp compiled with its main renamed mc_fuzz_modelc_main, so this
 // target follows however the stages are split into functions).
 //
-// Input layout: byte 0 chooses the format (kExt[byte % 5]) and, with bit 7 set, --views front:40
-// (the visibility pass); the rest is the file. tests/fuzz/fuzz.sh stores a finding as
-// regress/bake/NAME.EXT or NAME.views.EXT (the byte turned into the name), which
+// Input layout: byte 0 chooses the format (kExt[(byte & 63) % 5]); with bit 6 set, --as both (the
+// progressive mesh: OpenMesh's decimation of whatever topology the file has); with bit 7 set,
+// --views front:40 (the visibility pass); the rest is the file. tests/fuzz/fuzz.sh stores a
+// finding as regress/bake/NAME[.views][.mesh].EXT (the byte turned into the name), which
 // tests/fuzz/suite.sh replays with the same options.
 //
 // Promise: the reader answers with the value or an InputError only (as in fuzz_reader.cpp), and
@@ -29,7 +30,7 @@ const char *const kExt[5] = {"off", "obj", "ply", "stl", "xyz"};
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (size < 1) return 0;
     static const mc_fuzz::TempInput tmp;
-    const std::string path = tmp.write(kExt[data[0] % 5], data + 1, size - 1);
+    const std::string path = tmp.write(kExt[(data[0] & 63) % 5], data + 1, size - 1);
     try {
         mc::load_model(path);
     } catch (const mc::InputError &) {
@@ -40,6 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     std::filesystem::remove_all(out, ec);
     std::vector<std::string> args = {"modelc", path, "-o", out, "--name", "m", "--depth", "5", "-q"};
     if (data[0] & 0x80) args.insert(args.end(), {"--views", "front:40"});
+    if (data[0] & 0x40) args.insert(args.end(), {"--as", "both"});
     std::vector<char *> argv;
     for (auto &a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

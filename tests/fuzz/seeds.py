@@ -115,7 +115,8 @@ def main():
         header = data[:end].replace(b"element vertex 22300", b"element vertex 30")
         rec = 3 * 8 + 3 + 4  # x y z doubles, red green blue uchar, label int
         write(f"{out}/ply/b9_training-points.ply", header + data[end:end + 30 * rec])
-    # the bake target: every seed again behind its format byte (bit 7: with --views)
+    # the bake target: every seed again behind its format byte (bit 7: with --views; bit 6: with
+    # --as both, the progressive mesh, for the mesh formats)
     for i, ext in enumerate(EXTS):
         d = f"{out}/{ext}"
         if not os.path.isdir(d):
@@ -126,6 +127,8 @@ def main():
             write(f"{out}/bake/{fname}", bytes([i]) + data)
             if k % 2 == 0:
                 write(f"{out}/bake/views-{fname}", bytes([i | 0x80]) + data)
+            elif ext != "xyz":
+                write(f"{out}/bake/mesh-{fname}", bytes([i | 0x40]) + data)
 
 
 main()

@@ -2,7 +2,8 @@
 # Replays every fuzzer finding (tests/fuzz/regress/TARGET/*, written by make fuzz) and every absurd
 # header (tests/fuzz/absurd/*: tiny files whose counts are just under the readers' limits, where a
 # reader that allocates what the header says would take gigabytes) through the generator as a user
-# would run it, with the bake fuzzer's options (--depth 5, and --views front:40 for NAME.views.EXT).
+# would run it, with the bake fuzzer's options (--depth 5, --views front:40 for NAME.views.EXT, --as
+# both for NAME.mesh.EXT).
 # Each must end in exit status 0 (with its output written and nothing on stderr) or 1 (exactly one
 # stderr line "modelc: ...", not "out of memory", no output left), never a signal, a sanitizer
 # report or a hang (FUZZ_REPLAY_TIMEOUT, 20 s), within FUZZ_REPLAY_MEM_MB (256; a small bake needs
@@ -57,6 +58,7 @@ for f in tests/fuzz/regress/*/* tests/fuzz/absurd/*; do
     mkdir -p "$out"
     args=(--name m --depth 5 -q)
     case $(basename "$f") in *.views.*) args+=(--views front:40) ;; esac
+    case $(basename "$f") in *.mesh.*) args+=(--as both) ;; esac
     rc=0
     if [ "$sanitized" = 1 ]; then
         timeout "$TIMEOUT" "$MODELC" "$f" -o "$out" "${args[@]}" >/dev/null 2>"$tmp/stderr" || rc=$?
