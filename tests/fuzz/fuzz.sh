@@ -67,18 +67,19 @@ signature() {
 }
 
 # regress_name FILE TARGET KIND: the regression file's name: KIND-SHA.EXT, the bake's format byte
-# turned into the extension (and ".views" for bit 7)
+# turned into the extension (and ".views" for bit 7, ".mesh" for bit 6)
 install_finding() {
-    local f=$1 t=$2 kind=$3 sha ext b views=""
+    local f=$1 t=$2 kind=$3 sha ext b views="" mesh=""
     sha=$(sha1sum "$f" | cut -c1-12)
     mkdir -p "tests/fuzz/regress/$t"
     if [ "$t" = bake ]; then
         b=$(head -c 1 "$f" | od -An -tu1 | tr -d ' ')
         [ -n "$b" ] || return
         [ $((b & 128)) -ne 0 ] && views=.views
-        ext=${exts[$((b % 5))]}
-        tail -c +2 "$f" >"tests/fuzz/regress/$t/$kind-$sha$views.$ext"
-        echo "tests/fuzz/regress/$t/$kind-$sha$views.$ext"
+        [ $((b & 64)) -ne 0 ] && mesh=.mesh
+        ext=${exts[$(((b & 63) % 5))]}
+        tail -c +2 "$f" >"tests/fuzz/regress/$t/$kind-$sha$views$mesh.$ext"
+        echo "tests/fuzz/regress/$t/$kind-$sha$views$mesh.$ext"
     else
         cp "$f" "tests/fuzz/regress/$t/$kind-$sha.$t"
         echo "tests/fuzz/regress/$t/$kind-$sha.$t"
@@ -91,6 +92,7 @@ bake_input() {
     ext=${base##*.}
     for i in "${!exts[@]}"; do [ "${exts[$i]}" = "$ext" ] && b=$i; done
     case $base in *.views.*) b=$((b | 128)) ;; esac
+    case $base in *.mesh.*) b=$((b | 64)) ;; esac
     { printf "\\x$(printf %02x "$b")"; cat "$f"; }
 }
 
