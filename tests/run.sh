@@ -21,15 +21,15 @@ fi
 # longest first (CPU seconds in tests/README.md), so that the two job slots finish together
 suites=(
     tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
-    tests/gen/suite.sh        # determinism, chunks, budget
     tests/unit/suite.sh       # fixed point, sine table, freestanding builds
-    tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
+    tests/gen/suite.sh        # determinism, chunks, budget
     tests/stress/suite.sh     # 3x10^4 random views: guard zones, error bound, ASan + UBSan run
-    tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
-    tests/render/suite.sh     # renders against the double-precision reference
-    tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
+    tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
     tests/gen/pmesh.sh        # the progressive mesh: every level valid, levels equal OpenMesh's decimation
+    tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
+    tests/render/suite.sh     # renders against the double-precision reference
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
+    tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
     tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree

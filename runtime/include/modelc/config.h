@@ -69,8 +69,9 @@
  *     is nearer, else to a spare pixel that the renderer puts back afterwards; one conditional move
  *     of an index, so none of the mispredictions a deep desktop pipeline pays when near and far
  *     leaves alternate. On the benchmark machine (bunny00, depth 8, 320x240, gcc 12 -O2) 24.1
- *     instructions per drawn point and 0.65 ms per frame, 35 times less than Mesa, against 23.0 and
- *     0.79 ms (28 times) for the branch (tests/bench/RESULTS.md, "Depth test: branch or select").
+ *     instructions per drawn point against 23.0 for the branch, and about 0.8 times the branch's
+ *     CPU time a frame, side by side in every run so far (tests/bench/RESULTS.md, "Depth test:
+ *     branch or select").
  * Both draw the same pixels. */
 #ifndef MC_DEPTH_SELECT
 #if defined(__x86_64__) || defined(_M_X64)
