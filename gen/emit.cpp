@@ -115,6 +115,7 @@ struct Plan {
     size_t mask_bytes = 0, color_bytes = 0, chunk_entries = 0;
     // the mesh part (pmesh.h): its arrays' bytes, chunk lists and layout
     std::vector<std::vector<uint8_t>> pm_bytes;   // positions, tree, splits, corners
+    std::vector<uint8_t> pm_palette;              // RGB triplets
     mstch::array pm_lists;
     size_t pm_data = 0;
     unsigned index_bytes = 0, record_shift = 0;
@@ -134,6 +135,7 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
+    for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
 }
 
 // A monochrome octree (one palette entry) stores no colours: every level's colour list is NULL and
@@ -201,6 +203,8 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
             p.pm_data += bytes.size();
             p.pm_lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
         }
+        p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
+        p.pm_data += p.pm_palette.size();
     }
     return p;
 }
@@ -314,6 +318,9 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         m.emplace("lists", plan.pm_lists);
         m.emplace("index_bytes", std::to_string(plan.index_bytes));
         m.emplace("record_shift", std::to_string(plan.record_shift));
+        m.emplace("palette_size", std::to_string(pm.palette.size()));
+        m.emplace("palette_bytes", std::to_string(plan.pm_palette.size()));
+        m.emplace("palette_lines", byte_lines(plan.pm_palette.data(), plan.pm_palette.size()));
         const char *fields[4] = {"positions", "tree", "splits", "corners"};
         for (int k = 0; k < 4; k++) m.emplace(fields[k], "mc_" + name + "_pm_" + fields[k]);
         out.emplace_back(name + "_pmesh.c", mstch::render(template_text("pmesh.c"), m));

@@ -2,6 +2,7 @@
 // OpenMesh's property containers warn of a default-constructed point gcc cannot see initialised
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "pmesh.hpp"
+#include "modelc/mesh_render.h"   // MC_MESH_SHADES
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
@@ -208,6 +209,10 @@ PMesh build_pmesh(const Model &m, const GridCube &cube, const PMeshOptions &opt)
         pm.split_faces.push_back(static_cast<uint8_t>(removed(log[i])));
         if (log[i].fl >= 0) pm.faces.push_back(corners_of(log[i].fl));
         if (log[i].fr >= 0) pm.faces.push_back(corners_of(log[i].fr));
+    }
+    for (int k = 0; k < MC_MESH_SHADES; k++) {
+        const auto g = static_cast<uint8_t>(std::lround(255.0 * (0.15 + 0.85 * k / (MC_MESH_SHADES - 1))));
+        pm.palette.push_back({g, g, g});
     }
     if (pm.split_vertex.size() + pm.base_vertices != V || pm.faces.size() != faces_now)
         throw std::logic_error("progressive mesh: the collapse record does not add up");

@@ -35,6 +35,9 @@ struct PMesh {
     std::vector<uint8_t> split_faces;
     // per face, in creation order: corners in the full level, counter-clockwise from outside
     std::vector<std::array<uint32_t, 3>> faces;
+    // the shades the runtime draws faces in (mesh_render.h): MC_MESH_SHADES greys of the frontal
+    // light (light.hpp), 0.15 + 0.85 k / (MC_MESH_SHADES - 1)
+    std::vector<std::array<uint8_t, 3>> palette;
     // what happened to the input
     size_t dropped_faces = 0;    // faces with a repeated corner (no area, nothing to draw)
     size_t split_vertices = 0;   // vertex copies made for faces OpenMesh could not add (non-manifold)

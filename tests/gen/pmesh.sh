@@ -7,6 +7,8 @@
 #     at that level, F(n) faces, and the arrays' tree and split invariants hold;
 #   - at chosen levels the faces equal, as a set of oriented triangles of quantized positions, those
 #     OpenMesh's Decimater itself leaves at that many vertices (modelc --dump-pmesh-level);
+#   - mc_mesh_render's images (flat-shaded, z-buffered) equal a composition of the tested parts in
+#     doubles (pmesh_check.c render), orthographic and perspective, culled and not;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
 # output; --max-faces caps the finest level; a points-only bake is unchanged by the mesh code.
 #
@@ -41,13 +43,31 @@ bake_check() {
     fi
     checker=$tmp/check_$name
     if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
-        -o "$checker" tests/gen/pmesh_check.c runtime/src/pmesh.c "$bake"/*.c >"$tmp/$name.cc" 2>&1; then
+        -o "$checker" tests/gen/pmesh_check.c runtime/ref/raster_ref.c \
+        runtime/src/{pmesh,mesh_render,raster,xform,xform_vertex,target,fixed,trig,sintab}.c "$bake"/*.c -lm \
+        >"$tmp/$name.cc" 2>&1; then
         notok "$label: the bake compiles with the runtime (-Wall -Wextra -Werror)" "$(head -n 3 "$tmp/$name.cc" | oneline)"
         return 1
     fi
     local r
     r=$("$checker" levels 2>&1)
     if [[ $r == ok:* ]]; then ok "$label: levels: ${r#ok: }"; else notok "$label: levels" "$r"; return 1; fi
+}
+
+# renders LABEL N...: mc_mesh_render at each level N against the reference composition
+# (pmesh_check.c render): orthographic front, turned with back faces culled, perspective with the
+# eye outside the model, and with the eye inside it (faces behind the near plane skipped)
+renders() {
+    local label=$1 n view r
+    shift
+    for n in "$@"; do
+        for view in "96 72 0 0 0 0 65536 131072 0" "96 72 0 700 -300 200 98304 131072 1" \
+            "80 60 1 -1100 250 0 65536 131072 1" "80 60 1 2048 100 0 65536 16384 0"; do
+            r=$("$checker" render "$n" $view 2>&1)
+            if [[ $r == ok:* ]]; then ok "$label: mc_mesh_render, view ($view): ${r#ok: }"
+            else notok "$label: mc_mesh_render, view ($view)" "${r#not ok: }"; fi
+        done
+    done
 }
 
 # same_as_openmesh LABEL FILE N [OPTIONS...]: level N of the bake equals OpenMesh's decimation to N
@@ -79,7 +99,7 @@ b = json.load(open(sys.argv[1]))
 pm, arrays = b["pmesh"], b["flash"]["arrays"]
 mesh = sum(v for k, v in arrays.items() if "_pm_" in k)
 ib, V, F, S = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"]
-want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib
+want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib + 3 * 32   # the arrays and the palette of 32 greys
 p = []
 if mesh != pm["bytes"] or mesh != want: p.append(f"mesh arrays {mesh} bytes, budget says {pm['bytes']}, layout gives {want}")
 if b["flash"]["total"] != sum(arrays.values()): p.append(f"flash total {b['flash']['total']} != arrays {sum(arrays.values())}")
@@ -103,6 +123,8 @@ for m in bunny00 fandisk; do
         fandisk) levels="500" ;;
     esac
     for n in $levels; do same_as_openmesh "$m" "$src" "$n"; done
+    V=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['vertices'])")
+    renders "$m" 300 "$V"
 done
 
 # ---- shapes made here --------------------------------------------------------------------------
@@ -154,6 +176,7 @@ for s in open_grid thin_sheet components non_manifold degenerate; do
     V=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['vertices'])")
     V0=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['base_vertices'])")
     for n in $(printf '%s\n' "$V0" $(((V0 + V) / 2)) "$V" | uniq); do same_as_openmesh "$s" "$tmp/$s.off" "$n"; done
+    renders "$s" "$V"
 done
 # what the input had, as budget.json reports it
 inputs() { python3 -c "import json; i=json.load(open('$out/$1/budget.json'))['pmesh']['input']; print(i['$2'])"; }

@@ -13,4 +13,7 @@
 #include "model.h"
 #include "octree_render.h"
 #include "finish.h"
+#include "raster.h"
+#include "line.h"
+#include "mesh_render.h"
 #endif

@@ -28,6 +28,7 @@
  *   splits     per split s = 0 .. V-V0-1: the index of the vertex it brings back, then one byte: the
  *              number of faces it adds (1 or 2)
  *   corners    per face, in creation order: three corner indices, counter-clockwise seen from outside
+ * and, not chunked, the palette of the shaded faces (mesh_render.h): MC_MESH_SHADES greys.
  */
 #ifndef MODELC_PMESH_H
 #define MODELC_PMESH_H
@@ -42,10 +43,12 @@ typedef struct mc_pmesh {
     uint32_t base_faces;         /* F0: faces of the base mesh */
     uint8_t index_bytes;         /* 2 (V <= 65535) or 4 */
     uint8_t record_shift;        /* 2^record_shift records in each chunk but the last, every array */
+    uint16_t palette_size;       /* entries of palette */
     const mc_chunk *positions;   /* V records of 6 bytes */
     const mc_chunk *tree;        /* V records of 2 * index_bytes */
     const mc_chunk *splits;      /* V - V0 records of index_bytes + 1 */
     const mc_chunk *corners;     /* F records of 3 * index_bytes: the faces */
+    const uint8_t *palette;      /* RGB triplets: the shades mesh_render.h draws faces in */
 } mc_pmesh;
 
 /* The level-of-detail state: level, face count and the ancestor map (in the caller's memory). */

@@ -1,0 +1,52 @@
+/* The progressive mesh drawn as flat-shaded triangles: the current level of detail (pmesh.h) through
+ * the vertex projection (xform.h) into the rasterizer (raster.h).
+ *
+ * Promise: mc_mesh_render draws every face of the level into the target with the depth test, each
+ * exactly as mc_raster_triangle draws the triangle of its three corners projected by
+ * mc_xform_vertex, in the face's palette index, in stored face order; nothing else is written. A face
+ * with a corner nearer the eye than the near plane, or projected outside the guard band
+ * (MC_XFORM_NEAR, MC_XFORM_FAR_OUT), is not drawn and is counted in stats->skipped: these need
+ * clipping, which comes with the line drawings. With MC_MESH_CULL_BACK, faces turned away from the
+ * viewer are not drawn (for closed meshes, whose back faces are always hidden).
+ *
+ * Shade: as the point renderer's baked colours of uncoloured models (gen/light.hpp), a frontal light
+ * fixed to the model: intensity 0.15 + 0.85 |n.z| / |n| for the face's normal n in the model's frame
+ * (+y up, +z towards the viewer at the default view), so the light turns with the model. The face
+ * gets palette index k, 0 .. MC_MESH_SHADES - 1, the k whose |n.z| / |n| = k / (MC_MESH_SHADES - 1)
+ * is nearest, decided in integers on the normal's 15 leading bits: within 1/100 of a step of the
+ * rounding point a face may take either neighbour (the truncation moves |n.z| / |n| by under 2^-13).
+ * A face of zero area is index MC_MESH_SHADES / 2. The part's palette (pmesh.h) holds the matching
+ * greys.
+ *
+ * No heap, no floating point; the stack holds a few words per face. Freestanding.
+ */
+#ifndef MODELC_MESH_RENDER_H
+#define MODELC_MESH_RENDER_H
+
+#include <stdint.h>
+#include "pmesh.h"
+#include "target.h"
+#include "xform.h"
+
+#define MC_MESH_SHADES 32
+
+/* flags */
+#define MC_MESH_CULL_BACK 1u
+
+typedef struct mc_mesh_stats {
+    uint32_t faces;     /* faces of the level */
+    uint32_t drawn;     /* faces that covered a pixel of the target */
+    uint32_t skipped;   /* faces with a corner behind the near plane or beyond the guard band */
+    uint32_t pixels;    /* pixels the drawn faces covered, before the depth test */
+} mc_mesh_stats;
+
+/* Draws lod's current level seen through view into t. Returns MC_OK, MC_ERR_ARG for a null
+ * argument, MC_ERR_SIZE for a target side over MC_TARGET_MAX (then writes nothing). stats may be
+ * null. */
+int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
+                   mc_mesh_stats *stats);
+
+/* The palette index of a face with corners p0, p1, p2 (unit-cube Q16, pmesh.h). */
+unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3]);
+
+#endif
