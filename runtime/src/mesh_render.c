@@ -39,7 +39,8 @@ unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p
 int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
                    mc_mesh_stats *stats)
 {
-    mc_mesh_stats st = {0, 0, 0, 0};
+    mc_mesh_stats st;   /* field by field: an aggregate initialiser becomes a memset call at -O0 */
+    st.faces = st.drawn = st.skipped = st.pixels = 0;
     if (!lod || !lod->pm || !view || !t || !t->color || !t->depth) return MC_ERR_ARG;
     if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
