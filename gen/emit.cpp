@@ -24,6 +24,7 @@ struct Array {
     std::string symbol, what;
     const uint8_t *data;
     size_t size;
+    bool mesh = false;   // declared in NAME_pmesh.c, not NAME_octree.c
 };
 
 std::string upper(std::string s) {
@@ -121,6 +122,11 @@ struct Plan {
     unsigned index_bytes = 0, record_shift = 0;
 };
 
+// The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
+// symbol of each one's chunk list.
+const char *const kPmArrays[4] = {"positions", "tree", "splits", "corners"};
+std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
+
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
 void pmesh_arrays(const PMesh &pm, Plan &p) {
     const unsigned ib = pm.vertices() <= 65535 ? 2 : 4;
@@ -145,23 +151,29 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
     const std::string &name = opt.name;
     const bool mono = t.palette.size() == 1;
     Plan p;
-    // One chunk list per level and kind; each chunk its own array.
-    auto add_stream = [&](const std::vector<uint8_t> &bytes, const std::vector<uint8_t> *groups,
-                          const std::string &kind, int level, const std::string &what) -> std::string {
-        std::string list = "mc_" + name + "_" + kind + std::to_string(level);
+    // One chunk list per array, each chunk its own array, into lists: chunks of at most limit bytes,
+    // ending only between groups when there are groups.
+    auto add_list = [&](const std::vector<uint8_t> &bytes, size_t limit, const std::vector<uint8_t> *groups,
+                        const std::string &list, const std::string &what, mstch::array &lists, bool mesh) {
         mstch::array chunks;
         size_t at = 0, i = 0;
-        for (size_t size : split_chunks(bytes.size(), opt.chunk_bytes, groups)) {
+        for (size_t size : split_chunks(bytes.size(), limit, groups)) {
             std::string sym = list + "_" + std::to_string(i++);
-            p.arrays.push_back({sym, what + " of level " + std::to_string(level) + ", bytes " + std::to_string(at) +
-                                         ".." + std::to_string(at + size - 1), bytes.data() + at, size});
+            p.arrays.push_back({sym, what + ", bytes " + std::to_string(at) + ".." + std::to_string(at + size - 1),
+                                bytes.data() + at, size, mesh});
             chunks.push_back(mstch::map{{"symbol", sym}, {"size", std::to_string(size)}});
             p.budget_arrays[sym] = size;
             at += size;
         }
         p.chunk_entries += i + 1;   // the chunks and the {0, 0} sentinel
-        p.lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
+        lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
         return list;
+    };
+    // the octree's: one list per level and kind
+    auto add_stream = [&](const std::vector<uint8_t> &bytes, const std::vector<uint8_t> *groups,
+                          const std::string &kind, int level, const std::string &what) {
+        return add_list(bytes, opt.chunk_bytes, groups, "mc_" + name + "_" + kind + std::to_string(level),
+                        what + " of level " + std::to_string(level), p.lists, false);
     };
     for (int l = 0; l <= D; l++) {
         std::string masks = "0", colors = "0";
@@ -181,27 +193,13 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         pmesh_arrays(*opt.pmesh, p);
         const size_t largest = 3 * p.index_bytes;
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
-        const char *kinds[4] = {"pm_positions", "pm_tree", "pm_splits", "pm_corners"};
         const char *whats[4] = {"vertex positions", "vertex parents and subtree sizes", "splits",
                                 "face corners"};
         const size_t record[4] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes};
         for (int k = 0; k < 4; k++) {
-            const std::vector<uint8_t> &bytes = p.pm_bytes[k];
-            const std::string list = "mc_" + name + "_" + kinds[k];
-            const size_t per = record[k] << p.record_shift;
-            mstch::array chunks;
-            size_t i = 0;
-            for (size_t at = 0; at < bytes.size(); at += per) {
-                const size_t size = std::min(per, bytes.size() - at);
-                std::string sym = list + "_" + std::to_string(i++);
-                p.arrays.push_back({sym, std::string("mesh ") + whats[k] + ", bytes " + std::to_string(at) + ".." +
-                                             std::to_string(at + size - 1), bytes.data() + at, size});
-                chunks.push_back(mstch::map{{"symbol", sym}, {"size", std::to_string(size)}});
-                p.budget_arrays[sym] = size;
-            }
-            p.chunk_entries += i + 1;
-            p.pm_data += bytes.size();
-            p.pm_lists.push_back(mstch::map{{"symbol", list}, {"chunks", chunks}});
+            add_list(p.pm_bytes[k], record[k] << p.record_shift, nullptr, pm_list(name, k),
+                     std::string("mesh ") + whats[k], p.pm_lists, true);
+            p.pm_data += p.pm_bytes[k].size();
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();
@@ -285,7 +283,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     mstch::map octree = common(opt);
     mstch::array decls;
     for (const Array &a : arrays)
-        if (a.symbol.rfind("mc_" + name + "_pm_", 0) != 0)   // the mesh's are NAME_pmesh.c's
+        if (!a.mesh)   // the mesh's are NAME_pmesh.c's
             decls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
     octree.emplace("arrays", decls);
     octree.emplace("lists", plan.lists);
@@ -305,8 +303,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         mstch::map m = common(opt);
         mstch::array pdecls;
         for (const Array &a : arrays)
-            if (a.symbol.rfind("mc_" + name + "_pm_", 0) == 0)
-                pdecls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
+            if (a.mesh) pdecls.push_back(mstch::map{{"symbol", a.symbol}, {"size", std::to_string(a.size)}});
         pmesh_header = mstch::map{{"vertices", std::to_string(pm.vertices())},
                                   {"faces", std::to_string(pm.faces.size())},
                                   {"base_vertices", std::to_string(pm.base_vertices)},
@@ -321,8 +318,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         m.emplace("palette_size", std::to_string(pm.palette.size()));
         m.emplace("palette_bytes", std::to_string(plan.pm_palette.size()));
         m.emplace("palette_lines", byte_lines(plan.pm_palette.data(), plan.pm_palette.size()));
-        const char *fields[4] = {"positions", "tree", "splits", "corners"};
-        for (int k = 0; k < 4; k++) m.emplace(fields[k], "mc_" + name + "_pm_" + fields[k]);
+        for (int k = 0; k < 4; k++) m.emplace(kPmArrays[k], pm_list(name, k));
         out.emplace_back(name + "_pmesh.c", mstch::render(template_text("pmesh.c"), m));
     }
 

@@ -159,9 +159,10 @@ int main(int argc, char **argv) {
             emit.pmesh = &pmesh;
             if (!dump_pmesh.empty()) {
                 const size_t colon = dump_pmesh.find(':');
+                if (colon == std::string::npos) throw std::runtime_error("--dump-pmesh-level " + dump_pmesh + ": expected N:FILE");
                 std::ofstream f(dump_pmesh.substr(colon + 1));
                 mc::dump_decimated(model, cube, std::stoul(dump_pmesh.substr(0, colon)), f);
-                if (colon == std::string::npos || !f) throw std::runtime_error("--dump-pmesh-level " + dump_pmesh + ": cannot write");
+                if (!f) throw std::runtime_error("--dump-pmesh-level " + dump_pmesh + ": cannot write");
             }
         }
         mc::Voxels voxels = mc::voxelize(model, cube, input, vox, progress);

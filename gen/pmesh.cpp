@@ -126,7 +126,7 @@ PMesh build_pmesh(const Model &m, const GridCube &cube, const PMeshOptions &opt)
     const int nv_all = static_cast<int>(mesh.n_vertices());
 
     // ---- decimation, recorded
-    const auto log = decimate(fm, std::max<size_t>(opt.min_base_vertices, 1) + isolated_vertices(mesh));
+    const auto log = decimate(fm, 1 + isolated_vertices(mesh));
 
     // ---- max_faces: the finest collapses applied for good
     const size_t F_all = face_corners.size();
@@ -231,23 +231,6 @@ void dump_decimated(const Model &m, const GridCube &cube, size_t vertices, std::
         }
         out << '\n';
     }
-}
-
-std::vector<std::array<uint32_t, 3>> pmesh_level_faces(const PMesh &pm, uint32_t n) {
-    const uint32_t V = static_cast<uint32_t>(pm.vertices());
-    // rank: when each vertex appears
-    std::vector<uint32_t> rank(V, 0);
-    for (size_t s = 0; s < pm.split_vertex.size(); s++) rank[pm.split_vertex[s]] = pm.base_vertices + static_cast<uint32_t>(s);
-    auto stand_in = [&](uint32_t v) {
-        while (rank[v] >= n) v = pm.parent[v];
-        return v;
-    };
-    size_t F = pm.base_faces;
-    for (uint32_t s = 0; s + pm.base_vertices < n; s++) F += pm.split_faces[s];
-    std::vector<std::array<uint32_t, 3>> out(F);
-    for (size_t f = 0; f < F; f++)
-        for (int j = 0; j < 3; j++) out[f][j] = stand_in(pm.faces[f][j]);
-    return out;
 }
 
 }  // namespace mc

@@ -4,9 +4,8 @@
 // Promise: build_pmesh turns every face of the model that has three distinct corners into a face of
 // the full level (faces OpenMesh cannot add because their edge or vertex is already used twice over
 // get their own copies of their vertices, counted in split_vertices), then collapses half-edges in
-// order of quadric error, refusing collapses that flip a face normal, until none is left or the
-// base is at most min_base_vertices vertices; the record of those collapses, reversed, is the
-// part. Level n of the result is exactly the mesh the Decimater had with n vertices. With
+// order of quadric error, refusing collapses that flip a face normal, until none is left; the
+// record of those collapses, reversed, is the part. Level n of the result is exactly the mesh the Decimater had with n vertices. With
 // max_faces, the finest collapses are applied for good until the full level has at most that many
 // faces.
 #pragma once
@@ -21,8 +20,7 @@
 namespace mc {
 
 struct PMeshOptions {
-    size_t max_faces = 0;          // 0: no limit
-    size_t min_base_vertices = 0;  // stop collapsing at this many vertices (0: as far as OpenMesh allows)
+    size_t max_faces = 0;   // 0: no limit
 };
 
 struct PMesh {
@@ -52,9 +50,5 @@ PMesh build_pmesh(const Model &m, const GridCube &cube, const PMeshOptions &opt)
 // does, down to `vertices` vertices: one line per face, its corners' quantized positions (x y z,
 // three times, in the face's order). For tests: level `vertices` of the part must be the same faces.
 void dump_decimated(const Model &m, const GridCube &cube, size_t vertices, std::ostream &out);
-
-// The faces of level n (base_vertices <= n <= vertices()), corners mapped to the vertices present
-// at n: the generator's own reading of the layout, for tests and the reference.
-std::vector<std::array<uint32_t, 3>> pmesh_level_faces(const PMesh &pm, uint32_t n);
 
 }  // namespace mc

@@ -1,6 +1,5 @@
 /* Flat-shaded progressive meshes: see modelc/mesh_render.h. */
 #include "modelc/mesh_render.h"
-#include "modelc/raster.h"
 
 /* ((2j - 1) / 62)^2 in Q30, j = 1 .. 31: |n.z| / |n| at least (j - 1/2) / 31 means shade j or more */
 static const uint32_t shade_limit[MC_MESH_SHADES - 1] = {
@@ -36,6 +35,20 @@ unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p
     return lo;
 }
 
+uint32_t mc_mesh_face(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, int32_t p[3][3], mc_raster_vertex v[3])
+{
+    uint32_t c[3], out = 0;
+    mc_pmesh_lod_face(lod, f, c);
+    for (int k = 0; k < 3; k++) {
+        mc_xvertex xv;
+        mc_pmesh_position(lod->pm, c[k], p[k]);
+        mc_xform_vertex(x, p[k], &xv);
+        out |= xv.flags;
+        v[k].x = xv.x, v[k].y = xv.y, v[k].z = xv.z;
+    }
+    return out;
+}
+
 int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
                    mc_mesh_stats *stats)
 {
@@ -48,19 +61,9 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
     const unsigned rflags = (flags & MC_MESH_CULL_BACK) ? MC_RASTER_CULL_BACK : 0u;
     st.faces = lod->faces;
     for (uint32_t f = 0; f < lod->faces; f++) {
-        uint32_t c[3];
         int32_t p[3][3];
         mc_raster_vertex v[3];
-        uint32_t out = 0;
-        mc_pmesh_lod_face(lod, f, c);
-        for (int k = 0; k < 3; k++) {
-            mc_xvertex xv;
-            mc_pmesh_position(lod->pm, c[k], p[k]);
-            mc_xform_vertex(&x, p[k], &xv);
-            out |= xv.flags;
-            v[k].x = xv.x, v[k].y = xv.y, v[k].z = xv.z;
-        }
-        if (out) { st.skipped++; continue; }
+        if (mc_mesh_face(lod, &x, f, p, v)) { st.skipped++; continue; }
         uint32_t covered = mc_raster_triangle(t, v, (uint8_t)mc_mesh_shade(p[0], p[1], p[2]), rflags);
         st.drawn += covered > 0;
         st.pixels += covered;

@@ -7,8 +7,6 @@ static uint32_t tree_field(const mc_pmesh *pm, uint32_t v, unsigned k)
     return mc_le_index(mc_chunk_record(pm->tree, pm->record_shift, 2u * ib, v) + k * ib, ib);
 }
 
-static uint32_t anc_get(const mc_pmesh_lod *lod, uint32_t v) { return mc_pmesh_lod_vertex(lod, v); }
-
 /* anc[v .. v+n) = a */
 static void anc_fill(mc_pmesh_lod *lod, uint32_t v, uint32_t n, uint32_t a)
 {
@@ -30,7 +28,7 @@ void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc)
     /* depth-first order: a parent comes before its children, so its root is already known */
     for (uint32_t v = 0; v < pm->vertices; v++) {
         uint32_t p = tree_field(pm, v, 0);
-        anc_fill(lod, v, 1, p == v ? v : anc_get(lod, p));
+        anc_fill(lod, v, 1, p == v ? v : mc_pmesh_lod_vertex(lod, p));
     }
 }
 
@@ -63,7 +61,7 @@ void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3])
     const mc_pmesh *pm = lod->pm;
     const unsigned ib = pm->index_bytes;
     const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, f);
-    for (unsigned k = 0; k < 3; k++) corner[k] = anc_get(lod, mc_le_index(r + k * ib, ib));
+    for (unsigned k = 0; k < 3; k++) corner[k] = mc_pmesh_lod_vertex(lod, mc_le_index(r + k * ib, ib));
 }
 
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])

@@ -11,8 +11,9 @@
  *   pmesh_check render N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE CULL   (zoom, eye Q16; xform.h)
  *                             level N drawn by mc_mesh_render (runtime/src/mesh_render.c) into a
  *                             W x H target inside guard zones, against the same faces composed in
- *                             doubles: each face's corners projected by mc_xform_vertex (tested on its
- *                             own, tests/unit/test_xform.c), covered and depth-tested by the double
+ *                             doubles: each face's corners as mc_mesh_face gives them (projected by
+ *                             mc_xform_vertex, tested on its own, tests/unit/test_xform.c), covered
+ *                             and depth-tested by the double
  *                             reference of the rasterizer (runtime/ref/raster_ref.c), shaded by
  *                             |n.z| / |n| in doubles. The covered pixels must be the same set; the
  *                             colour the same wherever the two nearest faces are more than 2 depth
@@ -78,18 +79,9 @@ static int render_check(mc_pmesh_lod *lod, char **a)
     mc_xform_init(&x, &v, w, h);
     uint32_t skipped = 0;
     for (uint32_t f = 0; f < lod->faces; f++) {
-        uint32_t c[3], out = 0;
         int32_t p[3][3];
         mc_raster_vertex rv[3];
-        mc_pmesh_lod_face(lod, f, c);
-        for (int k = 0; k < 3; k++) {
-            mc_xvertex xv;
-            mc_pmesh_position(lod->pm, c[k], p[k]);
-            mc_xform_vertex(&x, p[k], &xv);
-            out |= xv.flags;
-            rv[k].x = xv.x, rv[k].y = xv.y, rv[k].z = xv.z;
-        }
-        if (out) { skipped++; continue; }
+        if (mc_mesh_face(lod, &x, f, p, rv)) { skipped++; continue; }
         memset(cov, 0, px);
         if (!mc_raster_ref_triangle(w, h, rv, cull ? MC_RASTER_CULL_BACK : 0u, cov, fd)) continue;
         int amb;

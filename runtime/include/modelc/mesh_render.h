@@ -10,7 +10,7 @@
  * viewer are not drawn (for closed meshes, whose back faces are always hidden).
  *
  * Shade: as the point renderer's baked colours of uncoloured models (gen/light.hpp), a frontal light
- * fixed to the model: intensity 0.15 + 0.85 |n.z| / |n| for the face's normal n in the model's frame
+ * fixed to the model: intensity (3 + 17 |n.z| / |n|) / 20 for the face's normal n in the model's frame
  * (+y up, +z towards the viewer at the default view), so the light turns with the model. The face
  * gets palette index k, 0 .. MC_MESH_SHADES - 1, the k whose |n.z| / |n| = k / (MC_MESH_SHADES - 1)
  * is nearest, decided in integers on the normal's 15 leading bits: within 1/100 of a step of the
@@ -25,6 +25,7 @@
 
 #include <stdint.h>
 #include "pmesh.h"
+#include "raster.h"
 #include "target.h"
 #include "xform.h"
 
@@ -45,6 +46,11 @@ typedef struct mc_mesh_stats {
  * null. */
 int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
                    mc_mesh_stats *stats);
+
+/* Face f of lod's current level as mc_mesh_render draws it: its corners' unit-cube positions p (Q16,
+ * pmesh.h) and their projections through x in v; returns its corners' MC_XFORM_* flags, or-ed (not
+ * 0: the face is not drawn). */
+uint32_t mc_mesh_face(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, int32_t p[3][3], mc_raster_vertex v[3]);
 
 /* The palette index of a face with corners p0, p1, p2 (unit-cube Q16, pmesh.h). */
 unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3]);

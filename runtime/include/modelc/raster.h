@@ -20,7 +20,7 @@
  * the triangle, or exactly on an edge that is a top edge (horizontal, the triangle below it) or a
  * left edge (not horizontal, the triangle to its right); a centre on a vertex is covered when both
  * edges through it allow it. So two triangles that share an edge cover each pixel centre on it
- * exactly once (no double writes, no cracks), and a mesh that tiles a region covers each centre
+ * exactly once (no pixel written twice, no cracks), and a mesh that tiles a region covers each centre
  * inside it once. Coverage does not depend on the vertex order; zero-area triangles cover nothing.
  *
  * Culling. With MC_RASTER_CULL_BACK only front faces are drawn: counter-clockwise as the viewer sees

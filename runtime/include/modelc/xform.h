@@ -22,7 +22,7 @@
  *     the rendering path stays below 2^30 (half the int32 range). The model itself is always scaled
  *     into the unit cube by the generator, so this is the only extent limit;
  *   - largest zoom: min(64, MC_COORD_LIMIT / 2 / min(width, height)): at F = 15, 64 for short sides
- *     up to 256 pixels, 34.1 at 480 pixels, 4 at MC_TARGET_MAX (4096 pixels); smallest zoom 1/64;
+ *     up to 256 pixels, 34 and a fraction at 480 pixels, 4 at MC_TARGET_MAX (4096 pixels); smallest zoom 1/64;
  *   - translations: +-MC_COORD_LIMIT / 4 pixels (+-8192 at F = 15), far enough to move the model
  *     wholly off any target;
  *   - target sides: 1..MC_TARGET_MAX pixels (4096 at F = 15; renderers refuse larger targets, target.h);
@@ -74,7 +74,7 @@ void mc_view_rotation(const mc_view *v, int32_t r[3][3]);
  *             perspective:  the same with S * eye / (eye - q.z)
  * with S = zoom * min(width, height) pixels per cube side and (cx, cy) = (width/2 + tx, height/2 + ty).
  * x and y come in 1/16 pixel (MC_XFORM_SUBPIXEL_BITS, raster.h's subpixel), rounded to nearest from
- * the fixed-point values, within 1/16 pixel of the exact double-precision projection with the same
+ * the fixed-point values, within 1/16 pixel of the exact (real-number) projection with the same
  * Q30 rotation. z is a 16-bit depth, smaller nearer, from 0 up to at most MC_DEPTH_EMPTY - 2:
  *   orthographic: (7/8 - q.z) * 2^15, one unit 1/32768 cube side, for any zoom;
  *   perspective: affine in 1/distance (so it is linear across a projected triangle, as a z-buffer
