@@ -8,6 +8,7 @@
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
+#   make bench-mesh              filled triangles (mc_mesh_render) against Mesa llvmpipe on one thread
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -156,6 +157,12 @@ bench: $(MODELC) models
 .PHONY: bench-pmesh
 bench-pmesh: $(MODELC) models
 	@tests/bench/pmesh.sh
+
+# filled triangles: mc_mesh_render against Mesa's llvmpipe on one thread (OSMesa), the same triangles
+# and view, coverage masks compared (a RESULTS.md section; make bench runs it too)
+.PHONY: bench-mesh
+bench-mesh: $(MODELC) models
+	@tests/bench/mesh.sh
 
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models

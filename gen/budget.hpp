@@ -31,7 +31,8 @@ struct Budget {
     size_t data() const { return masks + colors + palette + pmesh; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
-    size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod; }
+    size_t pmesh_facing = 0;                     // the line drawings' facing bits (mesh_lines.h)
+    size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing; }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
     size_t stack = 0;                            // bound for mc_octree_render at the model's depth
 };
@@ -45,6 +46,7 @@ struct BakeSize {
     int screen_w = 0, screen_h = 0;              // the frame the buffers are sized for
     int leaf_switch = 1;                         // the MC_LEAF_SWITCH the runtime is built with
     size_t pmesh = 0, pmesh_lod = 0;             // the mesh part: its arrays, its state's RAM (0: none)
+    size_t pmesh_facing = 0;                     // and its line drawings' facing bits
 };
 
 Budget budget_of(const BakeSize &s);

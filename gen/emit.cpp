@@ -115,23 +115,27 @@ struct Plan {
     std::vector<uint8_t> palette;   // RGB triplets
     size_t mask_bytes = 0, color_bytes = 0, chunk_entries = 0;
     // the mesh part (pmesh.h): its arrays' bytes, chunk lists and layout
-    std::vector<std::vector<uint8_t>> pm_bytes;   // positions, tree, splits, corners
+    std::vector<std::vector<uint8_t>> pm_bytes;   // kPmArrays
     std::vector<uint8_t> pm_palette;              // RGB triplets
     mstch::array pm_lists;
-    size_t pm_data = 0;
-    unsigned index_bytes = 0, record_shift = 0;
+    size_t pm_data = 0;                           // every array of the mesh part
+    size_t pm_line_data = 0;                      // of which the line drawings' (opposite, edges)
+    unsigned index_bytes = 0, half_bytes = 0, record_shift = 0;
 };
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const char *const kPmArrays[4] = {"positions", "tree", "splits", "corners"};
+const int kPmArrayCount = 6, kPmLineArrays = 4;   // the line drawings' arrays: from index 4 on
+const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "opposite", "edge_order"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
 
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
 void pmesh_arrays(const PMesh &pm, Plan &p) {
     const unsigned ib = pm.vertices() <= 65535 ? 2 : 4;
+    const unsigned hb = 4 * pm.faces.size() + 3 < 65535 ? 2 : 4;   // a half-edge 4 f + k, and all ones
     p.index_bytes = ib;
-    p.pm_bytes.assign(4, {});
+    p.half_bytes = hb;
+    p.pm_bytes.assign(kPmArrayCount, {});
     auto put = [](std::vector<uint8_t> &b, uint32_t v, unsigned n) {
         for (unsigned i = 0; i < n; i++) b.push_back(static_cast<uint8_t>(v >> (8 * i)));
     };
@@ -141,6 +145,9 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
+    for (const auto &f : pm.opposite)
+        for (uint32_t h : f) put(p.pm_bytes[4], h, hb);
+    for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, hb);
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
 }
 
@@ -191,15 +198,17 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         // every chunk of every array holds 2^record_shift whole records (the last fewer), the most
         // that fit --chunk-bytes for the largest record (three corners)
         pmesh_arrays(*opt.pmesh, p);
-        const size_t largest = 3 * p.index_bytes;
+        const size_t largest = 3 * std::max(p.index_bytes, p.half_bytes);
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
-        const char *whats[4] = {"vertex positions", "vertex parents and subtree sizes", "splits",
-                                "face corners"};
-        const size_t record[4] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes};
-        for (int k = 0; k < 4; k++) {
+        const char *whats[kPmArrayCount] = {"vertex positions", "vertex parents and subtree sizes", "splits",
+                                            "face corners", "opposite half-edges", "edges, sharpest first"};
+        const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes,
+                                              3 * p.half_bytes, p.half_bytes};
+        for (int k = 0; k < kPmArrayCount; k++) {
             add_list(p.pm_bytes[k], record[k] << p.record_shift, nullptr, pm_list(name, k),
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
+            if (k >= kPmLineArrays) p.pm_line_data += p.pm_bytes[k].size();
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();
@@ -220,6 +229,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
     if (opt.pmesh) {
         s.pmesh = p.pm_data;
         s.pmesh_lod = opt.pmesh->vertices() * p.index_bytes;
+        s.pmesh_facing = (opt.pmesh->faces.size() + 7) / 8;   // MC_MESH_FACING_BYTES
     }
     return budget_of(s);
 }
@@ -309,16 +319,21 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
                                   {"base_vertices", std::to_string(pm.base_vertices)},
                                   {"base_faces", std::to_string(pm.base_faces)},
                                   {"index_bits", std::to_string(8 * plan.index_bytes)},
-                                  {"lod_bytes", std::to_string(bud.pmesh_lod)}};
+                                  {"lod_bytes", std::to_string(bud.pmesh_lod)},
+                                  {"facing_bytes", std::to_string(bud.pmesh_facing)}};
         for (const auto &[k, v] : pmesh_header) m.emplace(k, v);
         m.emplace("arrays", pdecls);
         m.emplace("lists", plan.pm_lists);
         m.emplace("index_bytes", std::to_string(plan.index_bytes));
+        m.emplace("half_bytes", std::to_string(plan.half_bytes));
+        m.emplace("edges", std::to_string(pm.edge_order.size()));
+        m.emplace("crease_cos", std::to_string(pm.crease_cos));
+        m.emplace("closed", std::string(pm.closed() ? "1" : "0"));
         m.emplace("record_shift", std::to_string(plan.record_shift));
         m.emplace("palette_size", std::to_string(pm.palette.size()));
         m.emplace("palette_bytes", std::to_string(plan.pm_palette.size()));
         m.emplace("palette_lines", byte_lines(plan.pm_palette.data(), plan.pm_palette.size()));
-        for (int k = 0; k < 4; k++) m.emplace(kPmArrays[k], pm_list(name, k));
+        for (int k = 0; k < kPmArrayCount; k++) m.emplace(std::string("list_") + kPmArrays[k], pm_list(name, k));
         out.emplace_back(name + "_pmesh.c", mstch::render(template_text("pmesh.c"), m));
     }
 
@@ -438,9 +453,15 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"splits", splits},
             {"index_bytes", plan.index_bytes},
             {"record_shift", plan.record_shift},
-            {"bytes", plan.pm_data},
-            {"bytes_per_split", splits ? double(plan.pm_data) / double(splits) : 0.0},
+            {"edges", pm.edge_order.size()},
+            {"half_edge_bytes", plan.half_bytes},
+            {"bytes", plan.pm_data - plan.pm_line_data},
+            {"bytes_per_split", splits ? double(plan.pm_data - plan.pm_line_data) / double(splits) : 0.0},
+            {"line_bytes", plan.pm_line_data},
+            {"line_bytes_per_face", double(plan.pm_line_data) / double(pm.faces.size())},
             {"lod_ram", bud.pmesh_lod},
+            {"facing_ram", bud.pmesh_facing},
+            {"closed", pm.closed()},
             {"input",
              {{"faces_with_a_repeated_corner", pm.dropped_faces},
               {"vertex_copies_for_non_manifold_faces", pm.split_vertices},
@@ -448,6 +469,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         };
         budget["flash"]["pmesh"] = plan.pm_data;
         budget["ram"]["pmesh_lod"] = bud.pmesh_lod;
+        budget["ram"]["pmesh_facing"] = bud.pmesh_facing;
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);

@@ -99,6 +99,9 @@ int main(int argc, char **argv) {
     app.add_option("--max-faces", pmesh_opt.max_faces, "--as both: the most faces of the mesh's finest level (0: all "
                    "of the file's)")
         ->check(CLI::Range(size_t(0), size_t(1) << 31))->capture_default_str();
+    app.add_option("--crease-angle", pmesh_opt.crease_angle, "--as both: degrees between two faces' normals above "
+                   "which the line drawings draw their edge as a crease")
+        ->check(CLI::Range(0.0, 180.0))->capture_default_str();
     app.add_option("--dump-pmesh-level", dump_pmesh, "N:FILE: write the faces OpenMesh's decimater leaves at N "
                    "vertices (pmesh.hpp dump_decimated), for the tests")
         ->group("");

@@ -2,7 +2,7 @@
 // OpenMesh's property containers warn of a default-constructed point gcc cannot see initialised
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "pmesh.hpp"
-#include "modelc/mesh_render.h"   // MC_MESH_SHADES
+#include "modelc/mesh_lines.h"   // MC_MESH_SHADES, MC_MESH_PALETTE_SIZE
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
@@ -14,6 +14,7 @@
 #include <cmath>
 #include <ostream>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace mc {
 namespace {
@@ -110,6 +111,79 @@ size_t isolated_vertices(const Mesh &mesh) {
     size_t n = 0;
     for (const auto &v : mesh.vertices()) n += mesh.is_isolated(v);
     return n;
+}
+
+// Starts each split's faces at the corner that is the split vertex or its parent at the split's
+// level, so that edge 0 is the edge the collapse removes and edges 1 and 2 the two that merge
+// (the runtime's neighbour search, mesh_lines.h, relies on it).
+void orient_split_faces(PMesh &pm) {
+    const uint32_t V = static_cast<uint32_t>(pm.vertices());
+    std::vector<int64_t> split_of(V, -1);   // -1: a base vertex
+    for (size_t s = 0; s < pm.split_vertex.size(); s++) split_of[pm.split_vertex[s]] = static_cast<int64_t>(s);
+    size_t f = pm.base_faces;
+    for (size_t s = 0; s < pm.split_vertex.size(); s++) {
+        const uint32_t v = pm.split_vertex[s], p = pm.parent[v];
+        for (unsigned i = 0; i < pm.split_faces[s]; i++, f++) {
+            auto &c = pm.faces[f];
+            std::array<uint32_t, 3> at;   // the corners at level s
+            for (int j = 0; j < 3; j++) {
+                uint32_t x = c[j];
+                while (split_of[x] > static_cast<int64_t>(s)) x = pm.parent[x];
+                at[j] = x;
+            }
+            int k = 0;
+            while (k < 3 && !((at[k] == v && at[(k + 1) % 3] == p) || (at[k] == p && at[(k + 1) % 3] == v))) k++;
+            if (k == 3) throw std::logic_error("progressive mesh: a split's face lacks the split edge");
+            std::rotate(c.begin(), c.begin() + k, c.end());
+        }
+    }
+}
+
+// The half-edge across each face edge in the full level: the face holding the same two corners the
+// other way round (the full level is manifold: OpenMesh built it).
+void link_half_edges(PMesh &pm) {
+    std::unordered_map<uint64_t, uint32_t> directed;
+    auto key = [](uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; };
+    for (size_t f = 0; f < pm.faces.size(); f++)
+        for (uint32_t k = 0; k < 3; k++)
+            if (!directed.emplace(key(pm.faces[f][k], pm.faces[f][(k + 1) % 3]), uint32_t(4 * f + k)).second)
+                throw std::logic_error("progressive mesh: a directed edge used twice");
+    pm.opposite.assign(pm.faces.size(), {kNoHalfEdge, kNoHalfEdge, kNoHalfEdge});
+    for (size_t f = 0; f < pm.faces.size(); f++)
+        for (uint32_t k = 0; k < 3; k++) {
+            auto it = directed.find(key(pm.faces[f][(k + 1) % 3], pm.faces[f][k]));
+            if (it != directed.end()) pm.opposite[f][k] = it->second;
+        }
+}
+
+std::array<double, 3> face_normal(const PMesh &pm, size_t f) {
+    std::array<std::array<double, 3>, 3> p;
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) p[j][i] = pm.positions[pm.faces[f][j]][i];
+    const double a[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double b[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// Each full-level edge once, as the half-edge of its first-created face, borders first, then the
+// sharpest first (cosine of the angle between the normals, ascending; ties by half-edge).
+void order_edges(PMesh &pm) {
+    std::vector<std::pair<double, uint32_t>> keyed;
+    for (size_t f = 0; f < pm.faces.size(); f++)
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t h = uint32_t(4 * f + k), o = pm.opposite[f][k];
+            if (o != kNoHalfEdge && o < h) continue;
+            double c = -2.0;   // a border
+            if (o != kNoHalfEdge) {
+                const auto n = face_normal(pm, f), m = face_normal(pm, o / 4);
+                const double l = std::sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]));
+                c = l > 0 ? (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) / l : 1.0;
+            }
+            keyed.push_back({c, h});
+        }
+    std::sort(keyed.begin(), keyed.end());
+    pm.edge_order.clear();
+    for (const auto &e : keyed) pm.edge_order.push_back(e.second);
 }
 
 }  // namespace
@@ -210,10 +284,20 @@ PMesh build_pmesh(const Model &m, const GridCube &cube, const PMeshOptions &opt)
         if (log[i].fl >= 0) pm.faces.push_back(corners_of(log[i].fl));
         if (log[i].fr >= 0) pm.faces.push_back(corners_of(log[i].fr));
     }
+    orient_split_faces(pm);
+    link_half_edges(pm);
+    order_edges(pm);
+    pm.crease_cos = static_cast<int16_t>(std::lround(16384.0 * std::cos(opt.crease_angle * M_PI / 180.0)));
     for (int k = 0; k < MC_MESH_SHADES; k++) {
         const auto g = static_cast<uint8_t>(std::lround(255.0 * (0.15 + 0.85 * k / (MC_MESH_SHADES - 1))));
         pm.palette.push_back({g, g, g});
     }
+    // the line drawings' (mesh_lines.h): paper, silhouettes, creases, borders
+    pm.palette.push_back({255, 255, 255});
+    pm.palette.push_back({0, 0, 0});
+    pm.palette.push_back({110, 110, 110});
+    pm.palette.push_back({30, 60, 150});
+    static_assert(MC_MESH_PALETTE_SIZE == MC_MESH_SHADES + 4, "the line colours in mesh_lines.h");
     if (pm.split_vertex.size() + pm.base_vertices != V || pm.faces.size() != faces_now)
         throw std::logic_error("progressive mesh: the collapse record does not add up");
     return pm;

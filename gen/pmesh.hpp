@@ -20,8 +20,12 @@
 namespace mc {
 
 struct PMeshOptions {
-    size_t max_faces = 0;   // 0: no limit
+    size_t max_faces = 0;        // 0: no limit
+    double crease_angle = 60.0;  // degrees between two faces' normals above which their edge is a crease
 };
+
+// A half-edge: edge k (corner k to corner k + 1 mod 3) of face f is 4 f + k; none (a border) is all ones.
+constexpr uint32_t kNoHalfEdge = 0xFFFFFFFFu;
 
 struct PMesh {
     // per vertex, in depth-first order of the collapse forest (pmesh.h)
@@ -31,16 +35,30 @@ struct PMesh {
     // per split, in order: the vertex it brings back and the number of faces it adds (1 or 2)
     std::vector<uint32_t> split_vertex;
     std::vector<uint8_t> split_faces;
-    // per face, in creation order: corners in the full level, counter-clockwise from outside
+    // per face, in creation order: corners in the full level, counter-clockwise from outside; a
+    // split's faces start at the split vertex or its parent, so that edge 0 is the collapsed edge
     std::vector<std::array<uint32_t, 3>> faces;
+    // per face: the half-edge across each of its edges in the full level (kNoHalfEdge on a border)
+    std::vector<std::array<uint32_t, 3>> opposite;
+    // one half-edge per edge of the full level (the one of the face created first), borders first,
+    // then by decreasing angle between the two faces' normals: where the silhouette search starts
+    std::vector<uint32_t> edge_order;
+    int16_t crease_cos = 0;      // cos(crease angle) in Q14 (mesh_lines.h)
     // the shades the runtime draws faces in (mesh_render.h): MC_MESH_SHADES greys of the frontal
-    // light (light.hpp), 0.15 + 0.85 k / (MC_MESH_SHADES - 1)
+    // light (light.hpp), 0.15 + 0.85 k / (MC_MESH_SHADES - 1); then the paper and the line colours
+    // (mesh_lines.h)
     std::vector<std::array<uint8_t, 3>> palette;
     // what happened to the input
     size_t dropped_faces = 0;    // faces with a repeated corner (no area, nothing to draw)
     size_t split_vertices = 0;   // vertex copies made for faces OpenMesh could not add (non-manifold)
     size_t capped_collapses = 0; // collapses applied for good by max_faces
     size_t vertices() const { return positions.size(); }
+    bool closed() const {
+        for (const auto &o : opposite)
+            for (uint32_t h : o)
+                if (h == kNoHalfEdge) return false;
+        return true;
+    }
 };
 
 // Builds the part from a mesh model (m.is_mesh, at least one triangle) normalized into cube.

@@ -41,11 +41,12 @@ inline constexpr ModuleCode kModules[] = {
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
-    {"pmesh", 736, 736, "progressive-mesh level of detail (pmesh.c)"},
+    {"pmesh", 976, 976, "progressive-mesh level of detail and neighbours (pmesh.c)"},
     {"xform_vertex", 1156, 1156, "vertex projection, orthographic and perspective (xform_vertex.c)"},
     {"raster", 2060, 2060, "filled triangles with a z-buffer (raster.c)"},
     {"line", 1236, 1236, "clipped lines with a depth test (line.c)"},
-    {"mesh_render", 1000, 1000, "flat-shaded faces of the current level (mesh_render.c)"},
+    {"mesh_render", 1036, 1036, "flat-shaded faces of the current level (mesh_render.c)"},
+    {"mesh_lines", 1872, 1872, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;
@@ -54,8 +55,8 @@ inline constexpr size_t kRuntimeStaticRam = 0;
 // arm-none-eabi-gcc): mc_chunk {pointer, uint32}, mc_octree_level {uint32, 2 pointers}, mc_octree
 // {uint8, uint16, 2 pointers}, mc_model {4 int64, 4 pointers, uint8, padded to 8}.
 inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kOctreeBytes = 12, kModelBytes = 56;
-// mc_pmesh {4 uint32, 2 uint8, uint16, 5 pointers} on a 32-bit target.
-inline constexpr size_t kPmeshBytes = 40;
+// mc_pmesh {5 uint32, 4 uint8, uint16, int16, 7 pointers} on a 32-bit target.
+inline constexpr size_t kPmeshBytes = 56;
 
 // -fstack-usage of every function of octree_render.c, fixed.c, trig.c and xform.c that
 // mc_octree_render can reach.

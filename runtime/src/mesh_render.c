@@ -64,7 +64,8 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
         int32_t p[3][3];
         mc_raster_vertex v[3];
         if (mc_mesh_face(lod, &x, f, p, v)) { st.skipped++; continue; }
-        uint32_t covered = mc_raster_triangle(t, v, (uint8_t)mc_mesh_shade(p[0], p[1], p[2]), rflags);
+        const unsigned color = (flags & MC_MESH_DRAW_PAPER) ? MC_MESH_PAPER : mc_mesh_shade(p[0], p[1], p[2]);
+        uint32_t covered = mc_raster_triangle(t, v, (uint8_t)color, rflags);
         st.drawn += covered > 0;
         st.pixels += covered;
     }

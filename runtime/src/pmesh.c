@@ -69,3 +69,25 @@ void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
     const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, v);
     for (unsigned k = 0; k < 3; k++) xyz[k] = (int32_t)mc_le16(r + 2 * k) - 32768;
 }
+
+static uint32_t half_at(const mc_pmesh *pm, const mc_chunk *list, unsigned per, uint32_t i, unsigned k)
+{
+    const unsigned hb = pm->half_bytes;
+    uint32_t h = mc_le_index(mc_chunk_record(list, pm->record_shift, per * hb, i) + k * hb, hb);
+    return hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
+}
+
+uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_t h)
+{
+    const mc_pmesh *pm = lod->pm;
+    uint32_t o = half_at(pm, pm->opposite, 3u, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h));
+    /* bounded by F steps, so arrays not made by the generator cannot hang it */
+    for (uint32_t steps = 0; o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) >= lod->faces; steps++) {
+        const uint32_t j = MC_HALF_EDGE_INDEX(o);
+        if (j == 0u || j == 3u || steps >= pm->faces) return MC_NO_HALF_EDGE;
+        o = half_at(pm, pm->opposite, 3u, MC_HALF_FACE(o), 3u - j);
+    }
+    return o;
+}
+
+uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i) { return half_at(pm, pm->edge_order, 1u, i, 0u); }

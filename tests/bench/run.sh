@@ -226,5 +226,7 @@ step "depth test as a branch and as a select, side by side with Mesa: section ap
 tests/bench/depth_select.sh tests/bench/RESULTS.md "$SNAP" >"$RES/select.log"
 step "the progressive mesh against OpenMesh: section appended"
 tests/bench/pmesh.sh tests/bench/RESULTS.md >"$RES/pmesh.log"
+step "filled triangles against Mesa's llvmpipe: section appended"
+tests/bench/mesh.sh tests/bench/RESULTS.md >"$RES/mesh.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'

@@ -9,6 +9,9 @@
 #     OpenMesh's Decimater itself leaves at that many vertices (modelc --dump-pmesh-level);
 #   - mc_mesh_render's images (flat-shaded, z-buffered) equal a composition of the tested parts in
 #     doubles (pmesh_check.c render), orthographic and perspective, culled and not;
+#   - the line drawings: every edge's kind (silhouette, crease, border) as a double-precision
+#     classification of the level's faces gives it, and the lines drawn as those edges' lines;
+#   - every eighth checked level: each face's neighbours equal a search of the level's faces;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
 # output; --max-faces caps the finest level; a points-only bake is unchanged by the mesh code.
 #
@@ -43,8 +46,8 @@ bake_check() {
     fi
     checker=$tmp/check_$name
     if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
-        -o "$checker" tests/gen/pmesh_check.c runtime/ref/raster_ref.c \
-        runtime/src/{pmesh,mesh_render,raster,xform,xform_vertex,target,fixed,trig,sintab}.c "$bake"/*.c -lm \
+        -o "$checker" tests/gen/pmesh_check.c runtime/ref/{raster_ref,xform_ref}.c \
+        runtime/src/{pmesh,mesh_render,mesh_lines,line,raster,xform,xform_vertex,target,fixed,trig,sintab}.c "$bake"/*.c -lm \
         >"$tmp/$name.cc" 2>&1; then
         notok "$label: the bake compiles with the runtime (-Wall -Wextra -Werror)" "$(head -n 3 "$tmp/$name.cc" | oneline)"
         return 1
@@ -66,6 +69,14 @@ renders() {
             r=$("$checker" render "$n" $view 2>&1)
             if [[ $r == ok:* ]]; then ok "$label: mc_mesh_render, view ($view): ${r#ok: }"
             else notok "$label: mc_mesh_render, view ($view)" "${r#not ok: }"; fi
+        done
+        # line drawings (pmesh_check.c lines): the edges' kinds against the reference's, the lines
+        # drawn as their edges' mc_line, hidden ones a subset; frontal, turned and magnified, perspective
+        for view in "160 120 0 0 0 0 65536 131072" "160 120 0 700 -300 200 262144 131072" \
+            "120 90 1 -1100 250 0 65536 131072"; do
+            r=$("$checker" lines "$n" $view 2>&1)
+            if [[ $r == ok:* ]]; then ok "$label: mc_mesh_lines, view ($view): ${r#ok: }"
+            else notok "$label: mc_mesh_lines, view ($view)" "${r#not ok: }"; fi
         done
     done
 }
@@ -97,11 +108,15 @@ budget_adds_up() {
 import json, sys
 b = json.load(open(sys.argv[1]))
 pm, arrays = b["pmesh"], b["flash"]["arrays"]
-mesh = sum(v for k, v in arrays.items() if "_pm_" in k)
-ib, V, F, S = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"]
-want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib + 3 * 32   # the arrays and the palette of 32 greys
+lines = sum(v for k, v in arrays.items() if "_pm_opposite" in k or "_pm_edge_order" in k)
+mesh = sum(v for k, v in arrays.items() if "_pm_" in k) - lines
+ib, V, F, S, E, hb = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"], pm["edges"], pm["half_edge_bytes"]
+want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib + 3 * 36   # the arrays; the palette: 32 greys, 4 line colours
 p = []
 if mesh != pm["bytes"] or mesh != want: p.append(f"mesh arrays {mesh} bytes, budget says {pm['bytes']}, layout gives {want}")
+if lines != pm["line_bytes"] or lines != F * 3 * hb + E * hb:
+    p.append(f"line arrays {lines} bytes, budget says {pm['line_bytes']}, layout gives {F * 3 * hb + E * hb}")
+if hb != (2 if 4 * F + 3 < 65535 else 4): p.append(f"half_edge_bytes {hb} for {F} faces")
 if b["flash"]["total"] != sum(arrays.values()): p.append(f"flash total {b['flash']['total']} != arrays {sum(arrays.values())}")
 if pm["lod_ram"] != V * ib or b["ram"]["pmesh_lod"] != V * ib: p.append("lod_ram is not vertices x index_bytes")
 if S != V - pm["base_vertices"]: p.append("splits != vertices - base_vertices")

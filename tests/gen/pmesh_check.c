@@ -5,7 +5,12 @@
  *                             and 400 spread between, visited in a shuffled order: every face present
  *                             has three distinct corners, each a vertex present at that level, and
  *                             the face count is F(n); the arrays' own invariants (subtree sizes, the
- *                             splits' parents present before them); one line "ok ..." or "not ok ..."
+ *                             splits' parents present before them); at every eighth of those levels
+ *                             and the coarsest and finest, every face's neighbour across each edge
+ *                             (mc_pmesh_lod_opposite) is the face holding the same two corners the other way
+ *                             round, found by search in the level's faces, or none where no face
+ *                             does; the edge order names every full-mesh edge once, borders first;
+ *                             one line "ok ..." or "not ok ..."
  *   pmesh_check faces N       the faces of level N, one line each: the corners' quantized positions
  *                             (x y z three times), in the format of modelc --dump-pmesh-level
  *   pmesh_check render N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE CULL   (zoom, eye Q16; xform.h)
@@ -28,9 +33,11 @@
 
 #include <math.h>
 
+#include "modelc/mesh_lines.h"
 #include "modelc/mesh_render.h"
 #include "modelc/pmesh.h"
 #include "../../runtime/ref/raster_ref.h"
+#include "../../runtime/ref/xform_ref.h"
 
 extern const mc_pmesh PM;
 
@@ -112,6 +119,269 @@ static int render_check(mc_pmesh_lod *lod, char **a)
     return ok ? 0 : 1;
 }
 
+
+/* The level's directed edges (corner pairs) in an open-addressed table, half-edges as values. */
+typedef struct { uint64_t key; uint32_t half; } slot;
+
+static slot *table_put_level(const mc_pmesh_lod *lod, uint32_t *cap_out)
+{
+    uint32_t cap = 16;
+    while (cap < 6u * lod->faces + 16) cap <<= 1;
+    slot *t = malloc(sizeof(slot) * cap);
+    if (!t) return NULL;
+    for (uint32_t i = 0; i < cap; i++) t[i].key = UINT64_MAX;
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        uint32_t c[3];
+        mc_pmesh_lod_face(lod, f, c);
+        for (uint32_t k = 0; k < 3; k++) {
+            uint64_t key = (uint64_t)c[k] << 32 | c[(k + 1) % 3];
+            uint32_t i = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 40) & (cap - 1);
+            while (t[i].key != UINT64_MAX && t[i].key != key) i = (i + 1) & (cap - 1);
+            if (t[i].key == key) t[i].half = MC_NO_HALF_EDGE - 1;   /* used twice: not a manifold level */
+            else t[i].key = key, t[i].half = MC_HALF_EDGE(f, k);
+        }
+    }
+    *cap_out = cap;
+    return t;
+}
+
+static uint32_t table_get(const slot *t, uint32_t cap, uint64_t key)
+{
+    uint32_t i = (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> 40) & (cap - 1);
+    while (t[i].key != UINT64_MAX) {
+        if (t[i].key == key) return t[i].half;
+        i = (i + 1) & (cap - 1);
+    }
+    return MC_NO_HALF_EDGE;
+}
+
+/* Neighbours at the current level against a search of its faces: the number of problems. */
+static unsigned long adjacency_check(const mc_pmesh_lod *lod, char *first, size_t n_first, unsigned long before)
+{
+    uint32_t cap;
+    slot *t = table_put_level(lod, &cap);
+    if (!t) return 1;
+    unsigned long bad = 0;
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        uint32_t c[3];
+        mc_pmesh_lod_face(lod, f, c);
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t want = table_get(t, cap, (uint64_t)c[(k + 1) % 3] << 32 | c[k]);
+            uint32_t got = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, k));
+            if (want == MC_NO_HALF_EDGE - 1 || table_get(t, cap, (uint64_t)c[k] << 32 | c[(k + 1) % 3]) == MC_NO_HALF_EDGE - 1) {
+                if (!before && !bad) snprintf(first, n_first, "level %u: directed edge %u-%u used twice", lod->level, c[k], c[(k + 1) % 3]);
+                bad++;
+            } else if (got != want) {
+                if (!before && !bad)
+                    snprintf(first, n_first, "level %u face %u edge %u: neighbour %d, the level's faces say %d", lod->level, f, k,
+                             (int)got, (int)want);
+                bad++;
+            }
+        }
+    }
+    free(t);
+    return bad;
+}
+
+/* The edge order: E entries, each full-mesh edge once (an entry or its opposite), borders first. */
+static unsigned long edge_order_check(char *first, size_t n_first)
+{
+    const uint32_t F = PM.faces;
+    uint8_t *seen = calloc((size_t)F * 4, 1);
+    uint32_t edges = 0;
+    if (!seen) return 1;
+    for (uint32_t f = 0; f < F; f++)
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t o = field(PM.opposite, 3u * PM.half_bytes, f, k * PM.half_bytes, PM.half_bytes);
+            if (PM.half_bytes == 2 && o == 0xFFFF) o = MC_NO_HALF_EDGE;
+            edges += o == MC_NO_HALF_EDGE || o > MC_HALF_EDGE(f, k);
+        }
+    unsigned long bad = 0;
+    int interior = 0;
+    if (edges != PM.edges) { snprintf(first, n_first, "the full mesh has %u edges, the descriptor says %u", edges, PM.edges); bad++; }
+    for (uint32_t i = 0; i < PM.edges && !bad; i++) {
+        uint32_t h = mc_pmesh_edge(&PM, i);
+        if (MC_HALF_FACE(h) >= F || MC_HALF_EDGE_INDEX(h) > 2) { snprintf(first, n_first, "edge %u: half-edge %u out of range", i, h); bad++; break; }
+        uint32_t o = field(PM.opposite, 3u * PM.half_bytes, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h) * PM.half_bytes, PM.half_bytes);
+        if (PM.half_bytes == 2 && o == 0xFFFF) o = MC_NO_HALF_EDGE;
+        if (o == MC_NO_HALF_EDGE && interior) { snprintf(first, n_first, "edge %u: a border after interior edges", i); bad++; }
+        interior |= o != MC_NO_HALF_EDGE;
+        if (seen[h] || (o != MC_NO_HALF_EDGE && seen[o])) { snprintf(first, n_first, "edge %u: listed twice", i); bad++; }
+        seen[h] = 1;
+        if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < MC_HALF_FACE(h)) { snprintf(first, n_first, "edge %u: not the first face's half-edge", i); bad++; }
+    }
+    free(seen);
+    return bad;
+}
+
+
+/* ---- lines: the level's edges classified in doubles, against mc_mesh_lines ---------------------- */
+
+typedef struct ref_face {
+    double area;      /* twice the exact signed screen area, pixels^2 */
+    double tol;       /* how far the runtime's rounded corners (within 1/16 pixel) can move it */
+    int flagged;      /* a corner before the near plane or beyond the guard band */
+    double n[3];      /* normal in the model frame */
+} ref_face;
+
+/* the reference's kind of an edge: a set of MC_EDGE_* kinds the runtime may give (more than one
+ * where a facing or the crease angle is within rounding of its threshold) */
+static unsigned ref_kinds(const ref_face *a, const ref_face *b, double crease_cos)
+{
+    if (!b) return 1u << MC_EDGE_BORDER;
+    unsigned fa = a->flagged ? 1u : a->area < -a->tol ? 2u : a->area > a->tol ? 1u : 3u;   /* 1 back, 2 front */
+    unsigned fb = b->flagged ? 1u : b->area < -b->tol ? 2u : b->area > b->tol ? 1u : 3u;
+    unsigned kinds = 0;
+    if ((fa | fb) == 3u) kinds |= 1u << MC_EDGE_SILHOUETTE;                /* they can differ */
+    if ((fa & fb) != 0) {                                                  /* they can agree */
+        double la = sqrt(a->n[0] * a->n[0] + a->n[1] * a->n[1] + a->n[2] * a->n[2]);
+        double lb = sqrt(b->n[0] * b->n[0] + b->n[1] * b->n[1] + b->n[2] * b->n[2]);
+        if (!(la > 0 && lb > 0)) kinds |= 1u << MC_EDGE_PLAIN;
+        else {
+            double c = (a->n[0] * b->n[0] + a->n[1] * b->n[1] + a->n[2] * b->n[2]) / (la * lb);
+            /* the runtime's 15-bit normals: the cosine within 2^-12 (mesh_lines.h) */
+            if (c < crease_cos + 1.0 / 4096) kinds |= 1u << MC_EDGE_CREASE;
+            if (c > crease_cos - 1.0 / 4096) kinds |= 1u << MC_EDGE_PLAIN;
+        }
+    }
+    return kinds;
+}
+
+static int lines_check(mc_pmesh_lod *lod, char **a)
+{
+    const uint32_t n = (uint32_t)strtoul(a[0], 0, 10), w = (uint32_t)atoi(a[1]), h = (uint32_t)atoi(a[2]);
+    mc_view v = mc_view_default();
+    v.projection = atoi(a[3]) ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
+    v.yaw = atoi(a[4]), v.pitch = atoi(a[5]), v.roll = atoi(a[6]), v.zoom = atoi(a[7]), v.eye = atoi(a[8]);
+    mc_pmesh_lod_set(lod, n);
+    const uint32_t F = lod->faces;
+    ref_face *rf = malloc(sizeof(ref_face) * (F + 1));
+    uint8_t *facing = malloc(MC_MESH_FACING_BYTES(PM.faces) + 1);
+    uint32_t cap;
+    slot *table = table_put_level(lod, &cap);
+    if (!rf || !facing || !table) return 2;
+    for (uint32_t f = 0; f < F; f++) {
+        int32_t p[3][3];
+        mc_ref_vertex e[3];
+        uint32_t c[3];
+        mc_pmesh_lod_face(lod, f, c);
+        rf[f].flagged = 0;
+        for (int k = 0; k < 3; k++) {
+            mc_pmesh_position(&PM, c[k], p[k]);
+            e[k] = mc_ref_project(&v, w, h, p[k]);
+            rf[f].flagged |= e[k].near || e[k].out;
+        }
+        double ax = e[1].x - e[0].x, ay = e[1].y - e[0].y, bx = e[2].x - e[0].x, by = e[2].y - e[0].y;
+        double cx = e[2].x - e[1].x, cy = e[2].y - e[1].y, u = 1.0 / 16;
+        rf[f].area = ax * by - bx * ay;
+        rf[f].tol = 2 * u * (fabs(ax) + fabs(ay) + fabs(bx) + fabs(by) + fabs(cx) + fabs(cy)) + 8 * u * u;
+        double d1[3], d2[3];
+        for (int i = 0; i < 3; i++) d1[i] = (double)p[1][i] - p[0][i], d2[i] = (double)p[2][i] - p[0][i];
+        rf[f].n[0] = d1[1] * d2[2] - d1[2] * d2[1];
+        rf[f].n[1] = d1[2] * d2[0] - d1[0] * d2[2];
+        rf[f].n[2] = d1[0] * d2[1] - d1[1] * d2[0];
+    }
+    /* the runtime's classification, edge by edge, against the reference's */
+    mc_xform x;
+    mc_xform_init(&x, &v, w, h);
+    mc_mesh_facing(lod, &x, facing);
+    const double crease_cos = PM.crease_cos / 16384.0;
+    uint32_t count[8] = {0}, edges = 0, ties = 0, bad = 0;
+    char first[240] = "";
+    for (uint32_t f = 0; f < F; f++)
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t c[3];
+            mc_pmesh_lod_face(lod, f, c);
+            const uint32_t want_o = table_get(table, cap, (uint64_t)c[(k + 1) % 3] << 32 | c[k]);
+            const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, k));
+            if (o != want_o) {
+                if (!bad++) snprintf(first, sizeof first, "face %u edge %u: neighbour %d, want %d", f, k, (int)o, (int)want_o);
+                continue;
+            }
+            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
+            edges++;
+            const unsigned kind = mc_mesh_edge_kind(lod, facing, MC_HALF_EDGE(f, k), o);
+            const unsigned kinds = ref_kinds(&rf[f], o == MC_NO_HALF_EDGE ? NULL : &rf[MC_HALF_FACE(o)], crease_cos);
+            count[kind]++;
+            ties += (kinds & (kinds - 1)) != 0;
+            if (!(kinds & (1u << kind)) && !bad++)
+                snprintf(first, sizeof first, "face %u edge %u: kind %u, the reference allows mask %u (areas %g, %g)", f, k,
+                         kind, kinds, rf[f].area, o == MC_NO_HALF_EDGE ? 0.0 : rf[MC_HALF_FACE(o)].area);
+        }
+    /* mc_mesh_lines: its counts; unhidden, its line pixels are the union of its edges' lines (mc_line,
+     * tested on its own) in their colours; hidden, a subset of them; guard zones untouched */
+    const size_t px = (size_t)w * h, G = 4096;
+    uint8_t *cmem = malloc(px + 2 * G), *cmem2 = malloc(px + 2 * G);
+    uint16_t *dmem = malloc(2 * (px + 2 * G)), *dmem2 = malloc(2 * (px + 2 * G));
+    if (!cmem || !cmem2 || !dmem || !dmem2) return 2;
+    memset(cmem, 0xA5, px + 2 * G), memset(cmem2, 0xA5, px + 2 * G);
+    for (size_t i = 0; i < px + 2 * G; i++) dmem[i] = dmem2[i] = 0x5A5A;
+    mc_target t = {cmem + G, dmem + G, (uint16_t)w, (uint16_t)h}, t2 = {cmem2 + G, dmem2 + G, (uint16_t)w, (uint16_t)h};
+    mc_lines_stats st, st2;
+    mc_clear(&t);
+    mc_clear(&t2);
+    mc_mesh_lines(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &t, facing, &st);
+    mc_mesh_render(lod, &v, MC_MESH_DRAW_PAPER, &t2, NULL);
+    mc_mesh_lines(lod, &v, MC_LINES_ALL, &t2, facing, &st2);
+    if (!bad && (st.edges != edges || st.silhouettes != count[MC_EDGE_SILHOUETTE] || st.creases != count[MC_EDGE_CREASE] ||
+                 st.borders != count[MC_EDGE_BORDER] || st2.pixels != st.pixels))
+        bad++, snprintf(first, sizeof first, "mc_mesh_lines counts %u edges %u %u %u, the scan %u edges %u %u %u", st.edges,
+                        st.silhouettes, st.creases, st.borders, edges, count[1], count[2], count[4]);
+    /* the union, drawn edge by edge with mc_line from the runtime's own kinds and projections */
+    uint8_t *want = calloc(px, 1);
+    if (!want) return 2;
+    uint32_t line_px = 0, hidden = 0, shown = 0, mism = 0;
+    for (uint32_t f = 0; f < F; f++)
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, k));
+            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
+            const unsigned kind = mc_mesh_edge_kind(lod, facing, MC_HALF_EDGE(f, k), o);
+            if (kind == MC_EDGE_PLAIN) continue;
+            int32_t p[3][3];
+            mc_raster_vertex rv[3];
+            if (mc_mesh_face(lod, &x, f, p, rv)) continue;
+            mc_line_vertex la = {rv[k].x >> 4, rv[k].y >> 4, 0}, lb = {rv[(k + 1) % 3].x >> 4, rv[(k + 1) % 3].y >> 4, 0};
+            uint8_t one[1] = {0};
+            (void)one;
+            /* mark the line's pixels with the kind's bit */
+            static uint8_t mc[4096 * 4096];
+            static uint16_t md[4096 * 4096];
+            mc_target m = {mc, md, (uint16_t)w, (uint16_t)h};
+            mc_clear(&m);
+            mc_line_style ns = {0, MC_LINE_NO_DEPTH_TEST | MC_LINE_WRITE_DEPTH};
+            mc_line(&m, la, lb, 1, &ns);
+            for (size_t i = 0; i < px; i++)
+                if (md[i] != MC_DEPTH_EMPTY) want[i] |= (uint8_t)kind;
+        }
+    for (size_t i = 0; i < px; i++) {
+        const unsigned c = t.depth[i] == MC_DEPTH_EMPTY ? 0u : t.color[i];
+        const unsigned k = c == MC_LINES_SILHOUETTE_COLOR ? MC_EDGE_SILHOUETTE : c == MC_LINES_CREASE_COLOR ? MC_EDGE_CREASE
+                         : c == MC_LINES_BORDER_COLOR    ? MC_EDGE_BORDER : 0u;
+        line_px += want[i] != 0;
+        if ((want[i] == 0) != (k == 0) || (k && !(want[i] & k))) mism++;
+        const unsigned c2 = t2.depth[i] == MC_DEPTH_EMPTY ? 0u : t2.color[i];
+        const int l2 = c2 == MC_LINES_SILHOUETTE_COLOR || c2 == MC_LINES_CREASE_COLOR || c2 == MC_LINES_BORDER_COLOR;
+        if (l2) shown++;
+        else if (want[i]) hidden++;
+        if (l2 && !(want[i] & (c2 == MC_LINES_SILHOUETTE_COLOR ? MC_EDGE_SILHOUETTE : c2 == MC_LINES_CREASE_COLOR ? MC_EDGE_CREASE : MC_EDGE_BORDER)))
+            mism++;
+    }
+    size_t guard = 0;
+    for (size_t i = 0; i < G; i++)
+        guard += (cmem[i] != 0xA5) + (cmem[G + px + i] != 0xA5) + (dmem[i] != 0x5A5A) + (dmem[G + px + i] != 0x5A5A) +
+                 (cmem2[i] != 0xA5) + (cmem2[G + px + i] != 0xA5) + (dmem2[i] != 0x5A5A) + (dmem2[G + px + i] != 0x5A5A);
+    if (!bad && (mism || guard))
+        bad++, snprintf(first, sizeof first, "%u line pixels not as their edges' lines, %zu guard-zone entries touched", mism, guard);
+    if (bad)
+        printf("not ok: %u problems; first: %s\n", bad, first);
+    else
+        printf("ok: level %u, %u edges: %u silhouettes, %u creases, %u borders (%u on a rounding tie); %u line pixels, "
+               "%u hidden by the faces, %u shown\n", n, edges, count[MC_EDGE_SILHOUETTE], count[MC_EDGE_CREASE],
+               count[MC_EDGE_BORDER], ties, line_px, hidden, shown);
+    free(rf), free(facing), free(table), free(cmem), free(cmem2), free(dmem), free(dmem2), free(want);
+    return bad ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
     const mc_pmesh *pm = &PM;
@@ -135,8 +405,10 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc == 12 && !strcmp(argv[1], "render")) return render_check(&lod, argv + 2);
+    if (argc == 11 && !strcmp(argv[1], "lines")) return lines_check(&lod, argv + 2);
     if (argc != 2 || strcmp(argv[1], "levels")) {
-        fprintf(stderr, "usage: pmesh_check levels | faces N | render N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE CULL\n");
+        fprintf(stderr, "usage: pmesh_check levels | faces N | render N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE CULL | "
+                        "lines N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE\n");
         return 2;
     }
     /* ranks and F(n) from the arrays; the tree's invariants */
@@ -181,6 +453,7 @@ int main(int argc, char **argv)
         levels[i - 1] = levels[j], levels[j] = t;
     }
     uint64_t faces_checked = 0;
+    uint32_t adjacency_levels = 0;
     for (uint32_t i = 0; i < nl && !problems; i++) {
         uint32_t n = levels[i];
         if (mc_pmesh_lod_set(&lod, n) != n || lod.level != n) PROBLEM("level %u not set", n);
@@ -194,12 +467,19 @@ int main(int argc, char **argv)
                 PROBLEM("level %u face %u: corners %u %u %u repeat", n, f, c[0], c[1], c[2]);
         }
         faces_checked += lod.faces;
+        if (i % 8 == 0 || n == V0 || n == V) {
+            unsigned long bad = adjacency_check(&lod, first, sizeof first, problems);
+            problems += bad;
+            adjacency_levels += !bad;
+        }
     }
+    if (!problems) problems += edge_order_check(first, sizeof first);
     if (problems)
         printf("not ok: %lu problems; first: %s\n", problems, first);
     else
-        printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked\n", V, V0, pm->faces,
-               pm->base_faces, nl, (unsigned long long)faces_checked);
+        printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked, neighbours at %u levels, "
+               "%u edges ordered\n", V, V0, pm->faces, pm->base_faces, nl, (unsigned long long)faces_checked,
+               adjacency_levels, pm->edges);
     free(levels), free(anc), free(rank), free(fcount);
     return problems ? 1 : 0;
 }

@@ -102,7 +102,7 @@ build_and_run "unit: pmesh: " test_pmesh
 linehook='-DMC_LINE_STEP_HOOK()=do { extern unsigned long mc_test_line_steps; mc_test_line_steps++; } while (0)'
 build_and_run "unit: line: " test_line "$linehook"
 build_and_run "unit: raster: " test_raster runtime/ref/raster_ref.c
-build_and_run "unit: xform: " test_xform
+build_and_run "unit: xform: " test_xform runtime/ref/xform_ref.c
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to

@@ -21,6 +21,7 @@
 #include <modelc/modelc.h>
 
 #include "../common/rgb.h"
+#include "scene.h"
 #include "term.h"
 #include "termio.h"
 
@@ -58,9 +59,8 @@ typedef struct layout {
 typedef struct term_state {
     const mc_app *app;
     const mc_octree *octree;
+    mc_host_scene *scene;
     mc_view start;
-    mc_octree_options opt;
-    mc_fill fill;
     double yaw, pitch;  /* angle units, fractional so slow frames lose nothing */
     double zoom;
     int auto_turn;      /* until the first key */
@@ -71,7 +71,7 @@ typedef struct term_state {
     /* shown in the status line */
     unsigned drawn_depth;
     double frame_ms;
-    uint32_t points;
+    uint32_t points;    /* points or faces drawn */
     double now;         /* when the keys being read arrived */
 } term_state;
 
@@ -172,10 +172,16 @@ static void put_frame(const mc_target *t, const uint8_t *palette, const layout *
 static void put_status(const term_state *s)
 {
     char line[STATUS_BYTES_MAX - 32];
-    int n = snprintf(line, sizeof line,
-                     " %s | depth %u/%u | %.1f ms | %lu points | zoom %.2f | q quits, arrows turn, +/- zoom, r resets",
-                     s->app->model->name, s->drawn_depth, (unsigned)s->octree->depth, s->frame_ms,
-                     (unsigned long)s->points, s->zoom);
+    const mc_host_scene *sc = s->scene;
+    const char *keys = mc_host_scene_has_mesh(sc) ? "q quits, arrows turn, +/- zoom, m mode, [ ] detail, r resets"
+                                                  : "q quits, arrows turn, +/- zoom, r resets";
+    int n = sc->mode == MC_HOST_POINTS
+                ? snprintf(line, sizeof line, " %s | points | depth %u/%u | %.1f ms | %lu points | zoom %.2f | %s",
+                           s->app->model->name, s->drawn_depth, (unsigned)s->octree->depth, s->frame_ms,
+                           (unsigned long)s->points, s->zoom, keys)
+                : snprintf(line, sizeof line, " %s | %s | %u/%u vertices | %.1f ms | %lu faces | zoom %.2f | %s",
+                           s->app->model->name, mc_host_mode_name(sc->mode), (unsigned)sc->lod.level,
+                           (unsigned)sc->lod.pm->vertices, s->frame_ms, (unsigned long)s->points, s->zoom, keys);
     if (n < 0) n = 0;
     if (n > (int)sizeof line - 1) n = (int)sizeof line - 1;
     if (n > s->lay.cols) n = s->lay.cols;
@@ -211,19 +217,14 @@ static int draw(term_state *s, unsigned depth, mc_abort_fn abort)
     const mc_app *app = s->app;
     mc_target t = {app->color, app->depth, s->lay.w, s->lay.h};
     mc_view v = current_view(s);
-    mc_stats st = {0, 0, 0};
+    uint32_t drawn = 0;
     double t0 = now_s();
-    if (t.width > 0 && t.height > 0) {
-        mc_clear(&t);
-        mc_octree_render(s->octree, &v, depth, &s->opt, &t, abort, NULL, &st);
-        if (st.aborted) return 0;
-        mc_finish(&t, s->fill);
-    }
+    if (t.width > 0 && t.height > 0 && mc_host_scene_draw(s->scene, &v, depth, abort, &t, &drawn) == 1) return 0;
     s->frame_ms = (now_s() - t0) * 1e3;
     s->drawn_depth = depth;
-    s->points = st.points;
+    s->points = drawn;
     mc_tio_begin();
-    put_frame(&t, s->octree->palette, &s->lay);
+    put_frame(&t, mc_host_scene_palette(s->scene), &s->lay);
     put_status(s);
     return mc_tio_flush() == 0 ? 1 : -1;
 }
@@ -266,6 +267,17 @@ static void handle_char(void *user, unsigned char c)
     case '+': case '=': s->zoom = clampd(s->zoom * ZOOM_STEP, ZOOM_MIN, ZOOM_MAX); break;
     case '-': case '_': s->zoom = clampd(s->zoom / ZOOM_STEP, ZOOM_MIN, ZOOM_MAX); break;
     case 'r': case 'R': reset_view(s); break;
+    case 'm': case 'M':   /* the next mode the model has */
+        if (mc_host_scene_has_mesh(s->scene)) s->scene->mode = (mc_host_mode)((s->scene->mode + 1) % 4);
+        break;
+    case '[': case ']':   /* half or twice the splits above the base mesh */
+        if (mc_host_scene_has_mesh(s->scene)) {
+            mc_pmesh_lod *lod = &s->scene->lod;
+            uint32_t base = lod->pm->base_vertices, splits = lod->level - base;
+            splits = c == '[' ? splits / 2 : splits ? splits * 2 : 1;
+            mc_pmesh_lod_set(lod, splits > lod->pm->vertices - base ? lod->pm->vertices : base + splits);
+        }
+        break;
     default: break;
     }
 }
@@ -353,8 +365,9 @@ static int step(term_state *s, double *prev)
     return 0;
 }
 
-int mc_host_interactive(const mc_app *app, mc_view start, const mc_octree_options *opt, mc_fill fill)
+int mc_host_interactive(mc_host_scene *scene, mc_view start)
 {
+    const mc_app *app = scene->app;
     if (mc_tio_enter() != 0) {
         fprintf(stderr, "%s-view: interactive mode needs a terminal on stdin: %s\n", app->model->name,
                 strerror(errno));
@@ -364,9 +377,8 @@ int mc_host_interactive(const mc_app *app, mc_view start, const mc_octree_option
     memset(&s, 0, sizeof s);
     s.app = app;
     s.octree = app->model->octree;
+    s.scene = scene;
     s.start = start;
-    s.opt = *opt;
-    s.fill = fill;
     reset_view(&s);
     s.auto_turn = 1;
     resize(&s);

@@ -1,7 +1,8 @@
 /* The host viewer: one binary per model (linked with the model's generated app binding).
  *
  *   NAME-view [--png FILE | --ppm FILE] [--yaw D --pitch D --roll D --zoom Z --depth N --size WxH
- *              --perspective --fill none|pixel|scanline --no-finish --splat 1|zoom]
+ *              --perspective --fill none|pixel|scanline --no-finish --splat 1|zoom
+ *              --mode points|shaded|lines|shaded+lines --lod N]
  *   NAME-view --bench N [...]
  *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
  *   NAME-view            interactive, when stdout is a terminal
@@ -22,6 +23,7 @@
 #include <modelc/modelc.h>
 
 #include "image.h"
+#include "scene.h"
 #include "term.h"
 #include "timing.h"
 #include "../common/frames.h"   /* the view list and frame checksum the firmware prints: --checksums */
@@ -51,9 +53,14 @@ static void usage(FILE *f)
             "  --no-finish     the same as --fill none\n"
             "  --splat MODE    pixels per leaf: 1 (one pixel, the paper's) or zoom (a square that grows\n"
             "                  with the leaf's size on screen; default %s)\n"
+            "  --mode MODE     points (the octree), or the mesh part (bakes --as both): shaded, lines\n"
+            "                  (silhouettes, creases, borders; hidden lines removed) or shaded+lines\n"
+            "                  (default points)\n"
+            "  --lod N         the mesh's level of detail: N vertices, from its base to its full count\n"
+            "                  (default full)\n"
             "  --help          this text\n"
             "With no output option and stdout a terminal, runs interactively: arrow keys rotate, + and -\n"
-            "zoom, q quits.\n",
+            "zoom, m changes the mode, [ and ] the mesh's level of detail, q quits.\n",
             mc_app_model.model->name, mc_app_model.model->octree->depth, mc_app_model.model->octree->depth,
             mc_app_model.max_width, mc_app_model.max_height,
             MC_FILL_DEFAULT_MODE == 2 ? "scanline" : MC_FILL_DEFAULT_MODE == 1 ? "pixel" : "none",
@@ -78,30 +85,32 @@ static int parse_double(const char *s, double lo, double hi, double *out)
 
 int32_t mc_host_angle(double degrees) { return (int32_t)lround(fmod(degrees, 360.0) * MC_ANGLE_FULL / 360.0); }
 
-static int bench(const mc_octree *octree, const mc_target *t, mc_view v, const mc_octree_options *opt, unsigned depth,
-                 mc_fill fill, int frames)
+static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth, int frames)
 {
     static double ms[100000];
     if (frames > 100000) frames = 100000;
-    uint64_t points = 0;
+    uint64_t drawn = 0;
     int32_t yaw0 = v.yaw;
     for (int i = 0; i < frames; i++) {
         v.yaw = yaw0 + (int32_t)((int64_t)MC_ANGLE_FULL * i / frames);
-        mc_stats st;
+        uint32_t n = 0;
         double t0 = mc_host_now_ms();
-        mc_clear(t);
-        mc_octree_render(octree, &v, depth, opt, t, NULL, NULL, &st);
-        mc_finish(t, fill);
+        mc_host_scene_draw(s, &v, depth, NULL, t, &n);
         ms[i] = mc_host_now_ms() - t0;
-        points += st.points;
+        drawn += n;
     }
     double median = mc_host_median(ms, (size_t)frames);
-    double mean_points = (double)points / frames;
-    printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, depth, t->width, t->height,
-           frames, fill == MC_FILL_NONE ? " no-finish" : "");
+    double mean = (double)drawn / frames;
+    const char *what = s->mode == MC_HOST_POINTS ? "points" : "faces";
+    if (s->mode == MC_HOST_POINTS)
+        printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, depth, t->width, t->height,
+               frames, s->fill == MC_FILL_NONE ? " no-finish" : "");
+    else
+        printf("model %s mode %s lod %u of %u vertices size %ux%u frames %d\n", mc_app_model.model->name,
+               mc_host_mode_name(s->mode), s->lod.level, s->lod.pm->vertices, t->width, t->height, frames);
     printf("ms per frame (median): %.3f\n", median);
-    printf("points drawn per frame: %.0f\n", mean_points);
-    printf("Mpoints/s: %.2f\n", mean_points / median / 1e3);
+    printf("%s drawn per frame: %.0f\n", what, mean);
+    printf("M%s/s: %.2f\n", what, mean / median / 1e3);
     return 0;
 }
 
@@ -136,6 +145,8 @@ int main(int argc, char **argv)
     int perspective = 0, check = 0, sized = 0;
     mc_fill fill = MC_FILL_DEFAULT;
     mc_octree_options opt = {MC_SPLAT_DEFAULT};
+    mc_host_mode mode = MC_HOST_POINTS;
+    const char *lod_arg = NULL;
     long frames = 0;
     static const struct option opts[] = {
         {"png", required_argument, 0, 'P'}, {"ppm", required_argument, 0, 'M'},
@@ -145,7 +156,8 @@ int main(int argc, char **argv)
         {"size", required_argument, 0, 's'}, {"no-finish", no_argument, 0, 'n'},
         {"perspective", no_argument, 0, 'e'}, {"checksums", no_argument, 0, 'c'},
         {"help", no_argument, 0, 'h'}, {"fill", required_argument, 0, 'f'},
-        {"splat", required_argument, 0, 'S'}, {0, 0, 0, 0}};
+        {"splat", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'm'},
+        {"lod", required_argument, 0, 'l'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -185,11 +197,25 @@ int main(int argc, char **argv)
             else return die("--splat expects 1 or zoom", optarg);
             break;
         case 'e': perspective = 1; break;
+        case 'm':
+            if (mc_host_mode_parse(optarg, &mode)) return die("--mode expects points, shaded, lines or shaded+lines", optarg);
+            break;
+        case 'l': lod_arg = optarg; break;
         case 'h': usage(stdout); return 0;
         default: return die("unknown option (see --help)", argv[optind - 1]);
         }
     }
     if (optind < argc) return die("unexpected argument (see --help)", argv[optind]);
+    mc_host_scene scene;
+    if (mc_host_scene_init(&scene, &mc_app_model, mode, &opt, fill))
+        return die("the model has no mesh part to draw (bake it with modelc --as both)", mc_host_mode_name(mode));
+    if (lod_arg) {
+        if (!mc_host_scene_has_mesh(&scene)) return die("--lod needs a mesh part (bake with modelc --as both)", lod_arg);
+        const mc_pmesh *pm = model->pmesh;
+        if (parse_double(lod_arg, pm->base_vertices, pm->vertices, &dv) || dv != (uint32_t)dv)
+            return die("--lod expects a vertex count from the mesh's base to its full count", lod_arg);
+        mc_pmesh_lod_set(&scene.lod, (uint32_t)dv);
+    }
 
     if (check && !sized) {
         w = mc_app_model.max_width;
@@ -198,6 +224,7 @@ int main(int argc, char **argv)
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
     if (check) {
         if (frames) return die("--checksums and --bench exclude each other", NULL);
+        if (mode != MC_HOST_POINTS) return die("--checksums draws points only", NULL);
         return checksums(octree, &t, depth, png, ppm);
     }
     mc_view v = mc_view_default();
@@ -207,23 +234,24 @@ int main(int argc, char **argv)
     v.zoom = (int32_t)lround(zoom * MC_ZOOM_ONE);
     v.projection = perspective ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
 
-    if (frames) return bench(octree, &t, v, &opt, depth, fill, (int)frames);
+    if (frames) return bench(&scene, &t, v, depth, (int)frames);
     if (!png && !ppm) {
-        if (isatty(STDOUT_FILENO)) return mc_host_interactive(&mc_app_model, v, &opt, fill);
+        if (isatty(STDOUT_FILENO)) return mc_host_interactive(&scene, v);
         return die("stdout is not a terminal: give --png FILE, --ppm FILE or --bench N (see --help)", NULL);
     }
 
-    mc_stats st;
+    uint32_t drawn = 0;
     double t0 = mc_host_now_ms();
-    mc_clear(&t);
-    int rc = mc_octree_render(octree, &v, depth, &opt, &t, NULL, NULL, &st);
-    uint32_t filled = mc_finish(&t, fill);
+    int rc = mc_host_scene_draw(&scene, &v, depth, NULL, &t, &drawn);
     double ms = mc_host_now_ms() - t0;
     if (rc != MC_OK) return die("render failed", NULL);
-    mc_host_to_rgb(&t, octree->palette, rgb_buffer);
+    mc_host_to_rgb(&t, mc_host_scene_palette(&scene), rgb_buffer);
     if (png && mc_host_write_png(png, rgb_buffer, (int)w, (int)h)) return die("cannot write PNG", png);
     if (ppm && mc_host_write_ppm(ppm, rgb_buffer, (int)w, (int)h)) return die(strerror(errno), ppm);
-    printf("model %s depth %u size %ux%u points %u filled %u ms %.3f\n", model->name, depth, w, h, st.points,
-           filled, ms);
+    if (mode == MC_HOST_POINTS)
+        printf("model %s depth %u size %ux%u points %u ms %.3f\n", model->name, depth, w, h, drawn, ms);
+    else
+        printf("model %s mode %s lod %u of %u vertices, %u faces size %ux%u faces drawn %u ms %.3f\n", model->name,
+               mc_host_mode_name(mode), scene.lod.level, model->pmesh->vertices, scene.lod.faces, w, h, drawn, ms);
     return 0;
 }

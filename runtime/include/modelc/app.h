@@ -1,7 +1,8 @@
 /* The binding between a baked model and a front end (viewer or firmware main).
  *
  * Promise: modelc writes NAME_app.c defining mc_app_model: the model (model.h) and static frame
- * buffers of exactly the size asked for at bake time (--screen). A front end links against this
+ * buffers of exactly the size asked for at bake time (--screen), and, with a mesh part, the static
+ * memory its level of detail and line drawings need. A front end links against this
  * one symbol and so works with any model; it asks app->model which parts it has. Libraries built
  * with --emit lib leave it out.
  */
@@ -16,6 +17,8 @@ typedef struct mc_app {
     uint8_t *color;        /* max_width * max_height palette indices */
     uint16_t *depth;       /* max_width * max_height depths */
     uint16_t max_width, max_height;
+    void *pmesh_anc;       /* the mesh part's ancestor map (pmesh.h mc_pmesh_lod_init), or NULL */
+    uint8_t *pmesh_facing; /* its line drawings' facing bits (mesh_lines.h), or NULL */
 } mc_app;
 
 extern const mc_app mc_app_model;

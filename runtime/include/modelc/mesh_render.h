@@ -7,7 +7,8 @@
  * with a corner nearer the eye than the near plane, or projected outside the guard band
  * (MC_XFORM_NEAR, MC_XFORM_FAR_OUT), is not drawn and is counted in stats->skipped: these need
  * clipping, which comes with the line drawings. With MC_MESH_CULL_BACK, faces turned away from the
- * viewer are not drawn (for closed meshes, whose back faces are always hidden).
+ * viewer are not drawn (for closed meshes, whose back faces are always hidden). With
+ * MC_MESH_DRAW_PAPER every face is drawn in MC_MESH_PAPER: the hidden surface of a line drawing.
  *
  * Shade: as the point renderer's baked colours of uncoloured models (gen/light.hpp), a frontal light
  * fixed to the model: intensity (3 + 17 |n.z| / |n|) / 20 for the face's normal n in the model's frame
@@ -30,9 +31,12 @@
 #include "xform.h"
 
 #define MC_MESH_SHADES 32
+/* palette index of the paper: faces of a lines-only drawing (mesh_lines.h), white */
+#define MC_MESH_PAPER MC_MESH_SHADES
 
 /* flags */
 #define MC_MESH_CULL_BACK 1u
+#define MC_MESH_DRAW_PAPER 2u   /* every face in MC_MESH_PAPER instead of its shade */
 
 typedef struct mc_mesh_stats {
     uint32_t faces;     /* faces of the level */

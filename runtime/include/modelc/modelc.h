@@ -16,4 +16,5 @@
 #include "raster.h"
 #include "line.h"
 #include "mesh_render.h"
+#include "mesh_lines.h"
 #endif

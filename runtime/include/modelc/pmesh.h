@@ -27,8 +27,21 @@
  *   tree       per vertex: parent index (a base vertex is its own parent), subtree size
  *   splits     per split s = 0 .. V-V0-1: the index of the vertex it brings back, then one byte: the
  *              number of faces it adds (1 or 2)
- *   corners    per face, in creation order: three corner indices, counter-clockwise seen from outside
- * and, not chunked, the palette of the shaded faces (mesh_render.h): MC_MESH_SHADES greys.
+ *   corners    per face, in creation order: three corner indices, counter-clockwise seen from outside;
+ *              a split's faces start at the split vertex or its parent (as they are at the split's
+ *              level), so edge 0 is the edge its collapse removes and edges 1 and 2 the two it merges
+ *   opposite   per face: for each edge k (corner k to corner k+1 mod 3), the half-edge across it in
+ *              the full mesh, 4 g + j for edge j of face g, or all ones (a border); half_bytes wide
+ *   edge_order per edge of the full mesh, one half-edge (of the face created first): borders first,
+ *              then by decreasing angle between the normals of its two faces, where the silhouette
+ *              search starts (mesh_lines.h)
+ * and, not chunked, the palette (mesh_render.h): MC_MESH_SHADES greys, then the line colours.
+ *
+ * Neighbours at level n (mc_pmesh_lod_opposite): a face g missing at n was removed by the collapse
+ * of its edge 0, which merged its edges 1 and 2 into one edge; so whatever lay across g's edge j
+ * (1 or 2) at the full mesh now lies across the edge it had with g's edge 3 - j. Following that from
+ * the full mesh's neighbour until a present face (or a border) is found gives the level's neighbour
+ * exactly, with no state beyond the ancestor map.
  */
 #ifndef MODELC_PMESH_H
 #define MODELC_PMESH_H
@@ -41,15 +54,27 @@ typedef struct mc_pmesh {
     uint32_t base_vertices;      /* V0: vertices of the base mesh (>= 1) */
     uint32_t faces;              /* F: faces of the full mesh */
     uint32_t base_faces;         /* F0: faces of the base mesh */
+    uint32_t edges;              /* E: edges of the full mesh */
     uint8_t index_bytes;         /* 2 (V <= 65535) or 4 */
+    uint8_t half_bytes;          /* 2 (4 F + 3 < 65535) or 4: a half-edge id */
     uint8_t record_shift;        /* 2^record_shift records in each chunk but the last, every array */
+    uint8_t closed;              /* 1: no border edge (every level then is closed: back faces are hidden) */
     uint16_t palette_size;       /* entries of palette */
+    int16_t crease_cos;          /* Q14 cosine of the crease angle (mesh_lines.h) */
     const mc_chunk *positions;   /* V records of 6 bytes */
     const mc_chunk *tree;        /* V records of 2 * index_bytes */
     const mc_chunk *splits;      /* V - V0 records of index_bytes + 1 */
     const mc_chunk *corners;     /* F records of 3 * index_bytes: the faces */
-    const uint8_t *palette;      /* RGB triplets: the shades mesh_render.h draws faces in */
+    const mc_chunk *opposite;    /* F records of 3 * half_bytes */
+    const mc_chunk *edge_order;  /* E records of half_bytes: the edges */
+    const uint8_t *palette;      /* RGB triplets: the shades and line colours mesh drawings use */
 } mc_pmesh;
+
+/* A half-edge: edge k (corner k to corner k+1 mod 3) of face f is 4 f + k. */
+#define MC_HALF_EDGE(f, k) (4u * (uint32_t)(f) + (uint32_t)(k))
+#define MC_HALF_FACE(h) ((h) >> 2)
+#define MC_HALF_EDGE_INDEX(h) ((h) & 3u)
+#define MC_NO_HALF_EDGE 0xFFFFFFFFu
 
 /* The level-of-detail state: level, face count and the ancestor map (in the caller's memory). */
 typedef struct mc_pmesh_lod {
@@ -77,6 +102,15 @@ static inline uint32_t mc_pmesh_lod_vertex(const mc_pmesh_lod *lod, uint32_t v)
 
 /* The corners of face f (0 .. lod->faces-1) at the current level. */
 void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3]);
+
+/* The half-edge across half-edge h (MC_HALF_EDGE(f, k), f < lod->faces) at the current level, or
+ * MC_NO_HALF_EDGE where edge k of face f is a border there. Work: the faces removed across that edge
+ * between the current level and the full mesh, at most; usually none or one. */
+uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_t h);
+
+/* Edge i (0 .. E-1) of the edge order: a half-edge of the full mesh (its face may be missing at the
+ * current level). */
+uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i);
 
 /* Vertex v's position: unit-cube coordinates in Q16 (q - 32768), -32768 .. 32767. */
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3]);

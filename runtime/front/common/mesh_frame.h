@@ -1,0 +1,34 @@
+/* One frame of a model's mesh part in a drawing style: the sequence the host viewer and the
+ * firmware both run, so their frames are the same bytes.
+ *
+ * Promise: mc_front_mesh_frame clears the target and draws lod's current level through view:
+ *   shaded        flat-shaded faces (mesh_render.h);
+ *   lines         the faces in paper white for hidden-line removal, then silhouettes, creases and
+ *                 borders (mesh_lines.h), then every pixel still empty made paper (colour
+ *                 MC_MESH_PAPER, depth MC_DEPTH_FILLED), so the drawing is on white;
+ *   shaded+lines  the shaded faces, then the lines over them.
+ * Back faces are culled when the part is closed (pmesh.h closed: they are hidden anyway).
+ * facing: MC_MESH_FACING_BYTES of the part's faces (the app binding's). Freestanding, no heap.
+ */
+#ifndef MODELC_FRONT_MESH_FRAME_H
+#define MODELC_FRONT_MESH_FRAME_H
+
+#include <stdint.h>
+#include <modelc/mesh_lines.h>
+
+typedef enum mc_front_style {
+    MC_FRONT_SHADED = 1,
+    MC_FRONT_LINES = 2,
+    MC_FRONT_SHADED_LINES = 3
+} mc_front_style;
+
+typedef struct mc_front_mesh_stats {
+    mc_mesh_stats faces;
+    mc_lines_stats lines;   /* all zero for the shaded style */
+} mc_front_mesh_stats;
+
+/* Returns MC_OK or the first renderer error. stats may be null. */
+int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, const mc_view *view, mc_front_style style,
+                        const mc_target *t, mc_front_mesh_stats *stats);
+
+#endif

@@ -1,0 +1,58 @@
+/* The host viewer's scene: see scene.h. */
+#include "scene.h"
+
+#include <string.h>
+
+static const char *const names[] = {"points", "shaded", "lines", "shaded+lines"};
+
+int mc_host_mode_parse(const char *s, mc_host_mode *mode)
+{
+    for (int i = 0; i < 4; i++)
+        if (!strcmp(s, names[i])) { *mode = (mc_host_mode)i; return 0; }
+    return -1;
+}
+
+const char *mc_host_mode_name(mc_host_mode mode) { return (unsigned)mode < 4u ? names[mode] : "?"; }
+
+int mc_host_scene_has_mesh(const mc_host_scene *s)
+{
+    return s->app->model->pmesh && s->app->pmesh_anc && s->app->pmesh_facing;
+}
+
+int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, const mc_octree_options *opt,
+                       mc_fill fill)
+{
+    memset(s, 0, sizeof *s);
+    s->app = app;
+    s->mode = mode;
+    s->opt = *opt;
+    s->fill = fill;
+    if (mc_host_scene_has_mesh(s)) {
+        mc_pmesh_lod_init(&s->lod, app->model->pmesh, app->pmesh_anc);
+        mc_pmesh_lod_set(&s->lod, app->model->pmesh->vertices);
+    }
+    return mode == MC_HOST_POINTS || mc_host_scene_has_mesh(s) ? 0 : -1;
+}
+
+int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_abort_fn abort, const mc_target *t,
+                       uint32_t *drawn)
+{
+    if (s->mode == MC_HOST_POINTS) {
+        mc_stats st = {0, 0, 0};
+        mc_clear(t);
+        int rc = mc_octree_render(s->app->model->octree, v, depth, &s->opt, t, abort, NULL, &st);
+        if (st.aborted) return 1;
+        mc_finish(t, s->fill);
+        *drawn = st.points;
+        return rc;
+    }
+    mc_front_mesh_stats st;
+    int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, v, (mc_front_style)s->mode, t, &st);
+    *drawn = st.faces.drawn;
+    return rc;
+}
+
+const uint8_t *mc_host_scene_palette(const mc_host_scene *s)
+{
+    return s->mode == MC_HOST_POINTS ? s->app->model->octree->palette : s->app->model->pmesh->palette;
+}

@@ -1,0 +1,54 @@
+/* What the host viewer draws: the model's octree as points, or its mesh part in a style, at a level
+ * of detail. Shared by the one-shot outputs (PNG, PPM, bench) and the interactive terminal.
+ *
+ * Promise: mc_host_scene_draw fills a target with one frame of the scene's mode seen through a view:
+ * points as the point renderer and mc_finish draw them, the mesh styles as
+ * runtime/front/common/mesh_frame.h draws them (so the firmware's frames are the same bytes), at the
+ * scene's current level of detail; mc_host_scene_palette is the palette its pixels index. The mesh
+ * modes need a bake with a mesh part (--as both); the level-of-detail state lives in the app
+ * binding's static memory (app.h).
+ */
+#ifndef MODELC_HOST_SCENE_H
+#define MODELC_HOST_SCENE_H
+
+#include <stdint.h>
+#include <modelc/app.h>
+#include <modelc/modelc.h>
+#include "../common/mesh_frame.h"
+
+typedef enum mc_host_mode {
+    MC_HOST_POINTS = 0,
+    MC_HOST_SHADED = MC_FRONT_SHADED,
+    MC_HOST_LINES = MC_FRONT_LINES,
+    MC_HOST_SHADED_LINES = MC_FRONT_SHADED_LINES
+} mc_host_mode;
+
+typedef struct mc_host_scene {
+    const mc_app *app;
+    mc_host_mode mode;
+    mc_octree_options opt;   /* points */
+    mc_fill fill;            /* points */
+    mc_pmesh_lod lod;        /* the mesh part's level of detail (when the model has one) */
+} mc_host_scene;
+
+/* "points", "shaded", "lines", "shaded+lines" -> mode; returns -1 for anything else. */
+int mc_host_mode_parse(const char *s, mc_host_mode *mode);
+const char *mc_host_mode_name(mc_host_mode mode);
+
+/* Sets the scene up in `mode` at the mesh's finest level. Returns 0, or -1 when the mode needs a
+ * mesh part the model lacks. */
+int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, const mc_octree_options *opt,
+                       mc_fill fill);
+
+/* Whether the model has a mesh part. */
+int mc_host_scene_has_mesh(const mc_host_scene *s);
+
+/* Draws one frame into t; depth: the octree depth (points). *drawn: points (points) or faces drawn
+ * (mesh). abort: polled by the point renderer only. Returns the renderer's MC_OK or MC_ERR_*; 1 when
+ * the point renderer gave up (abort). */
+int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_abort_fn abort, const mc_target *t,
+                       uint32_t *drawn);
+
+const uint8_t *mc_host_scene_palette(const mc_host_scene *s);
+
+#endif

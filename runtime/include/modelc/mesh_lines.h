@@ -1,0 +1,85 @@
+/* Line drawings of a progressive mesh: the silhouettes, creases and borders of the current level of
+ * detail (pmesh.h), drawn over its faces with hidden lines removed by the z-buffer.
+ *
+ * Edges. Each edge of the level once: half-edge h = MC_HALF_EDGE(f, k) of a present face f whose
+ * opposite o (mc_pmesh_lod_opposite) is none or lies in a later face. Its kind, first that applies:
+ *   border      no face across it;
+ *   silhouette  one of its two faces is front-facing and the other is not;
+ *   crease      the angle between its faces' normals exceeds the part's crease angle (the bake's
+ *               --crease-angle, pmesh.h crease_cos);
+ *   plain       none of these (not drawn).
+ * Facing: a face is front-facing when its corners, projected by mc_xform_vertex, turn
+ * counter-clockwise on the screen (twice the signed area of their 1/16-pixel coordinates, y down,
+ * below 0): exactly the faces mc_raster_triangle draws with MC_RASTER_CULL_BACK, so silhouettes run
+ * where drawn faces meet culled ones. A face with a corner flagged by the projection (MC_XFORM_NEAR,
+ * MC_XFORM_FAR_OUT) is not front-facing, and an edge with such an endpoint is not drawn (counted as
+ * skipped): lines and faces are clipped against the near plane in a later step.
+ * Crease test: on the normals' 15 leading bits, against the cosine in Q14, in 64-bit integers: an
+ * edge within a hundredth of a degree of the crease angle may go either way; an edge of a face with
+ * no area is not a crease.
+ *
+ * Hidden lines (z-buffer): the caller draws the faces first (mc_mesh_render, with MC_MESH_DRAW_PAPER for
+ * the lines-only style); each line pixel is then drawn where its depth, less an offset, is nearer than
+ * the target's (mc_line's depth test, with MC_LINE_WRITE_DEPTH so lines beyond the faces' outline
+ * show on an empty background). The offset of an edge is 2 units (the rounding of line and face
+ * depths) plus one pixel's worth of the steeper depth slope of its faces (max |dz/dx|, |dz/dy|, as
+ * OpenGL's polygon offset), at most MC_LINE_DEPTH_MAX: a line is not hidden by the faces it bounds,
+ * and is hidden by any other face more than that offset in front of it.
+ *
+ * Colours: palette entries after the MC_MESH_SHADES greys (the generator writes them): paper
+ * (white), silhouettes black, creases grey, borders dark blue.
+ *
+ * Work: mc_mesh_lines projects every face's corners once for facing (the scan), then each edge's
+ * neighbour search (pmesh.h) and, for drawn edges, their endpoints and the line's pixels. Memory:
+ * the caller's facing bits, MC_MESH_FACING_BYTES(faces); no heap, bounded stack, no floating point.
+ * Freestanding.
+ */
+#ifndef MODELC_MESH_LINES_H
+#define MODELC_MESH_LINES_H
+
+#include <stdint.h>
+#include "mesh_render.h"
+#include "line.h"
+
+/* palette indices of the lines (after the shades and the paper, mesh_render.h) */
+#define MC_LINES_SILHOUETTE_COLOR (MC_MESH_SHADES + 1)
+#define MC_LINES_CREASE_COLOR (MC_MESH_SHADES + 2)
+#define MC_LINES_BORDER_COLOR (MC_MESH_SHADES + 3)
+#define MC_MESH_PALETTE_SIZE (MC_MESH_SHADES + 4)
+
+/* edge kinds, and the flags choosing which to draw */
+enum { MC_EDGE_PLAIN = 0, MC_EDGE_SILHOUETTE = 1, MC_EDGE_CREASE = 2, MC_EDGE_BORDER = 4 };
+#define MC_LINES_ALL (MC_EDGE_SILHOUETTE | MC_EDGE_CREASE | MC_EDGE_BORDER)
+#define MC_LINES_NO_HIDING 8u   /* draw every line whole, hidden or not */
+
+/* Bytes of facing bits for a part of F faces. */
+#define MC_MESH_FACING_BYTES(faces) (((uint32_t)(faces) + 7u) / 8u)
+
+typedef struct mc_lines_stats {
+    uint32_t edges;         /* edges of the level */
+    uint32_t silhouettes;   /* found, drawn or skipped */
+    uint32_t creases;
+    uint32_t borders;
+    uint32_t skipped;       /* lines of a chosen kind with an endpoint flagged by the projection */
+    uint32_t pixels;        /* pixels of the drawn lines on the target, before the depth test */
+} mc_lines_stats;
+
+/* Sets facing bit f (0 .. lod->faces-1) for every front-facing face of the level seen through x. */
+void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing);
+
+/* The kind of the edge of half-edge h (a present face's) at the level, whose opposite is o
+ * (mc_pmesh_lod_opposite), given facing bits from mc_mesh_facing. */
+unsigned mc_mesh_edge_kind(const mc_pmesh_lod *lod, const uint8_t *facing, uint32_t h, uint32_t o);
+
+/* Whether two faces with corners a and b (unit-cube Q16) meet at more than the crease angle whose
+ * cosine is crease_cos (Q14). */
+int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_cos);
+
+/* Draws the level's edges of the kinds in flags (MC_EDGE_* bits; MC_LINES_NO_HIDING) seen through
+ * view into t, whose faces the caller has drawn for hidden-line removal. facing: the caller's
+ * MC_MESH_FACING_BYTES(lod->pm->faces) bytes. Returns MC_OK, MC_ERR_ARG (a null argument) or
+ * MC_ERR_SIZE (a side over MC_TARGET_MAX; nothing drawn). stats may be null. */
+int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *facing,
+                  mc_lines_stats *stats);
+
+#endif

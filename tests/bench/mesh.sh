@@ -1,0 +1,182 @@
+#!/usr/bin/env bash
+# Filled triangles side by side with Mesa in one run: each mesh baked by modelc --as both and drawn at
+# its full level of detail, flat-shaded, by modelc's mc_mesh_render (tests/bench/mesh_frames.c) and by
+# Mesa's llvmpipe on one thread through OSMesa (tests/bench/osmesa_mesh.c: the same triangles in the
+# same palette colours, uploaded once into a vertex buffer, the same orthographic view, depth test on
+# a 16-bit buffer); the frontal frame's coverage masks compared; per round, a full turn timed by each,
+# alternately; callgrind instructions of mc_mesh_render per frame and per face. Appends (replacing an
+# earlier copy) a marked section to RESULTS.md.
+#   tests/bench/mesh.sh [RESULTS.md]
+#   MESH_MODELS ("bunny00 fandisk lion_head"), MESH_ROUNDS (7), MESH_FRAMES (100), MESH_SIZE (320x240),
+#   MESH_CG_FRAMES (20: frames of the turn under callgrind),
+#   MESH_RUNTIME_REV (empty: the working tree's runtime/; else a git revision to take runtime/ from,
+#   e.g. HEAD, for when the working tree's runtime does not match build/bin/modelc's output)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+results=${1:-tests/bench/RESULTS.md}
+models=${MESH_MODELS:-bunny00 fandisk lion_head} rounds=${MESH_ROUNDS:-7} frames=${MESH_FRAMES:-100}
+size=${MESH_SIZE:-320x240} cg_frames=${MESH_CG_FRAMES:-20} rev=${MESH_RUNTIME_REV:-}
+out=build/bench/mesh
+modelc=build/bin/modelc
+[ -x "$modelc" ] || { echo "mesh.sh: $modelc missing: run make gen" >&2; exit 1; }
+[ -f /usr/include/GL/osmesa.h ] || { echo "mesh.sh: GL/osmesa.h missing: run make deps (libosmesa6-dev)" >&2; exit 1; }
+mkdir -p "$out"
+rm -f "$out/FAILED"
+cmds=()
+run() { cmds+=("$*"); "$@"; }
+# a command with globs, logged as written (not expanded) and then run
+run_glob() { cmds+=("$1"); eval "$1"; }
+
+# the runtime, copied once so that every binary is built from the same sources
+rm -rf "$out/src"
+mkdir -p "$out/src"
+if [ -n "$rev" ]; then
+    git archive "$rev" runtime/include runtime/src runtime/front/host | tar -x -C "$out/src"
+    runtime_from="git revision $rev ($(git rev-parse --short "$rev"))"
+else
+    mkdir -p "$out/src/runtime/front"
+    cp -r runtime/include runtime/src "$out/src/runtime/"
+    cp -r runtime/front/host "$out/src/runtime/front/"
+    runtime_from="the working tree"
+fi
+rt=$out/src/runtime
+rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c | sha256sum | cut -c1-12)
+flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host")
+
+: >"$out/rows.txt"
+for m in $models; do
+    # the catalogue's file name (lion_head is lion-head.off)
+    file=$(make -s --no-print-directory -f - print <<EOF 2>/dev/null || true
+include models/catalogue.mk
+print: ; @echo \$(notdir \$($m.src))
+EOF
+)
+    [ -n "$file" ] || { echo "mesh.sh: $m is not in models/catalogue.mk" >&2; exit 1; }
+    src=build/models/$file
+    [ -f "$src" ] || make -s "$src"
+    rm -rf "${out:?}/$m"
+    run "$modelc" "$src" -o "$out" --name "$m" --depth 5 --as both -q
+    run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -o $out/$m-frames \
+tests/bench/mesh_frames.c $rt/src/*.c $out/$m/*.c" ||
+        { echo "mesh.sh: the bake does not build against the runtime from $runtime_from: is $modelc older" \
+               "than runtime/ (make gen), or set MESH_RUNTIME_REV=HEAD" >&2; exit 1; }
+    run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -ffunction-sections -fdata-sections \
+-o $out/$m-osmesa tests/bench/osmesa_mesh.c $rt/src/pmesh.c $rt/src/mesh_render.c $out/$m/*.c -Wl,--gc-sections -lOSMesa -lm"
+    # the frontal frame: images and coverage masks of both
+    run "$out/$m-frames" --size "$size" --yaw 0 --ppm "$out/$m.modelc.ppm" --mask "$out/$m.modelc.pgm" >"$out/$m.img.txt"
+    run env LP_NUM_THREADS=0 "$out/$m-osmesa" --size "$size" --yaw 0 --ppm "$out/$m.mesa.ppm" \
+        --mask "$out/$m.mesa.pgm" >"$out/$m.mesa.img.txt"
+    run valgrind --tool=callgrind --toggle-collect=mc_mesh_render --callgrind-out-file="$out/$m.cg" \
+        "$out/$m-frames" --frames "$cg_frames" --size "$size" >"$out/$m.cg.txt" 2>"$out/$m.cg.log"
+    : >"$out/$m.times"
+    for r in $(seq 1 "$rounds"); do
+        # alternately, and the order swapped every round
+        for side in $( [ $((r % 2)) = 1 ] && echo "modelc mesa" || echo "mesa modelc"); do
+            if [ "$side" = modelc ]; then
+                "$out/$m-frames" --time "$frames" --size "$size" >"$out/$m.r$r.modelc.txt"
+            else
+                env LP_NUM_THREADS=0 "$out/$m-osmesa" --time "$frames" --size "$size" >"$out/$m.r$r.mesa.txt"
+            fi
+        done
+        a=$(sed -n 's/^ms per frame (median) //p' "$out/$m.r$r.modelc.txt")
+        b=$(sed -n 's/^ms per frame (median) //p' "$out/$m.r$r.mesa.txt")
+        c=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.r$r.mesa.txt")
+        d=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.r$r.modelc.txt")
+        echo "$a $b $c $d" >>"$out/$m.times"
+    done
+    echo "$m" >>"$out/rows.txt"
+done
+cmds+=("$out/NAME-frames --time $frames --size $size; env LP_NUM_THREADS=0 $out/NAME-osmesa --time $frames --size $size   # per round, alternately, $rounds rounds")
+load=$(cut -d' ' -f1-3 /proc/loadavg)
+renderer=$(sed -n 's/^renderer: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
+version=$(sed -n 's/^version: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
+cc_version=$(gcc --version | head -n1)
+python3 - "$out" "$rounds" "$frames" "$size" "$cg_frames" "$load" "$renderer" "$version" "$cc_version" \
+    "$runtime_from" "$rt_sha" >"$out/section.md" <<'PY'
+import re, statistics, sys
+out, rounds, frames, size, cg_frames, load, renderer, version, cc, rt_from, rt_sha = sys.argv[1:12]
+cg_frames = int(cg_frames)
+
+def netpbm(path):
+    data = open(path, "rb").read()
+    magic, dims, maxval, pixels = data.split(b"\n", 3)
+    w, h = map(int, dims.split())
+    return w, h, pixels
+
+def field(path, key):
+    return float(re.search(r"^" + re.escape(key) + r" ([\d.]+)$", open(path).read(), re.M).group(1))
+
+print("## Filled triangles: mc_mesh_render against Mesa llvmpipe\n")
+print("`tests/bench/mesh.sh`: each mesh baked by `modelc --as both` and drawn at its full level of detail, "
+      "flat-shaded, by modelc's `mc_mesh_render` (tests/bench/mesh_frames.c: `mc_clear` + `mc_mesh_render` per frame) "
+      f"and by Mesa's software OpenGL through OSMesa ({renderer}, {version}, `LP_NUM_THREADS=0`: one thread; "
+      "tests/bench/osmesa_mesh.c: the same triangles, three unshared vertices each with the palette colour "
+      "`mc_mesh_shade` gives the face, uploaded once into a vertex buffer; `glClear` + `glDrawArrays(GL_TRIANGLES)` + "
+      "`glFinish` per frame, depth test `GL_LESS` on a 16-bit depth buffer, no culling). The same view: orthographic, "
+      f"zoom 1, a full turn of yaw in {frames} frames at {size}. Per round, each side times the turn once, alternately "
+      f"(the order swapped every round), {rounds} rounds: wall-clock ms per frame, median over the frames of a run and "
+      "then over rounds; Mesa's process CPU time likewise; ratio = median over rounds of Mesa's wall ms / modelc's in "
+      f"the same round. gcc -O2 ({cc}); runtime from {rt_from}, copied to {out}/src/runtime (mesh_render.c, raster.c, xform_vertex.c, pmesh.c: "
+      f"sha256 {rt_sha}). Instructions: callgrind, `mc_mesh_render` only (with everything it calls), a turn of "
+      f"{cg_frames} frames; per face = per frame / faces of the level (every face, drawn or not). Pixels per frame: "
+      "the pixels modelc's drawn faces cover before the depth test (`mc_mesh_stats.pixels`, mean over the turn). "
+      "Coverage difference: the frontal frame's pixels covered by one renderer and not the other, as a share of those "
+      "covered by either (edge pixels: modelc projects to 1/16 pixel, llvmpipe to 1/256).\n")
+print("| mesh | faces | pixels per frame | modelc ms | Mesa wall ms | Mesa CPU ms | ratio | modelc Ir per frame | "
+      "Ir per face | coverage difference |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+per_round, colours, bad = [], [], []
+for m in open(f"{out}/rows.txt").read().split():
+    rows = [list(map(float, l.split())) for l in open(f"{out}/{m}.times")]
+    a = statistics.median(r[0] for r in rows)
+    b = statistics.median(r[1] for r in rows)
+    c = statistics.median(r[2] for r in rows)
+    ratio = statistics.median(r[1] / r[0] for r in rows)
+    faces = int(field(f"{out}/{m}.r1.modelc.txt", "triangles per frame"))
+    pixels = field(f"{out}/{m}.r1.modelc.txt", "pixels per frame")
+    refs = int(re.search(r"refs:\s+([\d,]+)", open(f"{out}/{m}.cg.log").read()).group(1).replace(",", ""))
+    cg_faces = field(f"{out}/{m}.cg.txt", "faces per frame")
+    ir_frame = refs / cg_frames
+    w, h, ma = netpbm(f"{out}/{m}.modelc.pgm")
+    w2, h2, mb = netpbm(f"{out}/{m}.mesa.pgm")
+    assert (w, h) == (w2, h2)
+    n = w * h
+    either = sum(1 for i in range(n) if ma[i] or mb[i])
+    only_a = sum(1 for i in range(n) if ma[i] and not mb[i])
+    only_b = sum(1 for i in range(n) if mb[i] and not ma[i])
+    diff = (only_a + only_b) / max(either, 1)
+    if diff > 0.01:
+        bad.append(m)
+    _, _, ca = netpbm(f"{out}/{m}.modelc.ppm")
+    _, _, cb = netpbm(f"{out}/{m}.mesa.ppm")
+    both = [i for i in range(n) if ma[i] and mb[i]]
+    cdiff = sum(1 for i in both if ca[3 * i:3 * i + 3] != cb[3 * i:3 * i + 3])
+    colours.append(f"{m} {cdiff} of {len(both):,} ({100 * cdiff / max(len(both), 1):.2f} %)")
+    print(f"| {m} | {faces:,} | {pixels:,.0f} | {a:.2f} | {b:.2f} | {c:.2f} | {ratio:.2f}x | {ir_frame / 1e6:.2f} M | "
+          f"{ir_frame / cg_faces:.0f} | {only_a + only_b} px of {either:,} ({100 * diff:.2f} %) |")
+    per_round.append(f"{m}: " + ", ".join(f"{r[0]:.2f} / {r[1]:.2f} / {r[2]:.2f}" for r in rows))
+print()
+print("Per round (modelc wall / Mesa wall / Mesa CPU ms per frame): " + "; ".join(per_round) + ".")
+print()
+print("Frontal frame, pixels both cover whose colour differs (a different face wins a pixel near an edge or where "
+      "depths tie): " + "; ".join(colours) + ".")
+print(f"Load average at the end: {load}.")
+if bad:
+    print(f"\n**Coverage masks differ by more than 1 % for: {', '.join(bad)}.**")
+    sys.stderr.write(f"mesh.sh: coverage masks differ by more than 1 % for {', '.join(bad)}\n")
+    open(f"{out}/FAILED", "w").write(" ".join(bad) + "\n")
+PY
+sed -i '/^<!-- mesh: begin -->$/,/^<!-- mesh: end -->$/d' "$results"
+{
+    echo "<!-- mesh: begin -->"
+    cat "$out/section.md"
+    echo
+    echo "Commands:"
+    echo
+    echo '```'
+    printf '%s\n' "${cmds[@]}"
+    echo '```'
+    echo "<!-- mesh: end -->"
+} >>"$results"
+cat "$out/section.md"
+if [ -f "$out/FAILED" ]; then rm -f "$out/FAILED"; exit 1; fi
