@@ -9,6 +9,7 @@
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
 #   make bench-mesh              filled triangles (mc_mesh_render) against Mesa llvmpipe on one thread
+#   make bench-silhouette        silhouette search: recall against work, against the exact scan
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -163,6 +164,12 @@ bench-pmesh: $(MODELC) models
 .PHONY: bench-mesh
 bench-mesh: $(MODELC) models
 	@tests/bench/mesh.sh
+
+# the probabilistic silhouette search against the exact scan: recall and instructions (a RESULTS.md
+# section and tests/bench/silhouette.png; make bench runs it too)
+.PHONY: bench-silhouette
+bench-silhouette: $(MODELC) models
+	@tests/bench/silhouette.sh
 
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models

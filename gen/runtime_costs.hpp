@@ -46,7 +46,8 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"raster", 2060, 2060, "filled triangles with a z-buffer (raster.c)"},
     {"line", 1236, 1236, "clipped lines with a depth test (line.c)"},
     {"mesh_render", 1036, 1036, "flat-shaded faces of the current level (mesh_render.c)"},
-    {"mesh_lines", 1872, 1872, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
+    {"mesh_lines", 1884, 1884, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
+    {"silhouette", 924, 924, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;

@@ -40,14 +40,18 @@ static int64_t area2(const mc_raster_vertex v[3])
     return (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (int64_t)(v[2].x - v[0].x) * (v[1].y - v[0].y);
 }
 
+int mc_mesh_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
+{
+    int32_t p[3][3];
+    mc_raster_vertex v[3];
+    return !mc_mesh_face(lod, x, f, p, v) && area2(v) < 0;
+}
+
 void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
 {
     for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
-    for (uint32_t f = 0; f < lod->faces; f++) {
-        int32_t p[3][3];
-        mc_raster_vertex v[3];
-        if (!mc_mesh_face(lod, x, f, p, v) && area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
-    }
+    for (uint32_t f = 0; f < lod->faces; f++)
+        if (mc_mesh_front(lod, x, f)) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
 }
 
 static int front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }

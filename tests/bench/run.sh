@@ -228,5 +228,7 @@ step "the progressive mesh against OpenMesh: section appended"
 tests/bench/pmesh.sh tests/bench/RESULTS.md >"$RES/pmesh.log"
 step "filled triangles against Mesa's llvmpipe: section appended"
 tests/bench/mesh.sh tests/bench/RESULTS.md >"$RES/mesh.log"
+step "silhouettes, searched against the exact scan: section appended"
+tests/bench/silhouette.sh tests/bench/RESULTS.md >"$RES/silhouette.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'

@@ -12,6 +12,8 @@
 #   - the line drawings: every edge's kind (silhouette, crease, border) as a double-precision
 #     classification of the level's faces gives it, and the lines drawn as those edges' lines;
 #   - every eighth checked level: each face's neighbours equal a search of the level's faces;
+#   - silhouettes (tests/gen/sil_check.c): the exact scan equals the line drawing's classification, the
+#     bounded search lists only silhouettes, each once, within its budget, the same on every run;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
 # output; --max-faces caps the finest level; a points-only bake is unchanged by the mesh code.
 #
@@ -52,6 +54,13 @@ bake_check() {
         notok "$label: the bake compiles with the runtime (-Wall -Wextra -Werror)" "$(head -n 3 "$tmp/$name.cc" | oneline)"
         return 1
     fi
+    if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
+        -o "$checker-sil" tests/gen/sil_check.c \
+        runtime/src/{silhouette,pmesh,mesh_render,mesh_lines,line,raster,xform,xform_vertex,target,fixed,trig,sintab}.c \
+        "$bake"/*.c -lm >"$tmp/$name.sil.cc" 2>&1; then
+        notok "$label: the silhouette checker compiles" "$(head -n 3 "$tmp/$name.sil.cc" | oneline)"
+        return 1
+    fi
     local r
     r=$("$checker" levels 2>&1)
     if [[ $r == ok:* ]]; then ok "$label: levels: ${r#ok: }"; else notok "$label: levels" "$r"; return 1; fi
@@ -79,6 +88,9 @@ renders() {
             else notok "$label: mc_mesh_lines, view ($view)" "${r#not ok: }"; fi
         done
     done
+    # silhouettes, exact and searched (sil_check.c check)
+    r=$("$checker-sil" check 160 120 2>&1)
+    if [[ $r == ok:* ]]; then ok "$label: silhouettes: ${r#ok: }"; else notok "$label: silhouettes" "${r#not ok: }"; fi
 }
 
 # same_as_openmesh LABEL FILE N [OPTIONS...]: level N of the bake equals OpenMesh's decimation to N

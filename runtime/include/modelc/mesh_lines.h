@@ -64,6 +64,9 @@ typedef struct mc_lines_stats {
     uint32_t pixels;        /* pixels of the drawn lines on the target, before the depth test */
 } mc_lines_stats;
 
+/* Whether face f (0 .. lod->faces-1) of the level is front-facing seen through x. */
+int mc_mesh_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f);
+
 /* Sets facing bit f (0 .. lod->faces-1) for every front-facing face of the level seen through x. */
 void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing);
 
