@@ -56,6 +56,19 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
     return level;
 }
 
+uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces)
+{
+    const mc_pmesh *pm = lod->pm;
+    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
+    while (lod->faces > max_faces && lod->level > pm->base_vertices) mc_pmesh_lod_set(lod, lod->level - 1u);
+    while (lod->level < pm->vertices) {
+        const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
+        if (lod->faces + r[ib] > max_faces) break;
+        mc_pmesh_lod_set(lod, lod->level + 1u);
+    }
+    return lod->level;
+}
+
 void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3])
 {
     const mc_pmesh *pm = lod->pm;

@@ -400,6 +400,35 @@ static void test_big_walk_wide(void **state)
 
 /* V0 = V: no splits, the splits list only its sentinel; every level clamps to V, every vertex is a
  * root standing for itself */
+/* mc_pmesh_lod_fit from random levels to random face budgets: the level is the reference's finest
+ * with at most that many faces (F(level) grows with the level), the base when none fits, and the
+ * state is what mc_pmesh_lod_set makes there */
+static void test_fit(void **state)
+{
+    (void)state;
+    mc_rng r;
+    mc_rng_seed(&r, 7, 3);
+    for (int k = 0; k < 30; k++) {
+        mesh m;
+        const uint32_t V = 2 + mc_rng_below(&r, 300), V0 = 1 + mc_rng_below(&r, V / 2);
+        mesh_build(&m, &r, V, V0, mc_rng_below(&r, 10), k % 2 ? 4 : 2, (unsigned)k % 4, (unsigned)k % 9);
+        void *anc = xmalloc(MC_PMESH_LOD_BYTES(V, m.ib));
+        mc_pmesh_lod lod;
+        mc_pmesh_lod_init(&lod, &m.pm, anc);
+        for (int step = 0; step < 200; step++) {
+            mc_pmesh_lod_set(&lod, m.V0 + mc_rng_below(&r, m.V - m.V0 + 1));
+            const uint32_t budget = mc_rng_below(&r, m.F + 3);
+            uint32_t want = m.V0;
+            for (uint32_t n = m.V0; n <= m.V; n++)
+                if (m.faces_at[n - m.V0] <= budget) want = n;
+            assert_int_equal(mc_pmesh_lod_fit(&lod, budget), want);
+            check_state(&m, &lod, want, 0);
+        }
+        free(anc);
+        mesh_free(&m);
+    }
+}
+
 static void test_no_splits(void **state)
 {
     (void)state;
@@ -490,6 +519,7 @@ int main(void)
         cmocka_unit_test(test_small_random_walks),
         cmocka_unit_test(test_big_walk),
         cmocka_unit_test(test_big_walk_wide),
+        cmocka_unit_test(test_fit),
         cmocka_unit_test(test_no_splits),
         cmocka_unit_test(test_one_root),
         cmocka_unit_test(test_wide_indices),

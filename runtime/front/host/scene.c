@@ -1,7 +1,11 @@
 /* The host viewer's scene: see scene.h. */
+#define _POSIX_C_SOURCE 200809L
 #include "scene.h"
 
+#include <math.h>
 #include <string.h>
+
+#include "timing.h"
 
 static const char *const names[] = {"points", "shaded", "lines", "shaded+lines"};
 
@@ -34,6 +38,12 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
     return mode == MC_HOST_POINTS || mc_host_scene_has_mesh(s) ? 0 : -1;
 }
 
+void mc_host_scene_auto(mc_host_scene *s, double target_ms)
+{
+    s->target_ms = mc_host_scene_has_mesh(s) ? target_ms : 0;
+    s->face_budget = s->lod.faces;
+}
+
 int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_abort_fn abort, const mc_target *t,
                        uint32_t *drawn)
 {
@@ -47,7 +57,16 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
         return rc;
     }
     mc_front_mesh_stats st;
+    const double t0 = mc_host_now_ms();
+    if (s->target_ms > 0) mc_pmesh_lod_fit(&s->lod, (uint32_t)s->face_budget);
     int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, v, (mc_front_style)s->mode, t, &st);
+    if (s->target_ms > 0) {
+        const double ms = mc_host_now_ms() - t0;
+        double k = ms > 0 ? sqrt(s->target_ms / ms) : 2;
+        k = k > 2 ? 2 : k < 0.5 ? 0.5 : k;
+        const double lo = s->lod.pm->base_faces, hi = s->lod.pm->faces;
+        s->face_budget = s->face_budget * k < lo ? lo : s->face_budget * k > hi ? hi : s->face_budget * k;
+    }
     *drawn = st.faces.drawn;
     return rc;
 }

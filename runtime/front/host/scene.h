@@ -7,6 +7,11 @@
  * scene's current level of detail; mc_host_scene_palette is the palette its pixels index. The mesh
  * modes need a bake with a mesh part (--as both); the level-of-detail state lives in the app
  * binding's static memory (app.h).
+ *
+ * Automatic level of detail (mesh modes, target_ms > 0): before each frame the level is set to the
+ * finest with at most face_budget faces (mc_pmesh_lod_fit: the same level on every machine for the
+ * same budget), and after it the budget is scaled by the square root of target / measured time
+ * (at most a factor of 2 either way), so the frame time settles on the target whatever the view.
  */
 #ifndef MODELC_HOST_SCENE_H
 #define MODELC_HOST_SCENE_H
@@ -29,6 +34,8 @@ typedef struct mc_host_scene {
     mc_octree_options opt;   /* points */
     mc_fill fill;            /* points */
     mc_pmesh_lod lod;        /* the mesh part's level of detail (when the model has one) */
+    double target_ms;        /* > 0: automatic level of detail for this frame time */
+    double face_budget;      /* its current budget of faces */
 } mc_host_scene;
 
 /* "points", "shaded", "lines", "shaded+lines" -> mode; returns -1 for anything else. */
@@ -39,6 +46,9 @@ const char *mc_host_mode_name(mc_host_mode mode);
  * mesh part the model lacks. */
 int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, const mc_octree_options *opt,
                        mc_fill fill);
+
+/* Turns the automatic level of detail on (target_ms > 0) or off, from the current level's faces. */
+void mc_host_scene_auto(mc_host_scene *s, double target_ms);
 
 /* Whether the model has a mesh part. */
 int mc_host_scene_has_mesh(const mc_host_scene *s);

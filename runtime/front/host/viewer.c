@@ -56,8 +56,9 @@ static void usage(FILE *f)
             "  --mode MODE     points (the octree), or the mesh part (bakes --as both): shaded, lines\n"
             "                  (silhouettes, creases, borders; hidden lines removed) or shaded+lines\n"
             "                  (default points)\n"
-            "  --lod N         the mesh's level of detail: N vertices, from its base to its full count\n"
-            "                  (default full)\n"
+            "  --lod N|auto    the mesh's level of detail: N vertices, from its base to its full count, or\n"
+            "                  auto: the finest that keeps frames at --target-ms (default full)\n"
+            "  --target-ms T   the frame time --lod auto holds (default 16.7)\n"
             "  --help          this text\n"
             "With no output option and stdout a terminal, runs interactively: arrow keys rotate, + and -\n"
             "zoom, m changes the mode, [ and ] the mesh's level of detail, q quits.\n",
@@ -99,8 +100,11 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
         ms[i] = mc_host_now_ms() - t0;
         drawn += n;
     }
+    int in = 0, settled = 0;   /* frames the automatic level of detail held within 10 %, after 20 */
+    for (int i = 20; i < frames; i++, settled++) in += fabs(ms[i] - s->target_ms) <= 0.1 * s->target_ms;
     double median = mc_host_median(ms, (size_t)frames);
     double mean = (double)drawn / frames;
+    if (s->target_ms > 0) printf("target %.3f ms: %d of %d frames after the first 20 within 10 %%\n", s->target_ms, in, settled);
     const char *what = s->mode == MC_HOST_POINTS ? "points" : "faces";
     if (s->mode == MC_HOST_POINTS)
         printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, depth, t->width, t->height,
@@ -147,6 +151,7 @@ int main(int argc, char **argv)
     mc_octree_options opt = {MC_SPLAT_DEFAULT};
     mc_host_mode mode = MC_HOST_POINTS;
     const char *lod_arg = NULL;
+    double target_ms = 1000.0 / 60;
     long frames = 0;
     static const struct option opts[] = {
         {"png", required_argument, 0, 'P'}, {"ppm", required_argument, 0, 'M'},
@@ -157,7 +162,7 @@ int main(int argc, char **argv)
         {"perspective", no_argument, 0, 'e'}, {"checksums", no_argument, 0, 'c'},
         {"help", no_argument, 0, 'h'}, {"fill", required_argument, 0, 'f'},
         {"splat", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'm'},
-        {"lod", required_argument, 0, 'l'}, {0, 0, 0, 0}};
+        {"lod", required_argument, 0, 'l'}, {"target-ms", required_argument, 0, 't'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -201,6 +206,9 @@ int main(int argc, char **argv)
             if (mc_host_mode_parse(optarg, &mode)) return die("--mode expects points, shaded, lines or shaded+lines", optarg);
             break;
         case 'l': lod_arg = optarg; break;
+        case 't':
+            if (parse_double(optarg, 0.01, 10000, &target_ms)) return die("--target-ms expects 0.01..10000 ms", optarg);
+            break;
         case 'h': usage(stdout); return 0;
         default: return die("unknown option (see --help)", argv[optind - 1]);
         }
@@ -212,9 +220,10 @@ int main(int argc, char **argv)
     if (lod_arg) {
         if (!mc_host_scene_has_mesh(&scene)) return die("--lod needs a mesh part (bake with modelc --as both)", lod_arg);
         const mc_pmesh *pm = model->pmesh;
-        if (parse_double(lod_arg, pm->base_vertices, pm->vertices, &dv) || dv != (uint32_t)dv)
-            return die("--lod expects a vertex count from the mesh's base to its full count", lod_arg);
-        mc_pmesh_lod_set(&scene.lod, (uint32_t)dv);
+        if (!strcmp(lod_arg, "auto")) mc_host_scene_auto(&scene, target_ms);
+        else if (parse_double(lod_arg, pm->base_vertices, pm->vertices, &dv) || dv != (uint32_t)dv)
+            return die("--lod expects auto or a vertex count from the mesh's base to its full count", lod_arg);
+        else mc_pmesh_lod_set(&scene.lod, (uint32_t)dv);
     }
 
     if (check && !sized) {

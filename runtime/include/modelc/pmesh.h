@@ -94,6 +94,11 @@ void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc);
 /* Refines or coarsens to level (clamped to V0 .. V); returns the level set. */
 uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level);
 
+/* The finest level with at most max_faces faces (the base level when even it has more): a work
+ * budget for the frame, in faces, that gives the same level on every machine. Moves one split at a
+ * time from the current level, so the work is the change, as mc_pmesh_lod_set. Returns the level. */
+uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces);
+
 /* The vertex present at the current level that vertex v (0 .. V-1) stands for. */
 static inline uint32_t mc_pmesh_lod_vertex(const mc_pmesh_lod *lod, uint32_t v)
 {
