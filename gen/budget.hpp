@@ -32,7 +32,8 @@ struct Budget {
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
     size_t pmesh_facing = 0;                     // the line drawings' facing bits (mesh_lines.h)
-    size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing; }
+    size_t pmesh_cache = 0;                      // the vertex projection cache (mesh_render.h)
+    size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache; }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
     size_t stack = 0;                            // bound for mc_octree_render at the model's depth
 };
@@ -47,6 +48,7 @@ struct BakeSize {
     int leaf_switch = 1;                         // the MC_LEAF_SWITCH the runtime is built with
     size_t pmesh = 0, pmesh_lod = 0;             // the mesh part: its arrays, its state's RAM (0: none)
     size_t pmesh_facing = 0;                     // and its line drawings' facing bits
+    size_t pmesh_cache = 0;                      // and its vertex projection cache
 };
 
 Budget budget_of(const BakeSize &s);

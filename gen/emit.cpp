@@ -1,6 +1,7 @@
 // Emission: see emit.hpp.
 #include "emit.hpp"
 #include "runtime_costs.hpp"
+#include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
 
 #include <mstch/mstch.hpp>
 #include <nlohmann/json.hpp>
@@ -230,6 +231,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
         s.pmesh = p.pm_data;
         s.pmesh_lod = opt.pmesh->vertices() * p.index_bytes;
         s.pmesh_facing = (opt.pmesh->faces.size() + 7) / 8;   // MC_MESH_FACING_BYTES
+        s.pmesh_cache = opt.pmesh->vertices() * sizeof(mc_xvertex);   // MC_MESH_CACHE_BYTES
     }
     return budget_of(s);
 }
@@ -461,6 +463,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"line_bytes_per_face", double(plan.pm_line_data) / double(pm.faces.size())},
             {"lod_ram", bud.pmesh_lod},
             {"facing_ram", bud.pmesh_facing},
+            {"cache_ram", bud.pmesh_cache},
             {"closed", pm.closed()},
             {"input",
              {{"faces_with_a_repeated_corner", pm.dropped_faces},
@@ -470,6 +473,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         budget["flash"]["pmesh"] = plan.pm_data;
         budget["ram"]["pmesh_lod"] = bud.pmesh_lod;
         budget["ram"]["pmesh_facing"] = bud.pmesh_facing;
+        budget["ram"]["pmesh_cache"] = bud.pmesh_cache;
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);

@@ -1,4 +1,9 @@
-/* Flat-shaded progressive meshes: see modelc/mesh_render.h. */
+/* Flat-shaded progressive meshes: see modelc/mesh_render.h.
+ *
+ * Per face: its corners (the level's ancestors of the stored ones), their projections (from the
+ * frame's vertex cache, or projected here), then a test as cheap as raster.c's first ones (a back
+ * face when culling, no pixel centre in the bounding box): only a face that may cover a pixel has its
+ * shade worked out and goes to the rasterizer. */
 #include "modelc/mesh_render.h"
 
 /* ((2j - 1) / 62)^2 in Q30, j = 1 .. 31: |n.z| / |n| at least (j - 1/2) / 31 means shade j or more */
@@ -9,30 +14,46 @@ static const uint32_t shade_limit[MC_MESH_SHADES - 1] = {
     907540891, 972345289, 1039384320,
 };
 
-static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
+/* |v|, without a branch (a normal's signs are a coin toss to a predictor) */
+static uint64_t mag(int64_t v)
+{
+    const uint64_t neg = 0u - ((uint64_t)v >> 63);   /* all ones for v < 0 */
+    return ((uint64_t)v ^ neg) - neg;
+}
 
 unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3])
 {
-    int64_t a[3], b[3], n[3];
-    for (int i = 0; i < 3; i++) a[i] = (int64_t)p1[i] - p0[i], b[i] = (int64_t)p2[i] - p0[i];
-    n[0] = a[1] * b[2] - a[2] * b[1];   /* |a|, |b| < 2^17 a component: |n| < 2^35 */
-    n[1] = a[2] * b[0] - a[0] * b[2];
-    n[2] = a[0] * b[1] - a[1] * b[0];
-    uint64_t m = mag(n[0]) | mag(n[1]) | mag(n[2]);
+    const int64_t a0 = (int64_t)p1[0] - p0[0], a1 = (int64_t)p1[1] - p0[1], a2 = (int64_t)p1[2] - p0[2];
+    const int64_t b0 = (int64_t)p2[0] - p0[0], b1 = (int64_t)p2[1] - p0[1], b2 = (int64_t)p2[2] - p0[2];
+    /* |a|, |b| < 2^17 a component: |n| < 2^35 */
+    const uint64_t m0 = mag(a1 * b2 - a2 * b1), m1 = mag(a2 * b0 - a0 * b2), m2 = mag(a0 * b1 - a1 * b0);
+    const uint64_t m = m0 | m1 | m2;
     if (m == 0) return MC_MESH_SHADES / 2;
-    int s = 0;
-    while ((m >> s) >= ((uint64_t)1 << 15)) s++;
-    /* components below 2^15 after the shift: squares below 2^30, so the products below stay in 64 bits */
-    int64_t x = n[0] / ((int64_t)1 << s), y = n[1] / ((int64_t)1 << s), z = n[2] / ((int64_t)1 << s);
-    uint64_t len2 = (uint64_t)(x * x + y * y + z * z), z2 = (uint64_t)(z * z) << 30;
+    /* the normal's 15 leading bits: each component divided by 2^s toward zero, s the smallest shift
+     * that leaves every one below 2^15; only their squares count, so only their magnitudes */
+    const uint32_t top = (uint32_t)(m >> 15);
+    const unsigned s = top ? 32u - mc_clz32(top) : 0u;
+    const uint64_t x = m0 >> s, y = m1 >> s, z = m2 >> s;
+    /* squares below 2^30, so the products below stay in 64 bits */
+    const uint64_t len2 = x * x + y * y + z * z, z2 = z * z << 30;
     if (len2 == 0) return MC_MESH_SHADES / 2;
-    unsigned lo = 0, hi = MC_MESH_SHADES - 1;   /* the number of limits z2 / len2 reaches */
-    while (lo < hi) {
-        unsigned mid = (lo + hi + 1) / 2;
-        if (z2 >= (uint64_t)shade_limit[mid - 1] * len2) lo = mid;
-        else hi = mid - 1;
-    }
-    return lo;
+    /* the number of limits z2 / len2 reaches: a binary search over the 31, without branches */
+    unsigned k = 0;
+    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 15] * len2) << 4;
+    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 7] * len2) << 3;
+    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 3] * len2) << 2;
+    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 1] * len2) << 1;
+    k += (unsigned)(z2 >= (uint64_t)shade_limit[k] * len2);
+    return k;
+}
+
+/* Vertex v's position, as mc_pmesh_position (inlined: the loop below needs it per face) */
+MC_ALWAYS_INLINE void position(const mc_pmesh *pm, uint32_t v, int32_t p[3])
+{
+    const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, v);
+    p[0] = (int32_t)mc_le16(r) - 32768;
+    p[1] = (int32_t)mc_le16(r + 2) - 32768;
+    p[2] = (int32_t)mc_le16(r + 4) - 32768;
 }
 
 uint32_t mc_mesh_face(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, int32_t p[3][3], mc_raster_vertex v[3])
@@ -49,25 +70,96 @@ uint32_t mc_mesh_face(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, in
     return out;
 }
 
+/* floor(v / 16) + 2^22 for |v| < 2^26, shifting nothing negative: two compare as their floor(v / 16) */
+MC_ALWAYS_INLINE uint32_t cell16(int32_t v) { return (uint32_t)(v + ((int32_t)1 << 26)) >> 4; }
+
+/* 0 when mc_raster_triangle would certainly draw nothing (raster.c's first tests): no pixel centre
+ * c = 16 i + 8 in the bounding box as the top-left rule counts them, xmin <= c < xmax and
+ * ymin <= c < ymax, i.e. all corners with the same floor((x - 9) / 16), or all with the same
+ * floor((y - 9) / 16); when culling (cull: MC_RASTER_CULL_BACK or 0), a back face or zero area.
+ * Faces off the target are left to the rasterizer (few, and its own test finds them). The corners
+ * come from mc_xform_vertex, inside its band: |x|, |y| <= 2^21. */
+MC_ALWAYS_INLINE int may_cover(const mc_raster_vertex v[3], unsigned cull)
+{
+    const uint32_t cx0 = cell16(v[0].x - 9), cx1 = cell16(v[1].x - 9), cx2 = cell16(v[2].x - 9);
+    const uint32_t cy0 = cell16(v[0].y - 9), cy1 = cell16(v[1].y - 9), cy2 = cell16(v[2].y - 9);
+    if (((cx0 ^ cx1) | (cx0 ^ cx2)) == 0 || ((cy0 ^ cy1) | (cy0 ^ cy2)) == 0) return 0;
+    if (!cull) return 1;
+    const int64_t area = (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (int64_t)(v[2].x - v[0].x) * (v[1].y - v[0].y);
+    return area < 0;
+}
+
+/* Projects every vertex present at the level into cache[v]. */
+static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
+{
+    const mc_pmesh *pm = lod->pm;
+    const uint16_t *anc16 = (const uint16_t *)lod->anc;   /* mc_pmesh_lod_vertex, hoisted */
+    const uint32_t *anc32 = (const uint32_t *)lod->anc;
+    const int wide = pm->index_bytes != 2;
+    const uint32_t n = pm->vertices;
+    for (uint32_t v = 0; v < n; v++) {
+        if ((wide ? anc32[v] : anc16[v]) != v) continue;
+        int32_t p[3];
+        position(pm, v, p);
+        mc_xform_vertex(x, p, &cache[v]);
+    }
+}
+
 int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
-                   mc_mesh_stats *stats)
+                   mc_xvertex *cache, mc_mesh_stats *stats)
 {
     mc_mesh_stats st;   /* field by field: an aggregate initialiser becomes a memset call at -O0 */
     st.faces = st.drawn = st.skipped = st.pixels = 0;
     if (!lod || !lod->pm || !view || !t || !t->color || !t->depth) return MC_ERR_ARG;
     if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
+    const mc_pmesh *pm = lod->pm;
     mc_xform x;
     mc_xform_init(&x, view, t->width, t->height);
     const unsigned rflags = (flags & MC_MESH_CULL_BACK) ? MC_RASTER_CULL_BACK : 0u;
-    st.faces = lod->faces;
-    for (uint32_t f = 0; f < lod->faces; f++) {
-        int32_t p[3][3];
-        mc_raster_vertex v[3];
-        if (mc_mesh_face(lod, &x, f, p, v)) { st.skipped++; continue; }
-        const unsigned color = (flags & MC_MESH_DRAW_PAPER) ? MC_MESH_PAPER : mc_mesh_shade(p[0], p[1], p[2]);
-        uint32_t covered = mc_raster_triangle(t, v, (uint8_t)color, rflags);
-        st.drawn += covered > 0;
-        st.pixels += covered;
+    const int paper = (flags & MC_MESH_DRAW_PAPER) != 0;
+    if (cache) project_level(lod, &x, cache);
+    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
+    const uint32_t faces = lod->faces, chunk = UINT32_C(1) << shift;
+    st.faces = faces;
+    /* the faces chunk by chunk, each a run of 2^shift records (the last maybe fewer) */
+    for (uint32_t f0 = 0; f0 < faces; f0 += chunk) {
+        const uint8_t *r = pm->corners[f0 >> shift].data;
+        const uint32_t end = faces - f0 < chunk ? faces - f0 : chunk;
+        for (uint32_t i = 0; i < end; i++, r += 3u * ib) {
+            uint32_t c[3];
+            if (ib == 2) {
+                const uint16_t *anc = (const uint16_t *)lod->anc;
+                c[0] = anc[mc_le16(r)], c[1] = anc[mc_le16(r + 2)], c[2] = anc[mc_le16(r + 4)];
+            } else {
+                const uint32_t *anc = (const uint32_t *)lod->anc;
+                c[0] = anc[mc_le32(r)], c[1] = anc[mc_le32(r + 4)], c[2] = anc[mc_le32(r + 8)];
+            }
+            int32_t p[3][3];
+            mc_raster_vertex v[3];
+            uint32_t out = 0;
+            if (cache) {
+                const mc_xvertex *a = &cache[c[0]], *b = &cache[c[1]], *d = &cache[c[2]];
+                out = a->flags | b->flags | d->flags;
+                v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
+                v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
+                v[2].x = d->x, v[2].y = d->y, v[2].z = d->z;
+            } else {
+                for (int k = 0; k < 3; k++) {
+                    mc_xvertex xv;
+                    position(pm, c[k], p[k]);
+                    mc_xform_vertex(&x, p[k], &xv);
+                    out |= xv.flags;
+                    v[k].x = xv.x, v[k].y = xv.y, v[k].z = xv.z;
+                }
+            }
+            if (out) { st.skipped++; continue; }
+            if (!may_cover(v, rflags)) continue;
+            if (cache && !paper) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
+            const unsigned color = paper ? MC_MESH_PAPER : mc_mesh_shade(p[0], p[1], p[2]);
+            const uint32_t covered = mc_raster_triangle(t, v, (uint8_t)color, rflags);
+            st.drawn += covered > 0;
+            st.pixels += covered;
+        }
     }
     if (stats) *stats = st;
     return MC_OK;

@@ -1,10 +1,9 @@
 /* Filled, flat-shaded triangles with a depth test: see modelc/raster.h.
  *
- * Cheap tests come first, in the order they reject on a dense mesh: the bounding box's pixel
- * centres on the target (exact in the 1/16 pixel coordinates: a centre on the box's right or bottom
- * side, or on its top side when that is not a horizontal edge, is never covered under the top-left
- * rule), then zero area and culling from the signed area. Only a triangle that can still cover a
- * pixel is set up.
+ * Cheap tests come first, in the order they reject on a dense mesh: pixel centres in the bounding
+ * box, on the target (exact in the 1/16 pixel coordinates, and as the top-left rule counts them: a
+ * centre on the box's right or bottom side is never covered), then zero area and culling from the
+ * signed area. Only a triangle that can still cover a pixel is set up.
  *
  * The triangle is put in one orientation (edge functions positive inside). A small one (a few
  * centres in its box, and a box small enough that its edge functions fit 32 bits) tests each centre
@@ -61,19 +60,15 @@ static uint32_t divlu(uint32_t u1, uint32_t u0, uint32_t v, uint32_t *rem)
     return q1 * b + q0;
 }
 
-/* n / d and n % d, d > 0, with 32-bit divisions only (the compilers' 64-bit division is a library
- * call on 32-bit targets): d below 2^32 by one or two divlu digits, else by Hacker's Delight's
- * divDU (a divlu by d's leading 32 bits, then one correction) */
-static uint64_t udiv64(uint64_t n, uint64_t d, uint64_t *rem)
+/* n / d and n % d, d > 0, one of them at least 2^32, with 32-bit divisions only (the compilers'
+ * 64-bit division is a library call on 32-bit targets): d below 2^32 by one or two divlu digits,
+ * else by Hacker's Delight's divDU (a divlu by d's leading 32 bits, then one correction) */
+static uint64_t udiv64_wide(uint64_t n, uint64_t d, uint64_t *rem)
 {
     const uint32_t nh = (uint32_t)(n >> 32), nl = (uint32_t)n;
+    uint32_t r;
     if ((d >> 32) == 0) {
         const uint32_t d32 = (uint32_t)d;
-        uint32_t r;
-        if (nh == 0) {
-            *rem = nl % d32;
-            return nl / d32;
-        }
         if (nh < d32) {
             const uint32_t q = divlu(nh, nl, d32, &r);
             *rem = r;
@@ -86,7 +81,6 @@ static uint64_t udiv64(uint64_t n, uint64_t d, uint64_t *rem)
     const unsigned s = mc_clz32((uint32_t)(d >> 32));   /* 0 .. 31 */
     const uint32_t v1 = (uint32_t)((d << s) >> 32);      /* d's leading 32 bits, top bit set */
     const uint64_t u1 = n >> 1;                          /* u1 / 2^32 < 2^31 <= v1 */
-    uint32_t r;
     uint64_t q = ((uint64_t)divlu((uint32_t)(u1 >> 32), (uint32_t)u1, v1, &r) << s) >> 31;
     if (q != 0) q--;
     uint64_t left = n - q * d;   /* q is now the quotient or one less */
@@ -95,8 +89,18 @@ static uint64_t udiv64(uint64_t n, uint64_t d, uint64_t *rem)
     return q;
 }
 
+/* n / d and n % d, d > 0: one 32-bit division when both fit 32 bits */
+MC_ALWAYS_INLINE uint64_t udiv64(uint64_t n, uint64_t d, uint64_t *rem)
+{
+    if (((n | d) >> 32) == 0) {
+        *rem = (uint32_t)n % (uint32_t)d;
+        return (uint32_t)n / (uint32_t)d;
+    }
+    return udiv64_wide(n, d, rem);
+}
+
 /* floor(n / d) and the remainder 0 <= rem < d, d > 0 */
-static int64_t floor_div(int64_t n, uint64_t d, uint64_t *rem)
+MC_ALWAYS_INLINE int64_t floor_div(int64_t n, uint64_t d, uint64_t *rem)
 {
     uint64_t r, q;
     if (n >= 0) {
@@ -118,51 +122,106 @@ static int64_t round_div(int64_t n, uint64_t d)
 }
 
 /* floor(v / 16) for |v| < 2^26, without shifting a negative number (implementation-defined in C99) */
-static int32_t floor16(int32_t v)
+MC_ALWAYS_INLINE int32_t floor16(int32_t v)
 {
     return (int32_t)((uint32_t)(v + ((int32_t)1 << 26)) >> 4) - ((int32_t)1 << 22);
 }
 
 /* the int64_t whose two's complement is u (a cast would be implementation-defined above INT64_MAX) */
-static int64_t to_signed(uint64_t u)
+MC_ALWAYS_INLINE int64_t to_signed(uint64_t u)
 {
     return u <= (uint64_t)INT64_MAX ? (int64_t)u : -(int64_t)~u - 1;
 }
 
-/* The triangle, oriented so that every edge function is positive inside, and its depth plane:
- * z(p) = z0 + (pa (px - x0) + pb (py - y0)) / area, |pa|, |pb| < 2^40. */
+/* The triangle: its corners in the orientation in which every edge function is positive inside,
+ * and its depth plane, z(p) = z0 + (pa (px - x0) + pb (py - y0)) / area, |pa|, |pb| < 2^40, set up
+ * at the first covered pixel (plane_first). The plane is the same in either orientation (swapping
+ * two corners negates pa, pb and the signed area), so it is taken from the corners as given. */
 typedef struct tri {
-    int32_t x[3], y[3];
-    uint32_t z[3], zmin, zmax;
-    uint64_t area;         /* twice the area, 1/256 pixel^2, below 2^46 */
+    const mc_raster_vertex *v;   /* the corners as given */
+    int64_t sarea;               /* twice their signed area, 1/256 pixel^2, 0 < |sarea| < 2^46 */
+    int32_t x[3], y[3];          /* oriented */
+    uint32_t zmin, zmax;
+    uint64_t area;               /* |sarea| */
     int64_t pa, pb;
 } tri;
 
-/* The plane at pixel (i, j) with FRAC fraction bits, plus 1/2 for rounding: its exact value rounded
- * to nearest, a value in [zmin, zmax] when the centre is in the triangle (|s| < 2^62 there). */
-static uint64_t plane_at(const tri *g, int32_t i, int32_t j)
+/* floor(m 2^k / d) and the remainder, for 0 < d < 2^31: long division by digits of as many bits as
+ * d leaves free in 32 (at least one), each one 32-bit division; a small triangle (d below 2^14, a
+ * few pixels) needs one digit for k up to 18 */
+static uint64_t div_shl(uint32_t m, unsigned k, uint32_t d, uint32_t *rem)
 {
-    const uint64_t s = (uint64_t)g->pa * (uint64_t)(int64_t)(16 * i + 8 - g->x[0]) +
-                       (uint64_t)g->pb * (uint64_t)(int64_t)(16 * j + 8 - g->y[0]);
+    uint64_t q = m / d;
+    uint32_t r = m % d;
+    const unsigned b = mc_clz32(d);
+    while (k) {
+        const unsigned s = k < b ? k : b;
+        r <<= s;   /* r < d < 2^(32 - b) */
+        q = q << s | r / d;
+        r %= d;
+        k -= s;
+    }
+    *rem = r;
+    return q;
+}
+
+/* n 2^k / d rounded to nearest, halves up (as round_div), for |n| < 2^32, 0 < d < 2^31, modulo 2^64 */
+static uint64_t round_shl(int64_t n, unsigned k, uint32_t d)
+{
+    uint32_t r;
+    const uint64_t q = div_shl((uint32_t)(n < 0 ? -n : n), k, d, &r);   /* |n| 2^k = q d + r */
+    /* n >= 0: q, and 1 more when r / d >= 1/2; n < 0: -q, and 1 less when r / d > 1/2 */
+    return n >= 0 ? q + ((uint64_t)r * 2u >= d) : 0u - q - ((uint64_t)r * 2u > d);
+}
+
+/* Sets up the plane and returns its value at pixel (i, j), a covered centre, with FRAC fraction
+ * bits, plus 1/2 for rounding: the exact value rounded to nearest, in [zmin, zmax] (so |s| < 2^62:
+ * s / area is z - z0 there, |z - z0| < 2^16). */
+static uint64_t plane_first(tri *g, int32_t i, int32_t j)
+{
+    const mc_raster_vertex *v = g->v;
+    const uint32_t z0 = v[0].z > ZMAX ? ZMAX : v[0].z, z1 = v[1].z > ZMAX ? ZMAX : v[1].z;
+    const uint32_t z2 = v[2].z > ZMAX ? ZMAX : v[2].z;
+    uint32_t zmin = z0 < z1 ? z0 : z1, zmax = z0 > z1 ? z0 : z1;
+    g->zmin = z2 < zmin ? z2 : zmin;
+    g->zmax = z2 > zmax ? z2 : zmax;
+    const int64_t dx1 = v[1].x - v[0].x, dy1 = v[1].y - v[0].y, dx2 = v[2].x - v[0].x, dy2 = v[2].y - v[0].y;
+    const int64_t dz1 = (int64_t)z1 - z0, dz2 = (int64_t)z2 - z0;
+    int64_t pa = dz1 * dy2 - dz2 * dy1, pb = dx1 * dz2 - dx2 * dz1;
+    uint64_t area = (uint64_t)g->sarea;
+    if (g->sarea < 0) {
+        pa = -pa, pb = -pb;
+        area = 0u - area;
+    }
+    g->pa = pa, g->pb = pb, g->area = area;
+    const uint64_t s = (uint64_t)pa * (uint64_t)(int64_t)(16 * i + 8 - v[0].x) +
+                       (uint64_t)pb * (uint64_t)(int64_t)(16 * j + 8 - v[0].y);
+    const uint64_t top = ((uint64_t)z0 << FRAC) + ((uint64_t)1 << (FRAC - 1));
+    /* the value is z0 + s / area: its fraction rounded is round(s 2^FRAC / area) - z0 2^FRAC */
+    if (area < ((uint64_t)1 << 16))   /* |s| < 2^16 area < 2^32 */
+        return top + round_shl(to_signed(s), FRAC, (uint32_t)area);
     uint64_t rz, rf;
-    const int64_t qz = floor_div(to_signed(s), g->area, &rz);
+    const int64_t qz = floor_div(to_signed(s), area, &rz);
     /* rz < area <= 2^46, so rz 2^FRAC fits */
-    uint64_t frac = udiv64(rz << FRAC, g->area, &rf);
-    frac += rf >= g->area - rf;
-    return ((uint64_t)((int64_t)g->z[0] + qz) << FRAC) + frac + ((uint64_t)1 << (FRAC - 1));
+    uint64_t frac = udiv64(rz << FRAC, area, &rf);
+    frac += rf >= area - rf;
+    return top + ((uint64_t)qz << FRAC) + frac;
 }
 
 /* the plane's step per pixel for coefficient p (pa across, pb down), FRAC fraction bits, rounded to
  * nearest (|16 p 2^FRAC| < 2^62), modulo 2^64 */
 static uint64_t plane_step(const tri *g, int64_t p)
 {
-    return (uint64_t)round_div(p * ((int64_t)1 << (FRAC + MC_RASTER_SUBPIXEL_BITS)), g->area);
+    const unsigned k = FRAC + MC_RASTER_SUBPIXEL_BITS;
+    if (g->area < ((uint64_t)1 << 31) && p < ((int64_t)1 << 32) && p > -((int64_t)1 << 32))
+        return round_shl(p, k, (uint32_t)g->area);
+    return (uint64_t)round_div(p * ((int64_t)1 << k), g->area);
 }
 
 /* Writes pixels first .. last of a row whose first pixel has plane value acc (stepped by gx), with
  * the depth test. */
-static void span(const tri *g, uint8_t *crow, uint16_t *drow, uint32_t first, uint32_t last, uint64_t acc,
-                 uint64_t gx, uint8_t color)
+MC_ALWAYS_INLINE void span(const tri *g, uint8_t *crow, uint16_t *drow, uint32_t first, uint32_t last,
+                           uint64_t acc, uint64_t gx, uint8_t color)
 {
     const uint32_t zmin = g->zmin, zmax = g->zmax;
     for (uint32_t i = first; i <= last; i++, acc += gx) {
@@ -187,63 +246,78 @@ typedef struct edge {
 
 /* The small path: every centre of the box i0 .. i1, j0 .. j1 tested on its own. Depth: the value at
  * the first covered pixel (fi, fj), and at (i, j) that plus (i - fi) gx + (j - fj) gy modulo 2^64,
- * the same sum the row path steps to; gx and gy are divided out only when a pixel needs them. */
-static uint32_t draw_small(const mc_target *t, const tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
-                           uint8_t color)
+ * the same sum the row path steps to; gx and gy are divided out only when a pixel needs them (a
+ * one-pixel triangle needs neither). */
+MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
+                                     uint8_t color)
 {
-    /* E_k(p) = dx (py - ay) - dy (px - ax) - bias, covered where all three are >= 0: bias 0 for a
-     * left edge (dy < 0) or a top edge (dy = 0, dx > 0), whose centres are covered, else 1 */
-    int32_t e[3], cx[3], cy[3];
-    const int32_t px0 = 16 * i0 + 8, py0 = 16 * j0 + 8;
-    for (int k = 0; k < 3; k++) {
-        const int a = k, b = k == 2 ? 0 : k + 1;
-        const int32_t dx = g->x[b] - g->x[a], dy = g->y[b] - g->y[a];
-        const int32_t bias = dy > 0 || (dy == 0 && dx < 0);
-        e[k] = dx * (py0 - g->y[a]) - dy * (px0 - g->x[a]) - bias;
-        cx[k] = -16 * dy;
-        cy[k] = 16 * dx;
-    }
+    /* E_k(p) = dx (py - ay) - dy (px - ax) - bias for edge a -> b, covered where all three are
+     * >= 0: bias 0 for a left edge (dy < 0) or a top edge (dy = 0, dx > 0), whose centres are
+     * covered, else 1; that is, 0 where dy 2^13 - dx < 0 (|dx| < 2^12: the sign is dy's, or -dx's
+     * for dy = 0; never both 0). */
+    const int32_t x0 = g->x[0], y0 = g->y[0], x1 = g->x[1], y1 = g->y[1], x2 = g->x[2], y2 = g->y[2];
+    const int32_t px = 16 * i0 + 8, py = 16 * j0 + 8;
+    const int32_t dx0 = x1 - x0, dy0 = y1 - y0, dx1 = x2 - x1, dy1 = y2 - y1, dx2 = x0 - x2, dy2 = y0 - y2;
+    int32_t e0 = dx0 * (py - y0) - dy0 * (px - x0) - (int32_t)(~(uint32_t)(dy0 * 8192 - dx0) >> 31);
+    int32_t e1 = dx1 * (py - y1) - dy1 * (px - x1) - (int32_t)(~(uint32_t)(dy1 * 8192 - dx1) >> 31);
+    int32_t e2 = dx2 * (py - y2) - dy2 * (px - x2) - (int32_t)(~(uint32_t)(dy2 * 8192 - dx2) >> 31);
     const uint32_t width = t->width;
-    uint8_t *crow = t->color + (uint32_t)j0 * width;
-    uint16_t *drow = t->depth + (uint32_t)j0 * width;
+    const uint32_t at = (uint32_t)j0 * width;
+    if (i0 == i1 && j0 == j1) {   /* one centre: most triangles of a dense mesh */
+        if ((e0 | e1 | e2) < 0) return 0;
+        span(g, t->color + at, t->depth + at, (uint32_t)i0, (uint32_t)i0, plane_first(g, i0, j0), 0, color);
+        return 1;
+    }
+    const int32_t cx0 = -16 * dy0, cx1 = -16 * dy1, cx2 = -16 * dy2;   /* per column */
+    uint8_t *crow = t->color + at;
+    uint16_t *drow = t->depth + at;
     uint32_t count = 0;
     int32_t fi = 0, fj = -1;   /* fj < 0: no pixel covered yet */
     uint64_t base = 0, gx = 0, gy = 0;
     int have_gx = 0, have_gy = 0;
-    for (int32_t j = j0; j <= j1; j++, crow += width, drow += width) {
-        int32_t r0 = e[0], r1 = e[1], r2 = e[2], i = i0;
-        e[0] += cy[0], e[1] += cy[1], e[2] += cy[2];
-        while ((r0 | r1 | r2) < 0) {
-            if (++i > i1) break;
-            r0 += cx[0], r1 += cx[1], r2 += cx[2];
+    for (int32_t j = j0;;) {
+        int32_t r0 = e0, r1 = e1, r2 = e2, i = i0;
+        while ((r0 | r1 | r2) < 0 && i < i1) {
+            i++;
+            r0 += cx0, r1 += cx1, r2 += cx2;
         }
-        if (i > i1) continue;
-        const int32_t lo = i;   /* the row's covered centres are one run (the triangle is convex) */
-        do {
-            ++i;
-            r0 += cx[0], r1 += cx[1], r2 += cx[2];
-        } while (i <= i1 && (r0 | r1 | r2) >= 0);
-        const int32_t hi = i - 1;
-        if (fj < 0) {
-            base = plane_at(g, lo, j);
-            fi = lo;
-            fj = j;
+        if ((r0 | r1 | r2) >= 0) {
+            const int32_t lo = i;   /* the row's covered centres are one run (the triangle is convex) */
+            do {
+                i++;
+                r0 += cx0, r1 += cx1, r2 += cx2;
+            } while (i <= i1 && (r0 | r1 | r2) >= 0);
+            const int32_t hi = i - 1;
+            uint64_t acc;
+            if (fj < 0) {
+                acc = base = plane_first(g, lo, j);
+                fi = lo;
+                fj = j;
+            } else {
+                acc = base;
+                if (j != fj) {
+                    if (!have_gy) gy = plane_step(g, g->pb), have_gy = 1;
+                    acc += (uint64_t)(int64_t)(j - fj) * gy;
+                }
+            }
+            if ((lo != fi || hi != lo) && !have_gx) gx = plane_step(g, g->pa), have_gx = 1;
+            acc += (uint64_t)(int64_t)(lo - fi) * gx;
+            span(g, crow, drow, (uint32_t)lo, (uint32_t)hi, acc, gx, color);
+            count += (uint32_t)(hi - lo) + 1u;
         }
-        uint64_t acc = base;
-        if (j != fj) {
-            if (!have_gy) gy = plane_step(g, g->pb), have_gy = 1;
-            acc += (uint64_t)(int64_t)(j - fj) * gy;
-        }
-        if ((lo != fi || hi != lo) && !have_gx) gx = plane_step(g, g->pa), have_gx = 1;
-        acc += (uint64_t)(int64_t)(lo - fi) * gx;
-        span(g, crow, drow, (uint32_t)lo, (uint32_t)hi, acc, gx, color);
-        count += (uint32_t)(hi - lo) + 1u;
+        if (++j > j1) break;
+        e0 += 16 * dx0, e1 += 16 * dx1, e2 += 16 * dx2;
+        crow += width, drow += width;
     }
     return count;
 }
 
-/* The row path: spans from the edges' bounds, stepped from row to row. */
-static uint32_t draw_rows(const mc_target *t, const tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
+/* The row path: spans from the edges' bounds, stepped from row to row. Not inlined: the small
+ * path, most triangles of a dense mesh, keeps its registers. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static uint32_t draw_rows(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
                           uint8_t color)
 {
     /* Edge a -> b, E(p) = dx (py - ay) - dy (px - ax), positive inside. At a centre px = 16 i + 8 on
@@ -302,9 +376,10 @@ static uint32_t draw_rows(const mc_target *t, const tri *g, int32_t i0, int32_t 
         if (lo <= hi) {
             const uint32_t first = (uint32_t)lo, last = (uint32_t)hi;
             if (!have_plane) {
+                row = plane_first(g, (int32_t)first, j);
                 gx = plane_step(g, g->pa);
                 gy = plane_step(g, g->pb);
-                row = plane_at(g, (int32_t)first, j) - first * gx;
+                row -= first * gx;
                 have_plane = 1;
             }
             span(g, crow, drow, first, last, row + first * gx, gx, color);
@@ -317,69 +392,41 @@ static uint32_t draw_rows(const mc_target *t, const tri *g, int32_t i0, int32_t 
 
 uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags)
 {
-    tri g;
-    for (int k = 0; k < 3; k++) {
-        /* |x|, |y| <= MC_RASTER_COORD_LIMIT, one unsigned compare each */
-        if ((uint32_t)v[k].x + (uint32_t)MC_RASTER_COORD_LIMIT > 2u * (uint32_t)MC_RASTER_COORD_LIMIT ||
-            (uint32_t)v[k].y + (uint32_t)MC_RASTER_COORD_LIMIT > 2u * (uint32_t)MC_RASTER_COORD_LIMIT)
-            return 0;
-        g.x[k] = v[k].x;
-        g.y[k] = v[k].y;
-    }
-    const int32_t *x = g.x, *y = g.y;
+    const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
+    const int32_t xmin = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
+    const int32_t xmax = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
+    const int32_t ymin = y0 < y1 ? (y0 < y2 ? y0 : y2) : (y1 < y2 ? y1 : y2);
+    const int32_t ymax = y0 > y1 ? (y0 > y2 ? y0 : y2) : (y1 > y2 ? y1 : y2);
+    if (xmin < -MC_RASTER_COORD_LIMIT || xmax > MC_RASTER_COORD_LIMIT || ymin < -MC_RASTER_COORD_LIMIT ||
+        ymax > MC_RASTER_COORD_LIMIT)
+        return 0;
     /* The centres (16 i + 8, 16 j + 8) that can be covered lie in the bounding box, and not on its
-     * right or bottom side: a centre there is on the rightmost (lowest) corner, whose incoming edge
-     * (in the orientation below) is a right edge, or on a vertical right edge (a horizontal bottom
-     * edge). Nor on its top side, unless that is a horizontal edge (two corners at ymin): else a
-     * centre there is on the top corner, whose outgoing edge is a right edge. So columns have
-     * xmin <= 16 i + 8 < xmax, rows ymin <= 16 j + 8 < ymax, and ymin < 16 j + 8 without a flat
-     * top. */
-    int32_t xmin = x[0], xmax = x[0], ymin = y[0], ymax = y[0];
-    if (x[1] < xmin) xmin = x[1];
-    if (x[1] > xmax) xmax = x[1];
-    if (x[2] < xmin) xmin = x[2];
-    if (x[2] > xmax) xmax = x[2];
-    if (y[1] < ymin) ymin = y[1];
-    if (y[1] > ymax) ymax = y[1];
-    if (y[2] < ymin) ymin = y[2];
-    if (y[2] > ymax) ymax = y[2];
-    const int flat_top = (y[0] == ymin) + (y[1] == ymin) + (y[2] == ymin) == 2;
-    int32_t j0 = floor16(ymin + 8 - flat_top), j1 = floor16(ymax - 9);
+     * right or bottom side: a centre there lies on a vertical right edge or a horizontal bottom edge,
+     * or on the rightmost or lowest corner, which has a right edge through it (in the orientation
+     * below, going down to it or down from it). So xmin <= 16 i + 8 < xmax and
+     * ymin <= 16 j + 8 < ymax, on the target. The row path relies on the rows: it leaves horizontal
+     * edges to them. */
+    int32_t j0 = floor16(ymin + 7), j1 = floor16(ymax - 9);
     int32_t i0 = floor16(xmin + 7), i1 = floor16(xmax - 9);
-    const int32_t width = t->width, height = t->height;
     if (j0 < 0) j0 = 0;
     if (i0 < 0) i0 = 0;
-    if (j1 > height - 1) j1 = height - 1;
-    if (i1 > width - 1) i1 = width - 1;
+    if (j1 > (int32_t)t->height - 1) j1 = (int32_t)t->height - 1;
+    if (i1 > (int32_t)t->width - 1) i1 = (int32_t)t->width - 1;
     if (j0 > j1 || i0 > i1) return 0;   /* also an empty target */
 
     /* twice the signed area; below 2^46 in magnitude: a triangle fills at most half its 2^23-sided box */
-    int64_t area = (int64_t)(x[1] - x[0]) * (y[2] - y[0]) - (int64_t)(x[2] - x[0]) * (y[1] - y[0]);
+    const int64_t area = (int64_t)(x1 - x0) * (y2 - y0) - (int64_t)(x2 - x0) * (y1 - y0);
     if (area == 0) return 0;
-    const int back = area > 0;
-    if (back && (flags & MC_RASTER_CULL_BACK)) return 0;
-
-    g.z[0] = v[0].z > ZMAX ? ZMAX : v[0].z;
-    g.z[1] = v[1].z > ZMAX ? ZMAX : v[1].z;
-    g.z[2] = v[2].z > ZMAX ? ZMAX : v[2].z;
-    if (!back) {
-        /* front face: swap two corners so that every edge function is positive inside */
-        int32_t s = g.x[1]; g.x[1] = g.x[2]; g.x[2] = s;
-        s = g.y[1]; g.y[1] = g.y[2]; g.y[2] = s;
-        const uint32_t u = g.z[1]; g.z[1] = g.z[2]; g.z[2] = u;
-        area = -area;
+    tri g;
+    g.v = v;
+    g.sarea = area;
+    g.x[0] = x0, g.y[0] = y0;
+    if (area > 0) {   /* a back face: edge functions positive inside as given */
+        if (flags & MC_RASTER_CULL_BACK) return 0;
+        g.x[1] = x1, g.y[1] = y1, g.x[2] = x2, g.y[2] = y2;
+    } else {          /* a front face: two corners swapped */
+        g.x[1] = x2, g.y[1] = y2, g.x[2] = x1, g.y[2] = y1;
     }
-    g.area = (uint64_t)area;
-    g.zmin = g.zmax = g.z[0];
-    for (int k = 1; k < 3; k++) {
-        if (g.z[k] < g.zmin) g.zmin = g.z[k];
-        if (g.z[k] > g.zmax) g.zmax = g.z[k];
-    }
-    const int64_t dx1 = x[1] - x[0], dy1 = y[1] - y[0], dx2 = x[2] - x[0], dy2 = y[2] - y[0];
-    const int64_t dz1 = (int64_t)g.z[1] - g.z[0], dz2 = (int64_t)g.z[2] - g.z[0];
-    g.pa = dz1 * dy2 - dz2 * dy1;
-    g.pb = dx1 * dz2 - dx2 * dz1;
-
     if (xmax - xmin < SMALL_SIDE && ymax - ymin < SMALL_SIDE && (i1 - i0 + 1) * (j1 - j0 + 1) <= SMALL_CENTRES)
         return draw_small(t, &g, i0, i1, j0, j1, color);
     return draw_rows(t, &g, i0, i1, j0, j1, color);

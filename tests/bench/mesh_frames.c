@@ -17,7 +17,9 @@
  *       the frame at yaw U (angle units, default 0 = frontal) as a binary PPM through mc_target_rgb
  *       with the mesh's palette and a white background; --mask FILE its coverage as a binary PGM
  *       (255 where the depth is not MC_DEPTH_EMPTY). Either may be given alone, and with --time.
- * --cull: MC_MESH_CULL_BACK. Sizes up to 1024x1024 (static buffers). Default size 320x240.
+ * --cull: MC_MESH_CULL_BACK. --no-cache: mc_mesh_render without its vertex cache (each face projects
+ * its corners; the same images), else with a static one. Sizes up to 1024x1024 (static buffers).
+ * Default size 320x240.
  */
 /* -include NAME.h comes first: build with -D_POSIX_C_SOURCE=200809L for time.h's clocks */
 #ifndef _POSIX_C_SOURCE
@@ -39,6 +41,7 @@ extern const mc_pmesh PM;
 static uint8_t color[MAX_SIDE * MAX_SIDE];
 static uint16_t depth[MAX_SIDE * MAX_SIDE];
 static uint32_t anc[1u << 22];   /* the ancestor map: V entries of up to 4 bytes */
+static mc_xvertex vcache[1u << 22];   /* mc_mesh_render's vertex cache: MC_MESH_CACHE_BYTES(V) */
 
 static mc_view frame_view(int32_t yaw)
 {
@@ -74,7 +77,7 @@ static int write_image(const char *path, const mc_target *t, int mask)
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--cull]\n");
+                    "[--yaw U] [--size WxH] [--cull] [--no-cache]\n");
     return 2;
 }
 
@@ -84,9 +87,11 @@ int main(int argc, char **argv)
     unsigned flags = 0;
     long yaw = 0;
     const char *ppm = NULL, *mask = NULL;
+    mc_xvertex *cache = vcache;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--cull")) { flags |= MC_MESH_CULL_BACK; continue; }
+        if (!strcmp(a, "--no-cache")) { cache = NULL; continue; }
         if (i + 1 >= argc) return usage();
         const char *v = argv[++i];
         if (!strcmp(a, "--time")) time_n = atoi(v);
@@ -102,7 +107,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "mesh_frames: size %dx%d beyond 1..%d\n", w, h, MAX_SIDE);
         return 2;
     }
-    if (PM.vertices > sizeof anc / sizeof anc[0]) return 2;
+    if (PM.vertices > sizeof anc / sizeof anc[0] || MC_MESH_CACHE_BYTES(PM.vertices) > sizeof vcache) return 2;
 
     mc_pmesh_lod lod;
     mc_pmesh_lod_init(&lod, &PM, anc);
@@ -114,7 +119,7 @@ int main(int argc, char **argv)
         for (int i = 0; i < frames_n; i++) {
             const mc_view v = frame_view(turn_yaw(i, frames_n));
             mc_clear(&t);
-            if (mc_mesh_render(&lod, &v, flags, &t, &st) != MC_OK) return 1;
+            if (mc_mesh_render(&lod, &v, flags, &t, cache, &st) != MC_OK) return 1;
         }
         printf("frames %d\n", frames_n);
         printf("faces per frame %u\n", (unsigned)lod.faces);
@@ -125,14 +130,14 @@ int main(int argc, char **argv)
         {   /* warm up: touch the buffers and the mesh once */
             const mc_view v = frame_view(0);
             mc_clear(&t);
-            mc_mesh_render(&lod, &v, flags, &t, &st);
+            mc_mesh_render(&lod, &v, flags, &t, cache, &st);
         }
         double pixels = 0, drawn = 0;
         for (int i = 0; i < time_n; i++) {
             const mc_view v = frame_view(turn_yaw(i, time_n));
             const double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
             mc_clear(&t);
-            const int rc = mc_mesh_render(&lod, &v, flags, &t, &st);
+            const int rc = mc_mesh_render(&lod, &v, flags, &t, cache, &st);
             ms[i] = mc_host_now_ms() - t0;
             cpu[i] = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
             if (rc != MC_OK) return 1;
@@ -151,7 +156,7 @@ int main(int argc, char **argv)
     if (ppm || mask) {
         const mc_view v = frame_view((int32_t)yaw);
         mc_clear(&t);
-        if (mc_mesh_render(&lod, &v, flags, &t, &st) != MC_OK) return 1;
+        if (mc_mesh_render(&lod, &v, flags, &t, cache, &st) != MC_OK) return 1;
         long covered = 0;
         for (uint32_t i = 0; i < (uint32_t)w * h; i++) covered += depth[i] != MC_DEPTH_EMPTY;
         printf("image yaw %ld: faces %u drawn %u skipped %u pixels %u covered %ld\n", yaw, (unsigned)st.faces,

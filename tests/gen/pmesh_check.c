@@ -79,7 +79,26 @@ static int render_check(mc_pmesh_lod *lod, char **a)
     mc_target t = {cmem + G, dmem + G, (uint16_t)w, (uint16_t)h};
     mc_clear(&t);
     mc_mesh_stats st;
-    int rc = mc_mesh_render(lod, &v, cull ? MC_MESH_CULL_BACK : 0u, &t, &st);
+    int rc = mc_mesh_render(lod, &v, cull ? MC_MESH_CULL_BACK : 0u, &t, NULL, &st);
+    {   /* with a vertex cache (filled with junk first): the same bytes, stats and return (mesh_render.h) */
+        mc_xvertex *vc = malloc(MC_MESH_CACHE_BYTES(PM.vertices));
+        uint8_t *cc = malloc(px);
+        uint16_t *dc = malloc(2 * px);
+        if (!vc || !cc || !dc) return 2;
+        memset(vc, 0xA5, MC_MESH_CACHE_BYTES(PM.vertices));
+        mc_target tc = {cc, dc, (uint16_t)w, (uint16_t)h};
+        mc_mesh_stats sc;
+        mc_clear(&tc);
+        const int rcc = mc_mesh_render(lod, &v, cull ? MC_MESH_CULL_BACK : 0u, &tc, vc, &sc);
+        if (rcc != rc || memcmp(&sc, &st, sizeof st) || memcmp(cc, t.color, px) || memcmp(dc, t.depth, 2 * px)) {
+            printf("not ok: level %u: with a vertex cache mc_mesh_render returns %d (%d without), draws %u faces "
+                   "(%u), %u pixels (%u), skips %u (%u), %s colours, %s depths\n", n, rcc, rc, sc.drawn, st.drawn,
+                   sc.pixels, st.pixels, sc.skipped, st.skipped, memcmp(cc, t.color, px) ? "other" : "the same",
+                   memcmp(dc, t.depth, 2 * px) ? "other" : "the same");
+            return 1;
+        }
+        free(vc), free(cc), free(dc);
+    }
     /* the reference */
     for (size_t i = 0; i < px; i++) d1[i] = d2[i] = HUGE_VAL, best_shade[i] = 0, best_amb[i] = 0;
     mc_xform x;
@@ -321,7 +340,7 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
     mc_clear(&t);
     mc_clear(&t2);
     mc_mesh_lines(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &t, facing, &st);
-    mc_mesh_render(lod, &v, MC_MESH_DRAW_PAPER, &t2, NULL);
+    mc_mesh_render(lod, &v, MC_MESH_DRAW_PAPER, &t2, NULL, NULL);
     mc_mesh_lines(lod, &v, MC_LINES_ALL, &t2, facing, &st2);
     if (!bad && (st.edges != edges || st.silhouettes != count[MC_EDGE_SILHOUETTE] || st.creases != count[MC_EDGE_CREASE] ||
                  st.borders != count[MC_EDGE_BORDER] || st2.pixels != st.pixels))

@@ -10,6 +10,8 @@
  *   - tilings: random triangulations of a rectangle, corners in random order, cover each pixel
  *     centre of the half-open rectangle once and nothing else; fans around a vertex (on a pixel
  *     centre, spokes along the axes and diagonals) cover each centre inside the fan once;
+ *   - triangles of a few pixels with every corner on or beside a pixel centre or edge, partly
+ *     off the target: the bounding-box tests that reject a triangle before any setup;
  *   - back-face culling by the sign rule; the depth test (strictly nearer wins, equal keeps);
  *   - coordinates at +-2^22 accepted, one beyond rejected; degenerate triangles draw nothing;
  *   - every target sits in a larger array whose margins must stay untouched (checked after
@@ -389,6 +391,36 @@ static void test_tiling_fans(void **state)
     gt_free(&g);
 }
 
+/* Triangles of a few pixels with every corner on, or one subpixel beside, a pixel centre or a pixel
+ * edge: the bounding-box tests that reject a triangle before any setup (no centre in its box that
+ * the top-left rule can let it cover: corners and horizontal edges exactly on centres), against the
+ * reference; partly off the target on each side, culled and not. */
+static void test_small_boxes(void **state)
+{
+    (void)state;
+    static const int32_t c[] = {7, 8, 9, 15, 16, 17, 23, 24, 25, 40};
+    enum { N = sizeof c / sizeof c[0], P = N * N };
+    gtarget g = gt_new(2, 2);
+    mc_rng r;
+    mc_rng_seed(&r, 61, 3);
+    unsigned long drawn = 0;
+    for (int a = 0; a < P; a++)
+        for (int b = a + 1; b < P; b++)
+            for (int k = b + 1; k < P; k++) {
+                /* shifted a pixel left, up, both or not: the target clips each side */
+                const int32_t ox = (a + b + k) % 2 ? -16 : 0, oy = (a + b + k) % 4 >= 2 ? -16 : 0;
+                const mc_raster_vertex v[3] = {{c[a % N] + ox, c[a / N] + oy, 100 + mc_rng_below(&r, 400)},
+                                               {c[b % N] + ox, c[b / N] + oy, 100 + mc_rng_below(&r, 400)},
+                                               {c[k % N] + ox, c[k / N] + oy, 100 + mc_rng_below(&r, 400)}};
+                check_against_ref(&g, v, (a ^ b ^ k) & 1 ? MC_RASTER_CULL_BACK : 0u);
+                for (unsigned i = 0; i < g.n; i++) drawn += g.t.depth[i] != MC_DEPTH_EMPTY;
+                const mc_raster_vertex u[3] = {v[0], v[2], v[1]};   /* the other orientation */
+                check_against_ref(&g, u, 0);
+            }
+    assert_true(drawn > 1000);
+    gt_free(&g);
+}
+
 static void test_culling(void **state)
 {
     (void)state;
@@ -528,6 +560,7 @@ int main(void)
         cmocka_unit_test(test_random_1x65535),
         cmocka_unit_test(test_tiling_rectangles),
         cmocka_unit_test(test_tiling_fans),
+        cmocka_unit_test(test_small_boxes),
         cmocka_unit_test(test_culling),
         cmocka_unit_test(test_depth_test),
         cmocka_unit_test(test_limits),

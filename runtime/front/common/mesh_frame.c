@@ -3,8 +3,8 @@
 
 #include <modelc/finish.h>   /* MC_DEPTH_FILLED */
 
-int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, const mc_view *view, mc_front_style style,
-                        const mc_target *t, mc_front_mesh_stats *stats)
+int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache, const mc_view *view,
+                        mc_front_style style, const mc_target *t, mc_front_mesh_stats *stats)
 {
     mc_front_mesh_stats st;
     st.faces.faces = st.faces.drawn = st.faces.skipped = st.faces.pixels = 0;
@@ -13,7 +13,7 @@ int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, const mc_view 
     if (!lod || !lod->pm || !t) return MC_ERR_ARG;
     const unsigned cull = lod->pm->closed ? MC_MESH_CULL_BACK : 0u;
     mc_clear(t);
-    int rc = mc_mesh_render(lod, view, cull | (style == MC_FRONT_LINES ? MC_MESH_DRAW_PAPER : 0u), t, &st.faces);
+    int rc = mc_mesh_render(lod, view, cull | (style == MC_FRONT_LINES ? MC_MESH_DRAW_PAPER : 0u), t, cache, &st.faces);
     if (rc == MC_OK && style != MC_FRONT_SHADED) rc = mc_mesh_lines(lod, view, MC_LINES_ALL, t, facing, &st.lines);
     if (rc == MC_OK && style == MC_FRONT_LINES) {
         const uint32_t n = (uint32_t)t->width * t->height;

@@ -8,7 +8,8 @@
  *                 MC_MESH_PAPER, depth MC_DEPTH_FILLED), so the drawing is on white;
  *   shaded+lines  the shaded faces, then the lines over them.
  * Back faces are culled when the part is closed (pmesh.h closed: they are hidden anyway).
- * facing: MC_MESH_FACING_BYTES of the part's faces (the app binding's). Freestanding, no heap.
+ * facing: MC_MESH_FACING_BYTES of the part's faces; cache: null or MC_MESH_CACHE_BYTES of its
+ * vertices (mesh_render.h; the same frame either way); both the app binding's. Freestanding, no heap.
  */
 #ifndef MODELC_FRONT_MESH_FRAME_H
 #define MODELC_FRONT_MESH_FRAME_H
@@ -28,7 +29,7 @@ typedef struct mc_front_mesh_stats {
 } mc_front_mesh_stats;
 
 /* Returns MC_OK or the first renderer error. stats may be null. */
-int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, const mc_view *view, mc_front_style style,
-                        const mc_target *t, mc_front_mesh_stats *stats);
+int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache, const mc_view *view,
+                        mc_front_style style, const mc_target *t, mc_front_mesh_stats *stats);
 
 #endif

@@ -59,7 +59,7 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     mc_front_mesh_stats st;
     const double t0 = mc_host_now_ms();
     if (s->target_ms > 0) mc_pmesh_lod_fit(&s->lod, (uint32_t)s->face_budget);
-    int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, v, (mc_front_style)s->mode, t, &st);
+    int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, v, (mc_front_style)s->mode, t, &st);
     if (s->target_ms > 0) {
         const double ms = mc_host_now_ms() - t0;
         double k = ms > 0 ? sqrt(s->target_ms / ms) : 2;

@@ -11,6 +11,7 @@
 
 #include <stdint.h>
 #include "model.h"
+#include "xform.h"
 
 typedef struct mc_app {
     const mc_model *model;
@@ -19,6 +20,7 @@ typedef struct mc_app {
     uint16_t max_width, max_height;
     void *pmesh_anc;       /* the mesh part's ancestor map (pmesh.h mc_pmesh_lod_init), or NULL */
     uint8_t *pmesh_facing; /* its line drawings' facing bits (mesh_lines.h), or NULL */
+    mc_xvertex *pmesh_cache; /* its vertex projection cache (mesh_render.h), or NULL */
 } mc_app;
 
 extern const mc_app mc_app_model;

@@ -10,6 +10,15 @@
  * viewer are not drawn (for closed meshes, whose back faces are always hidden). With
  * MC_MESH_DRAW_PAPER every face is drawn in MC_MESH_PAPER: the hidden surface of a line drawing.
  *
+ * Vertex cache: with a cache (the caller's memory, MC_MESH_CACHE_BYTES of the part's V vertices),
+ * every vertex present at the level (mc_pmesh_lod_vertex(lod, v) == v) is projected once per call,
+ * into cache[v], and each face takes its corners' projections from there; without one (null) each
+ * face projects its three corners itself, so a vertex is projected once for every face around it
+ * (about six times on a closed mesh). The target, the stats and the return value are the same
+ * bytes either way. The cache is V mc_xvertex of RAM, and each call scans the V entries of the
+ * ancestor map for the present vertices: it saves work unless the level keeps fewer than about a
+ * fiftieth of the part's vertices (bunny00's 37706: level 800).
+ *
  * Shade: as the point renderer's baked colours of uncoloured models (gen/light.hpp), a frontal light
  * fixed to the model: intensity (3 + 17 |n.z| / |n|) / 20 for the face's normal n in the model's frame
  * (+y up, +z towards the viewer at the default view), so the light turns with the model. The face
@@ -45,11 +54,18 @@ typedef struct mc_mesh_stats {
     uint32_t pixels;    /* pixels the drawn faces covered, before the depth test */
 } mc_mesh_stats;
 
-/* Draws lod's current level seen through view into t. Returns MC_OK, MC_ERR_ARG for a null
- * argument, MC_ERR_SIZE for a target side over MC_TARGET_MAX (then writes nothing). stats may be
- * null. */
+/* Bytes of vertex cache mc_mesh_render takes for a part of `vertices` vertices (pmesh.h V): one
+ * mc_xvertex each, aligned as an mc_xvertex. */
+#define MC_MESH_CACHE_BYTES(vertices) ((uint32_t)(vertices) * (uint32_t)sizeof(mc_xvertex))
+
+/* Draws lod's current level seen through view into t. cache: null, or MC_MESH_CACHE_BYTES of the
+ * part's vertices, the caller's scratch memory: what it holds on entry does not matter; after MC_OK,
+ * cache[v] is mc_xform_vertex's projection of each vertex v present at the level (the other entries
+ * are left as they were). Returns MC_OK, MC_ERR_ARG for a null argument other than cache and stats,
+ * MC_ERR_SIZE for a target side over MC_TARGET_MAX (then writes nothing, not even to cache). stats
+ * may be null. */
 int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
-                   mc_mesh_stats *stats);
+                   mc_xvertex *cache, mc_mesh_stats *stats);
 
 /* Face f of lod's current level as mc_mesh_render draws it: its corners' unit-cube positions p (Q16,
  * pmesh.h) and their projections through x in v; returns its corners' MC_XFORM_* flags, or-ed (not
