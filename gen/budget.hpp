@@ -31,7 +31,7 @@ struct Budget {
     size_t data() const { return masks + colors + palette + pmesh; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
-    size_t pmesh_facing = 0;                     // the line drawings' facing bits (mesh_lines.h)
+    size_t pmesh_facing = 0;                     // the line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES)
     size_t pmesh_cache = 0;                      // the vertex projection cache (mesh_render.h)
     size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache; }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }

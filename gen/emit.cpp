@@ -230,7 +230,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
     if (opt.pmesh) {
         s.pmesh = p.pm_data;
         s.pmesh_lod = opt.pmesh->vertices() * p.index_bytes;
-        s.pmesh_facing = (opt.pmesh->faces.size() + 7) / 8;   // MC_MESH_FACING_BYTES
+        s.pmesh_facing = 4 + (opt.pmesh->faces.size() + 7) / 8 + (opt.pmesh->faces.size() + 1) / 2;   // MC_MESH_LINES_BYTES
         s.pmesh_cache = opt.pmesh->vertices() * sizeof(mc_xvertex);   // MC_MESH_CACHE_BYTES
     }
     return budget_of(s);

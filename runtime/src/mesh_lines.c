@@ -90,36 +90,101 @@ static uint64_t slope_offset(const mc_raster_vertex v[3])
     return (g << MC_XFORM_SUBPIXEL_BITS) / mag(a) + 1u;
 }
 
-int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *facing,
-                  mc_lines_stats *stats)
+/* The corners of face f as projected for this frame: from the cache when there is one (its entries
+ * for present vertices are this frame's, mesh_lines.h), else projected now. Returns their flags. */
+static uint32_t corners(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint32_t f,
+                        mc_raster_vertex v[3])
+{
+    if (!cache) {
+        int32_t p[3][3];
+        return mc_mesh_face(lod, x, f, p, v);
+    }
+    uint32_t c[3], out = 0;
+    mc_pmesh_lod_face(lod, f, c);
+    for (int k = 0; k < 3; k++) {
+        const mc_xvertex *e = &cache[c[k]];
+        v[k].x = e->x, v[k].y = e->y, v[k].z = e->z;
+        out |= e->flags;
+    }
+    return out;
+}
+
+/* The memory's parts (mesh_lines.h MC_MESH_LINES_BYTES): the level the crease bits are for, plus
+ * one (0: none yet); the facing bits; four bits a face, bit k set when edge k is a crease. */
+static uint32_t *crease_tag(uint8_t *mem) { return (uint32_t *)(void *)mem; }
+static uint8_t *facing_of(uint8_t *mem) { return mem + 4; }
+static uint8_t *creases_of(uint8_t *mem, uint32_t faces) { return mem + 4 + MC_MESH_FACING_BYTES(faces); }
+
+static void set_crease(uint8_t *cr, uint32_t h)
+{
+    const uint32_t f = MC_HALF_FACE(h);
+    cr[f >> 1] |= (uint8_t)((1u << MC_HALF_EDGE_INDEX(h)) << ((f & 1u) * 4u));
+}
+
+static int is_crease(const uint8_t *cr, uint32_t h)
+{
+    const uint32_t f = MC_HALF_FACE(h);
+    return (cr[f >> 1] >> ((f & 1u) * 4u + MC_HALF_EDGE_INDEX(h))) & 1u;
+}
+
+/* The crease bits of the level (a function of the level alone: recomputed only when it changed). */
+static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
+{
+    const mc_pmesh *pm = lod->pm;
+    if (*crease_tag(mem) == lod->level + 1u) return;
+    uint8_t *cr = creases_of(mem, pm->faces);
+    for (uint32_t i = 0; i < (pm->faces + 1u) / 2u; i++) cr[i] = 0;
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        int32_t a[3][3];
+        face_positions(lod, f, a);
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
+            if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < f) continue;
+            int32_t b[3][3];
+            face_positions(lod, MC_HALF_FACE(o), b);
+            if (mc_mesh_crease((const int32_t(*)[3])a, (const int32_t(*)[3])b, pm->crease_cos))
+                set_crease(cr, h), set_crease(cr, o);
+        }
+    }
+    *crease_tag(mem) = lod->level + 1u;
+}
+
+int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
+                  const mc_xvertex *cache, mc_lines_stats *stats)
 {
     mc_lines_stats st;   /* field by field: an aggregate initialiser becomes a memset call at -O0 */
     st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = 0;
-    if (!lod || !lod->pm || !view || !t || !t->color || !t->depth || !facing) return MC_ERR_ARG;
+    if (!lod || !lod->pm || !view || !t || !t->color || !t->depth || !mem) return MC_ERR_ARG;
     if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
     mc_xform_init(&x, view, t->width, t->height);
-    mc_mesh_facing(lod, &x, facing);
+    uint8_t *facing = facing_of(mem);
+    const uint8_t *cr = creases_of(mem, lod->pm->faces);
+    update_creases(lod, mem);
+    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        mc_raster_vertex v[3];
+        if (!corners(lod, &x, cache, f, v) && area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
+    }
     for (uint32_t f = 0; f < lod->faces; f++)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
             if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
-            const unsigned kind = mc_mesh_edge_kind(lod, facing, h, o);
+            const unsigned kind = o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
+                                  : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE
+                                  : is_crease(cr, h)                                  ? MC_EDGE_CREASE
+                                                                                      : MC_EDGE_PLAIN;
             st.edges++;
             st.silhouettes += kind == MC_EDGE_SILHOUETTE;
             st.creases += kind == MC_EDGE_CREASE;
             st.borders += kind == MC_EDGE_BORDER;
             if (!(kind & flags)) continue;
-            int32_t p[3][3];
             mc_raster_vertex v[3], w[3];
-            uint32_t out = mc_mesh_face(lod, &x, f, p, v);
-            if (out) { st.skipped++; continue; }   /* (a skipped endpoint flags its face too) */
+            if (corners(lod, &x, cache, f, v)) { st.skipped++; continue; }   /* (a flagged endpoint flags its face) */
             uint64_t off = slope_offset(v);
-            if (o != MC_NO_HALF_EDGE) {
-                if (mc_mesh_face(lod, &x, MC_HALF_FACE(o), p, w) == 0) {
-                    const uint64_t og = slope_offset(w);
-                    if (og > off) off = og;
-                }
+            if (o != MC_NO_HALF_EDGE && corners(lod, &x, cache, MC_HALF_FACE(o), w) == 0) {
+                const uint64_t og = slope_offset(w);
+                if (og > off) off = og;
             }
             off += 2u;
             mc_line_style style;

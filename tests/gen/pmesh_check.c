@@ -276,9 +276,10 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
     const uint32_t F = lod->faces;
     ref_face *rf = malloc(sizeof(ref_face) * (F + 1));
     uint8_t *facing = malloc(MC_MESH_FACING_BYTES(PM.faces) + 1);
+    uint8_t *lmem = calloc(MC_MESH_LINES_BYTES(PM.faces), 1);
     uint32_t cap;
     slot *table = table_put_level(lod, &cap);
-    if (!rf || !facing || !table) return 2;
+    if (!rf || !facing || !lmem || !table) return 2;
     for (uint32_t f = 0; f < F; f++) {
         int32_t p[3][3];
         mc_ref_vertex e[3];
@@ -339,9 +340,9 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
     mc_lines_stats st, st2;
     mc_clear(&t);
     mc_clear(&t2);
-    mc_mesh_lines(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &t, facing, &st);
+    mc_mesh_lines(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &t, lmem, NULL, &st);
     mc_mesh_render(lod, &v, MC_MESH_DRAW_PAPER, &t2, NULL, NULL);
-    mc_mesh_lines(lod, &v, MC_LINES_ALL, &t2, facing, &st2);
+    mc_mesh_lines(lod, &v, MC_LINES_ALL, &t2, lmem, NULL, &st2);
     if (!bad && (st.edges != edges || st.silhouettes != count[MC_EDGE_SILHOUETTE] || st.creases != count[MC_EDGE_CREASE] ||
                  st.borders != count[MC_EDGE_BORDER] || st2.pixels != st.pixels))
         bad++, snprintf(first, sizeof first, "mc_mesh_lines counts %u edges %u %u %u, the scan %u edges %u %u %u", st.edges,
@@ -397,7 +398,7 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
         printf("ok: level %u, %u edges: %u silhouettes, %u creases, %u borders (%u on a rounding tie); %u line pixels, "
                "%u hidden by the faces, %u shown\n", n, edges, count[MC_EDGE_SILHOUETTE], count[MC_EDGE_CREASE],
                count[MC_EDGE_BORDER], ties, line_px, hidden, shown);
-    free(rf), free(facing), free(table), free(cmem), free(cmem2), free(dmem), free(dmem2), free(want);
+    free(lmem), free(rf), free(facing), free(table), free(cmem), free(cmem2), free(dmem), free(dmem2), free(want);
     return bad ? 1 : 0;
 }
 

@@ -116,7 +116,7 @@ static int bitv(const uint8_t *b, uint32_t j) { return (b[j >> 3] >> (j & 7)) & 
 
 /* ---- running the module ---------------------------------------------------------------------------------- */
 
-static uint8_t *facing;
+static uint8_t *facing, *lines_mem;   /* facing bits (mc_mesh_facing, mc_mesh_qi); mc_mesh_lines' memory */
 static mc_xvertex *vcache;
 
 /* a target inside guard zones */
@@ -359,7 +359,7 @@ static int check(void)
     gtarget a, b;
     gt_init(&a), gt_init(&b);
     int rc = run_qi(&a, MC_LINES_ALL | MC_LINES_NO_HIDING, 1, big, NULL, &st);
-    mc_mesh_lines(&lod, &view, MC_LINES_ALL | MC_LINES_NO_HIDING, &b.t, facing, &ls);
+    mc_mesh_lines(&lod, &view, MC_LINES_ALL | MC_LINES_NO_HIDING, &b.t, lines_mem, NULL, &ls);
     if (rc != MC_OK) PROBLEM("mc_mesh_qi returned %d (no hiding)", rc);
     if (st.edges != ls.edges || st.silhouettes != ls.silhouettes || st.creases != ls.creases || st.borders != ls.borders ||
         st.skipped != ls.skipped)
@@ -506,7 +506,7 @@ static int check(void)
     gtarget z;
     gt_init(&z);
     RENDER(&lod, &view, PM.closed ? MC_MESH_CULL_BACK | MC_MESH_DRAW_PAPER : MC_MESH_DRAW_PAPER, &z.t, NULL, NULL);
-    mc_mesh_lines(&lod, &view, MC_LINES_ALL, &z.t, facing, &ls);
+    mc_mesh_lines(&lod, &view, MC_LINES_ALL, &z.t, lines_mem, NULL, &ls);
     unsigned long zonly = 0, qonly = 0, zlines = 0, qlines = 0;
     for (size_t i = 0; i < px; i++) {
         const unsigned zc = z.t.color[i], qc = q.t.depth[i] == MC_DEPTH_EMPTY ? 0 : q.t.color[i];
@@ -628,7 +628,7 @@ static int image(const char *prefix)
     gt_init(&q), gt_init(&z);
     if (run_qi(&q, MC_LINES_ALL, 1, 64u << 20, NULL, &st) != MC_OK) return 1;
     RENDER(&lod, &view, PM.closed ? MC_MESH_CULL_BACK | MC_MESH_DRAW_PAPER : MC_MESH_DRAW_PAPER, &z.t, NULL, NULL);
-    mc_mesh_lines(&lod, &view, MC_LINES_ALL, &z.t, facing, NULL);
+    mc_mesh_lines(&lod, &view, MC_LINES_ALL, &z.t, lines_mem, NULL, NULL);
     snprintf(path, sizeof path, "%s.qi.ppm", prefix);
     int rc = write_ppm(path, &q.t);
     snprintf(path, sizeof path, "%s.zbuf.ppm", prefix);
@@ -658,7 +658,7 @@ static void frame(int mode, const mc_target *t, mc_qi_stats *st)
     mc_clear(t);
     if (mode == 0 || mode == 2) {
         RENDER(&lod, &view, PM.closed ? MC_MESH_CULL_BACK | MC_MESH_DRAW_PAPER : MC_MESH_DRAW_PAPER, t, mode == 0 ? vcache : NULL, NULL);
-        mc_mesh_lines(&lod, &view, MC_LINES_ALL, t, facing, NULL);
+        mc_mesh_lines(&lod, &view, MC_LINES_ALL, t, lines_mem, NULL, NULL);
     } else {
         mc_qi_buffers b = {facing, mode == 1 ? vcache : NULL, bwork, bwork_bytes};
         if (mc_mesh_qi(&lod, &view, MC_LINES_ALL, t, &b, NULL, st) != MC_OK) exit(3);
@@ -719,6 +719,7 @@ int main(int argc, char **argv)
 {
     void *anc = malloc((size_t)PM.vertices * PM.index_bytes + 8);
     facing = malloc(MC_MESH_FACING_BYTES(PM.faces) + 8);
+    lines_mem = calloc(MC_MESH_LINES_BYTES(PM.faces), 1);
     vcache = malloc(MC_QI_CACHE_BYTES(PM.vertices) + 16);
     if (!anc || !facing || !vcache) return 2;
     mc_pmesh_lod_init(&lod, &PM, anc);

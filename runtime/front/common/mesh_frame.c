@@ -14,7 +14,7 @@ int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *ca
     const unsigned cull = lod->pm->closed ? MC_MESH_CULL_BACK : 0u;
     mc_clear(t);
     int rc = mc_mesh_render(lod, view, cull | (style == MC_FRONT_LINES ? MC_MESH_DRAW_PAPER : 0u), t, cache, &st.faces);
-    if (rc == MC_OK && style != MC_FRONT_SHADED) rc = mc_mesh_lines(lod, view, MC_LINES_ALL, t, facing, &st.lines);
+    if (rc == MC_OK && style != MC_FRONT_SHADED) rc = mc_mesh_lines(lod, view, MC_LINES_ALL, t, facing, cache, &st.lines);
     if (rc == MC_OK && style == MC_FRONT_LINES) {
         const uint32_t n = (uint32_t)t->width * t->height;
         for (uint32_t i = 0; i < n; i++)

@@ -8,7 +8,7 @@
  *                 MC_MESH_PAPER, depth MC_DEPTH_FILLED), so the drawing is on white;
  *   shaded+lines  the shaded faces, then the lines over them.
  * Back faces are culled when the part is closed (pmesh.h closed: they are hidden anyway).
- * facing: MC_MESH_FACING_BYTES of the part's faces; cache: null or MC_MESH_CACHE_BYTES of its
+ * facing: mc_mesh_lines' memory, MC_MESH_LINES_BYTES of the part's faces, zeroed at first; cache: null or MC_MESH_CACHE_BYTES of its
  * vertices (mesh_render.h; the same frame either way); both the app binding's. Freestanding, no heap.
  */
 #ifndef MODELC_FRONT_MESH_FRAME_H

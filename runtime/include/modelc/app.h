@@ -19,7 +19,7 @@ typedef struct mc_app {
     uint16_t *depth;       /* max_width * max_height depths */
     uint16_t max_width, max_height;
     void *pmesh_anc;       /* the mesh part's ancestor map (pmesh.h mc_pmesh_lod_init), or NULL */
-    uint8_t *pmesh_facing; /* its line drawings' facing bits (mesh_lines.h), or NULL */
+    uint8_t *pmesh_facing; /* its line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES), or NULL */
     mc_xvertex *pmesh_cache; /* its vertex projection cache (mesh_render.h), or NULL */
 } mc_app;
 

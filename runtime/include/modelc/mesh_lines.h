@@ -29,9 +29,10 @@
  * Colours: palette entries after the MC_MESH_SHADES greys (the generator writes them): paper
  * (white), silhouettes black, creases grey, borders dark blue.
  *
- * Work: mc_mesh_lines projects every face's corners once for facing (the scan), then each edge's
- * neighbour search (pmesh.h) and, for drawn edges, their endpoints and the line's pixels. Memory:
- * the caller's facing bits, MC_MESH_FACING_BYTES(faces); no heap, bounded stack, no floating point.
+ * Work: mc_mesh_lines finds every face's facing (from the vertex cache, or three projections), each
+ * edge's neighbour (pmesh.h) and, for drawn edges, the line's pixels; the crease test of every edge
+ * only when the level changed. Memory: the caller's, MC_MESH_LINES_BYTES(faces); no heap, bounded
+ * stack, no floating point.
  * Freestanding.
  */
 #ifndef MODELC_MESH_LINES_H
@@ -54,6 +55,9 @@ enum { MC_EDGE_PLAIN = 0, MC_EDGE_SILHOUETTE = 1, MC_EDGE_CREASE = 2, MC_EDGE_BO
 
 /* Bytes of facing bits for a part of F faces. */
 #define MC_MESH_FACING_BYTES(faces) (((uint32_t)(faces) + 7u) / 8u)
+/* Bytes of mc_mesh_lines' memory for a part of F faces (aligned for uint32_t): a level tag, the
+ * facing bits and four crease bits a face. */
+#define MC_MESH_LINES_BYTES(faces) (4u + MC_MESH_FACING_BYTES(faces) + ((uint32_t)(faces) + 1u) / 2u)
 
 typedef struct mc_lines_stats {
     uint32_t edges;         /* edges of the level */
@@ -79,10 +83,14 @@ unsigned mc_mesh_edge_kind(const mc_pmesh_lod *lod, const uint8_t *facing, uint3
 int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_cos);
 
 /* Draws the level's edges of the kinds in flags (MC_EDGE_* bits; MC_LINES_NO_HIDING) seen through
- * view into t, whose faces the caller has drawn for hidden-line removal. facing: the caller's
- * MC_MESH_FACING_BYTES(lod->pm->faces) bytes. Returns MC_OK, MC_ERR_ARG (a null argument) or
+ * view into t, whose faces the caller has drawn for hidden-line removal. mem: the caller's
+ * MC_MESH_LINES_BYTES(lod->pm->faces) bytes for this part, zeroed before the first call; the crease
+ * bits it keeps are recomputed only when the level changed since the last call (creases do not
+ * depend on the view), so a frame at an unchanged level tests no crease. cache: null, or the vertex
+ * cache mc_mesh_render filled drawing this level through the same view onto a target of the same
+ * size (mesh_render.h; the same lines either way). Returns MC_OK, MC_ERR_ARG (a null argument) or
  * MC_ERR_SIZE (a side over MC_TARGET_MAX; nothing drawn). stats may be null. */
-int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *facing,
-                  mc_lines_stats *stats);
+int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
+                  const mc_xvertex *cache, mc_lines_stats *stats);
 
 #endif
