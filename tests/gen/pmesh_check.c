@@ -390,6 +390,18 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
     for (size_t i = 0; i < G; i++)
         guard += (cmem[i] != 0xA5) + (cmem[G + px + i] != 0xA5) + (dmem[i] != 0x5A5A) + (dmem[G + px + i] != 0x5A5A) +
                  (cmem2[i] != 0xA5) + (cmem2[G + px + i] != 0xA5) + (dmem2[i] != 0x5A5A) + (dmem2[G + px + i] != 0x5A5A);
+    /* the crease bits kept in the memory follow a level change: after drawing another level, the
+     * same memory draws this level again as fresh memory does */
+    if (!bad && lod->level > PM.base_vertices) {
+        mc_pmesh_lod_set(lod, PM.base_vertices + (lod->level - PM.base_vertices) / 2);
+        mc_clear(&t2);
+        mc_mesh_lines(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &t2, lmem, NULL, NULL);
+        mc_pmesh_lod_set(lod, n);
+        mc_clear(&t2);
+        mc_mesh_lines(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &t2, lmem, NULL, NULL);
+        if (memcmp(t2.color, t.color, px) || memcmp(t2.depth, t.depth, 2 * px))
+            bad++, snprintf(first, sizeof first, "after a level change the kept crease bits draw a different frame");
+    }
     if (!bad && (mism || guard))
         bad++, snprintf(first, sizeof first, "%u line pixels not as their edges' lines, %zu guard-zone entries touched", mism, guard);
     if (bad)
