@@ -230,5 +230,7 @@ step "filled triangles against Mesa's llvmpipe: section appended"
 tests/bench/mesh.sh tests/bench/RESULTS.md >"$RES/mesh.log"
 step "silhouettes, searched against the exact scan: section appended"
 tests/bench/silhouette.sh tests/bench/RESULTS.md >"$RES/silhouette.log"
+step "the automatic level of detail against frame-time targets: section appended"
+tests/bench/lod_auto.sh tests/bench/RESULTS.md >"$RES/lod_auto.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'

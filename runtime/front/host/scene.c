@@ -41,7 +41,7 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
 void mc_host_scene_auto(mc_host_scene *s, double target_ms)
 {
     s->target_ms = mc_host_scene_has_mesh(s) ? target_ms : 0;
-    s->face_budget = s->lod.faces;
+    s->face_ms = 0;
 }
 
 int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_abort_fn abort, const mc_target *t,
@@ -58,14 +58,17 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     }
     mc_front_mesh_stats st;
     const double t0 = mc_host_now_ms();
-    if (s->target_ms > 0) mc_pmesh_lod_fit(&s->lod, (uint32_t)s->face_budget);
+    if (s->target_ms > 0) {
+        if (s->face_ms > 0) {
+            const double budget = s->target_ms / s->face_ms, now = s->lod.faces;
+            if (fabs(budget - now) > 0.04 * now) mc_pmesh_lod_fit(&s->lod, budget < 0 ? 0u : (uint32_t)budget);
+        }
+    }
     int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, v, (mc_front_style)s->mode, t, &st);
     if (s->target_ms > 0) {
         const double ms = mc_host_now_ms() - t0;
-        double k = ms > 0 ? sqrt(s->target_ms / ms) : 2;
-        k = k > 2 ? 2 : k < 0.5 ? 0.5 : k;
-        const double lo = s->lod.pm->base_faces, hi = s->lod.pm->faces;
-        s->face_budget = s->face_budget * k < lo ? lo : s->face_budget * k > hi ? hi : s->face_budget * k;
+        const double per = ms / (s->lod.faces ? s->lod.faces : 1u);
+        s->face_ms = s->face_ms > 0 ? s->face_ms + (per - s->face_ms) / 5 : per;
     }
     *drawn = st.faces.drawn;
     return rc;

@@ -8,10 +8,13 @@
  * modes need a bake with a mesh part (--as both); the level-of-detail state lives in the app
  * binding's static memory (app.h).
  *
- * Automatic level of detail (mesh modes, target_ms > 0): before each frame the level is set to the
- * finest with at most face_budget faces (mc_pmesh_lod_fit: the same level on every machine for the
- * same budget), and after it the budget is scaled by the square root of target / measured time
- * (at most a factor of 2 either way), so the frame time settles on the target whatever the view.
+ * Automatic level of detail (mesh modes, target_ms > 0): after every frame the time per face of the
+ * level is updated (a moving average over about five frames of the measured time over the level's
+ * faces), and the next frame's face budget is the target at that cost. With a fixed part a in the
+ * frame time (a + b F), budget F' = F T / (a + b F) settles where a + b F = T. The level is set to the finest within the budget
+ * (mc_pmesh_lod_fit: the same level on every machine for the same budget), and changed only when
+ * the budget moves by more than 4 % of the level's faces, so measurement noise does not move the
+ * level every frame (a change costs its splits, and in the lines styles the level's creases).
  */
 #ifndef MODELC_HOST_SCENE_H
 #define MODELC_HOST_SCENE_H
@@ -35,7 +38,7 @@ typedef struct mc_host_scene {
     mc_fill fill;            /* points */
     mc_pmesh_lod lod;        /* the mesh part's level of detail (when the model has one) */
     double target_ms;        /* > 0: automatic level of detail for this frame time */
-    double face_budget;      /* its current budget of faces */
+    double face_ms;          /* its measured time per face (0: none yet) */
 } mc_host_scene;
 
 /* "points", "shaded", "lines", "shaded+lines" -> mode; returns -1 for anything else. */
