@@ -10,6 +10,7 @@
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
 #   make bench-mesh              filled triangles (mc_mesh_render) against Mesa llvmpipe on one thread
 #   make bench-silhouette        silhouette search: recall against work, against the exact scan
+#   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -171,6 +172,11 @@ bench-mesh: $(MODELC) models
 bench-silhouette: $(MODELC) models
 	@tests/bench/silhouette.sh
 
+# the automatic level of detail holding frame-time targets (a RESULTS.md section; make bench runs it too)
+.PHONY: bench-lod-auto
+bench-lod-auto: $(MODELC) models
+	@tests/bench/lod_auto.sh
+
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models
 	@tests/accuracy/bench.sh
@@ -233,15 +239,21 @@ fuzz: fuzz-build models $(MODELC) $(BUILD)/nefertiti/budget.json
 #   make firmware MODEL=m BOARD=b      bake catalogue model m for board b, cross-compile, check the ELF
 #   make firmware-run MODEL=m BOARD=b  run it under qemu-system-arm; compare its checksums with the host's
 #   make bench-firmware                instructions per frame and per point under QEMU (RESULTS.md section)
-# Boards: runtime/front/fw/boards/B.mk (CPU flags, QEMU machine, default bake depth and screen) and
-# B.ld (flash/RAM map for picolibc.ld). FW_DEPTH= and FW_SCREEN= override the board's bake.
+#   make firmware[-run] FW_MESH=1 ...  the same with the model's mesh part (--as both) at the board's mesh bake
+# Boards: runtime/front/fw/boards/B.mk (CPU flags, QEMU machine, default bake depth and screen; the
+# mesh bake's screen, faces and options) and B.ld (flash/RAM map for picolibc.ld). FW_DEPTH= and
+# FW_SCREEN= override the board's bake. FW_MESH=1 adds the mesh part, --max-faces FW_MESH_FACES (the
+# board's mesh_faces; 0: all), at the board's mesh_screen; the firmware then draws the mesh frames
+# (runtime/front/common/mesh_frames.h) after the point frames. A mesh bake lives in build/fw/B-mesh/.
 FW_BOARDS := $(patsubst runtime/front/fw/boards/%.mk,%,$(wildcard runtime/front/fw/boards/*.mk))
 include $(wildcard runtime/front/fw/boards/*.mk)
 BOARD ?= lm3s6965evb
 FW_MODEL := $(or $(MODEL),$(DEFAULT_MODEL))
-FW_DEPTH ?= $($(BOARD).depth)
-FW_SCREEN ?= $($(BOARD).screen)
-FW_DIR := $(BUILD)/fw/$(BOARD)
+FW_MESH ?=
+FW_DEPTH ?= $(or $(if $(FW_MESH),$($(BOARD).mesh_depth)),$($(BOARD).depth))
+FW_SCREEN ?= $(or $(if $(FW_MESH),$($(BOARD).mesh_screen)),$($(BOARD).screen))
+FW_MESH_FACES ?= $($(BOARD).mesh_faces)
+FW_DIR := $(BUILD)/fw/$(BOARD)$(if $(FW_MESH),-mesh)
 FW_BAKE := $(FW_DIR)/$(FW_MODEL)
 FW_ELF := $(FW_DIR)/$(FW_MODEL).elf
 FW_HOSTVIEW := $(FW_BAKE)/$(FW_MODEL)-view
@@ -249,8 +261,9 @@ FW_QEMU_TIMEOUT ?= 600
 ARM_CC := arm-none-eabi-gcc
 FW_SRC := $(wildcard runtime/front/fw/*.c) $(COMMON_SRC)
 FW_HDR := $(wildcard runtime/front/fw/*.h) $(COMMON_HDR)
-# the catalogue's bake options without its --depth, then the board's depth and screen
-FW_BAKE_OPTS = $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) --screen $(FW_SCREEN)
+# the catalogue's bake options without its --depth, then the board's depth and screen (and mesh part)
+FW_BAKE_OPTS = $(strip $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) \
+  --screen $(FW_SCREEN) $(if $(FW_MESH),--as both --max-faces $(or $(FW_MESH_FACES),0) $($(BOARD).mesh_opts)))
 # -fstack-usage and -fcallgraph-info give runtime/front/fw/stack_bound.py the frames and the call graph;
 # integer-only printf keeps picolibc's float formatting out of flash
 FW_CFLAGS := $($(BOARD).cpu) -O2 -g -ffunction-sections -fdata-sections -fstack-usage -fcallgraph-info=su \
@@ -302,7 +315,7 @@ firmware-run: firmware $(FW_HOSTVIEW)
 	@rm -f $(FW_DIR)/$(FW_MODEL).ppm
 	$(FW_QEMU) < /dev/null 2>&1 | tee $(FW_DIR)/$(FW_MODEL).run.txt
 	@$(FW_HOSTVIEW) --checksums --ppm $(FW_DIR)/$(FW_MODEL).host.ppm > $(FW_DIR)/$(FW_MODEL).host.txt
-	@grep '^frame ' $(FW_DIR)/$(FW_MODEL).run.txt > $(FW_DIR)/$(FW_MODEL).fw-frames.txt || true
+	@grep -E '^(mesh )?frame ' $(FW_DIR)/$(FW_MODEL).run.txt > $(FW_DIR)/$(FW_MODEL).fw-frames.txt || true
 	@if cmp -s $(FW_DIR)/$(FW_MODEL).fw-frames.txt $(FW_DIR)/$(FW_MODEL).host.txt && \
 	    cmp -s $(FW_DIR)/$(FW_MODEL).ppm $(FW_DIR)/$(FW_MODEL).host.ppm; then \
 	  echo "firmware-run: all $$(wc -l < $(FW_DIR)/$(FW_MODEL).host.txt) frame checksums and the written frame equal the host viewer's"; \

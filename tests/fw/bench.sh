@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # make bench-firmware: instructions per frame and per drawn point on Cortex-M3 and Cortex-M4, counted
-# by QEMU, beside the host's callgrind count for the same bake and views. Writes its own section of
+# by QEMU, beside the host's callgrind count for the same bake and views; and for each board's mesh
+# bake (make firmware FW_MESH=1), instructions per mesh frame, per triangle drawn and per line pixel and
+# edge of the line drawings (runtime/front/common/mesh_frames.h's frames). Writes its own section of
 # tests/bench/RESULTS.md (between "<!-- bench-firmware: begin -->" and "<!-- bench-firmware: end -->",
 # replaced on every run; tests/bench/run.sh keeps it when it rewrites the rest).
 #
@@ -14,7 +16,11 @@
 #     under -singlestep -d exec,nochain, QEMU's execution trace with one line per executed instruction;
 #     the line numbers of the stage marker function's entries give each stage's instructions exactly;
 #   - host: valgrind --tool=callgrind --toggle-collect=mc_octree_render --dump-after=mc_octree_render on the host
-#     viewer linked with the same bake (--checksums: the same views), one dump per frame.
+#     viewer linked with the same bake (--checksums: the same views), one dump per frame;
+#   - mesh: the mesh bake's firmware under -icount shift=0 with "bench" prints per mesh frame the
+#     instructions of setting its level (mc_pmesh_lod_fit) and of drawing it (mc_front_mesh_frame: clear,
+#     faces, lines, paper), and for the styles with lines the same view and level drawn shaded only:
+#     the lines' own instructions are the difference.
 # FW_BENCH_REPORT_ONLY=1 rewrites the section from the files of the last run without running anything.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
@@ -44,6 +50,17 @@ for b in $boards; do
     valgrind --tool=callgrind --toggle-collect=mc_octree_render --dump-after=mc_octree_render \
         --callgrind-out-file="$out/$b.cg.%p" build/fw/$b/$model/$model-view --checksums \
         >"$out/$b.host.txt" 2>"$out/$b.valgrind.txt" || die "$b: valgrind failed (see $out/$b.valgrind.txt)"
+    say "building the mesh bake (FW_MESH=1) for $b"
+    make -s --no-print-directory firmware firmware-host MODEL="$model" BOARD="$b" FW_MESH=1 >"$out/$b-mesh.build.txt" 2>&1 ||
+        { tail -20 "$out/$b-mesh.build.txt"; die "make firmware BOARD=$b FW_MESH=1 failed"; }
+    say "running the mesh bake on $b under qemu-system-arm -icount shift=0"
+    timeout 600 qemu-system-arm -M "$qemu" -nographic -monitor none -icount shift=0 \
+        -semihosting-config enable=on,target=native,arg="$model",arg="$out/$b-mesh.ppm",arg=bench \
+        -kernel "build/fw/$b-mesh/$model.elf" </dev/null >"$out/$b-mesh.icount.txt" 2>&1 ||
+        die "$b: QEMU failed on the mesh bake (see $out/$b-mesh.icount.txt)"
+    grep -q '^cost mesh frame' "$out/$b-mesh.icount.txt" || die "$b: no mesh cost lines (see $out/$b-mesh.icount.txt)"
+    "build/fw/$b-mesh/$model/$model-view" --checksums >"$out/$b-mesh.host.txt" ||
+        die "$b: the mesh bake's host viewer --checksums failed"
     if [ "$b" = lm3s6965evb ] && [ "$trace" = 1 ]; then
         say "cross-check: $b execution trace, one line per instruction (a few minutes)"
         mark=$(arm-none-eabi-nm "$elf" | awk '$3 == "mc_fw_mark" {print $1}')
@@ -184,6 +201,81 @@ for b, cpu in boards:
               f"the ~10 instructions of one stage marker). Trace counts: "
               + ", ".join(f"frame {i} {t:,}" for i, t, _ in rows) + ".")
             A("")
+def mesh_costs(path):
+    r, head = {}, {}
+    if not os.path.exists(path):
+        return r, head
+    for line in open(path):
+        m = re.match(r"cost mesh frame (\d+) style (\S+) lod (\d+) draw (\d+) shaded-only (\d+) faces (\d+) drawn (\d+) "
+                     r"face-pixels (\d+) edges (\d+) lines (\d+) line-pixels (\d+)", line)
+        if m:
+            g = m.groups()
+            r.setdefault(int(g[0]), {}).update(style=g[1], lod=int(g[2]), draw=int(g[3]), shaded=int(g[4]),
+                                               faces=int(g[5]), drawn=int(g[6]), fpix=int(g[7]), edges=int(g[8]),
+                                               lines=int(g[9]), lpix=int(g[10]))
+        m = re.match(r"mesh frame (\d+) style \S+ level (\d+) of (\d+) faces \d+ of (\d+) size (\S+) .* fnv1a (\w+)", line)
+        if m:
+            i, level, v, f, size, h = m.groups()
+            r.setdefault(int(i), {}).update(level=int(level), hash=h)
+            head.update(vertices=int(v), faces=int(f), size=size)
+        m = re.match(r"modelc firmware: model \S+ depth (\d+) size", line)
+        if m:
+            head["depth"] = int(m.group(1))
+        m = re.match(r"modelc firmware: mesh .* vertex cache (\w+)", line)
+        if m:
+            head["cache"] = m.group(1)
+    return r, head
+
+def mesh_hashes(path):
+    return [l.split()[2] + " " + l.split()[-1] for l in open(path) if l.startswith("mesh frame ")] if os.path.exists(path) else []
+
+mesh_summary = {}
+mesh_rows = [(b, cpu) + mesh_costs(os.path.join(out, f"{b}-mesh.icount.txt")) for b, cpu in boards]
+if any(r for _, _, r, _ in mesh_rows):
+    A("### Mesh part: instructions per triangle and per line pixel")
+    A("")
+    A("Each board's mesh bake (`make firmware FW_MESH=1 MODEL=" + model + " BOARD=...`, the board's `mesh_screen` and "
+      "`mesh_faces` in `runtime/front/fw/boards/B.mk`) runs the mesh frames of `runtime/front/common/mesh_frames.h` after "
+      "the point frames: view i of the nine in style 1 + i mod 3 (shaded, lines, shaded+lines) at the level "
+      "`mc_pmesh_lod_fit` gives for a face budget of F0 + (F - F0) k / 8. Columns: lod = `mc_pmesh_lod_fit` from the "
+      "previous frame's level; frame = `mc_front_mesh_frame` (clear, faces with back faces culled, lines, paper); "
+      "shaded only = the same view and level drawn shaded (bench runs only, not checked), so lines = frame - shaded only "
+      "(for the lines style that includes the paper fill of the empty pixels); drawn = faces that covered a pixel; "
+      "line pixels = pixels of the drawn lines before the depth test.")
+    A("")
+for b, cpu, co, head in mesh_rows:
+    if not co:
+        continue
+    same = mesh_hashes(os.path.join(out, f"{b}-mesh.icount.txt")) == mesh_hashes(os.path.join(out, f"{b}-mesh.host.txt"))
+    A(f"#### {b} ({cpu}): {head.get('faces', 0):,} faces ({head.get('vertices', 0):,} vertices) at {head.get('size')}, "
+      f"vertex cache {head.get('cache', '?')}")
+    A("")
+    A(f"Mesh frame checksums equal the host viewer's: **{'yes' if same else 'NO'}** ({len(co)} frames).")
+    A("")
+    A("| frame | style | level (vertices) | faces | drawn | lod | frame | shaded only | **shaded: instructions / face drawn** | per face of the level | lines | edges | lines drawn | line pixels | **lines / line pixel** | lines / edge |")
+    A("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    agg = dict(sd=0, sdrawn=0, sfaces=0, ld=0, lpix=0, ledges=0)
+    for i in sorted(co):
+        c = co[i]
+        lines = c["draw"] - c["shaded"] if c["style"] != "shaded" else 0
+        if c["style"] == "shaded":
+            agg["sd"] += c["draw"]; agg["sdrawn"] += c["drawn"]; agg["sfaces"] += c["faces"]
+        elif c["faces"] == head.get("faces"):
+            agg["ld"] += lines; agg["lpix"] += c["lpix"]; agg["ledges"] += c["edges"]
+        A(f"| {i} | {c['style']} | {c.get('level', 0):,} | {c['faces']:,} | {c['drawn']:,} | {c['lod']:,} | {c['draw']:,} | "
+          f"{c['shaded']:,} | **{c['shaded'] / max(c['drawn'], 1):,.0f}** | {c['shaded'] / max(c['faces'], 1):,.0f} | "
+          + (f"{lines:,} | {c['edges']:,} | {c['lines']:,} | {c['lpix']:,} | **{lines / max(c['lpix'], 1):,.0f}** | "
+             f"{lines / max(c['edges'], 1):,.0f} |" if c["style"] != "shaded" else "- | - | - | - | - | - |"))
+    A("")
+    mesh_summary[b] = agg
+    A(f"Shaded frames (0, 3, 6): **{agg['sd'] / max(agg['sdrawn'], 1):,.0f} instructions per triangle drawn** "
+      f"({agg['sd']:,} instructions, {agg['sdrawn']:,} faces drawn; {agg['sd'] / max(agg['sfaces'], 1):,.0f} per face of "
+      f"the level, culled or not, clear included). Lines at the full level (frames 1 and 5): "
+      f"**{agg['ld'] / max(agg['lpix'], 1):,.0f} instructions per line pixel**, {agg['ld'] / max(agg['ledges'], 1):,.0f} per "
+      "edge of the level: the line drawing's cost is its scan of every edge of the level (each face's facing, each "
+      "edge's neighbour and kind), not its pixels, so the figure per pixel falls as the screen grows and the one per "
+      "edge is the one that carries over.")
+    A("")
 A("### Against the source paper")
 A("")
 A("The paper (Barth, Schwanecke & Wild, figure 10) times the frontal view of a depth-8 face model of 67,741 points in "

@@ -12,6 +12,16 @@
 #     bit-exact across architectures); the frame it writes through semihosting equals the host's
 #     --ppm output and converts to a valid PNG (build/tests/fw/BOARD.png)
 #   - the measured stack high-water mark is below the static bound
+# and for the same model baked with its mesh part on each board (make firmware FW_MESH=1: --as both at
+# the board's mesh screen and --max-faces, boards/B.mk; lm3s6965evb: 128x96 and 2400 faces with the
+# vertex cache, within 256 KiB flash and 64 KiB RAM; mps2-an386: the whole mesh at 320x240):
+#   - the build's ELF checks pass, including the mesh part's RAM (ancestor map, facing bits, vertex
+#     cache) at exactly budget.json's sizes; it is baked as the board asks
+#   - under QEMU it prints, after the point frames, one "mesh frame" line per view
+#     (runtime/front/common/mesh_frames.h: the three styles; the base, the full and middle levels),
+#     every frame MC_OK, each line equal to the host viewer's --checksums line for the same bake, and
+#     the point frames equal too; the run takes a few seconds (QEMU timeout 120 s)
+#   - the measured stack high-water mark is below the static bound
 # The toolchain comes from make deps: a missing tool is a failure, not a skip.
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
 set -u
@@ -144,6 +154,101 @@ EOF
     used=$(sed -n 's/^stack used \([0-9]*\) of.*/\1/p' "$run")
     bound=$(sed -n 's/^# .*stack bound \([0-9]*\) bytes.*/\1/p' "$out/$b.build.txt" | head -1)
     check "$b: measured stack high-water mark (${used:-?} bytes) is within the static bound (${bound:-?} bytes)" \
+        "$([ -n "$used" ] && [ -n "$bound" ] && [ "$used" -gt 0 ] && [ "$used" -le "$bound" ] || echo "used '${used}' bound '${bound}'")"
+done
+
+# ---- the mesh part (FW_MESH=1) on both boards ----------------------------------------------------
+mesh_schedule() {   # mesh_schedule FILE: what the "mesh frame" lines in FILE leave out, or nothing
+    python3 - "$1" <<'EOF'
+import re, sys
+rows = [re.match(r"mesh frame (\d+) style (\S+) level (\d+) of (\d+) faces (\d+) of (\d+) .* drawn (\d+) ", l)
+        for l in open(sys.argv[1])]
+rows = [r.groups() for r in rows if r]
+styles = ("shaded", "lines", "shaded+lines")
+levels = {int(r[2]) for r in rows}
+why = []
+if {r[1] for r in rows} != set(styles): why.append(f"styles {sorted({r[1] for r in rows})}")
+if not rows or int(rows[0][3]) not in levels: why.append("no frame at the full level")
+if len(levels) < 5: why.append(f"only {len(levels)} levels")
+if any(int(r[6]) == 0 for r in rows): why.append("a frame drew no face")
+why += [f"{s} at one level only" for s in styles if len({r[2] for r in rows if r[1] == s}) < 2]
+print("; ".join(why))
+EOF
+}
+
+nviews=$(grep -c '^    {' runtime/front/common/views.h)
+for b in mps2-an386 lm3s6965evb; do
+    dir=build/fw/$b-mesh
+    elf=$dir/$model.elf
+    t=$b-mesh
+    rm -f "$elf"
+    make -s --no-print-directory firmware MODEL=$model BOARD=$b FW_MESH=1 >"$out/$t.build.txt" 2>&1
+    st=$?
+    grep -E '^(ok|not ok) - fw: ' "$out/$t.build.txt" | sed "s/^\(ok\|not ok\) - fw: /\1 - fw: $b mesh: /"
+    grep -q '^not ok' "$out/$t.build.txt" && status=1
+    if [ $st -ne 0 ] || [ ! -f "$elf" ]; then
+        notok "$b mesh: make firmware MODEL=$model BOARD=$b FW_MESH=1" "exit $st: $(grep -v '^ok' "$out/$t.build.txt" | tail -5 | oneline)"
+        continue
+    fi
+    ok "$b mesh: make firmware MODEL=$model BOARD=$b FW_MESH=1 builds $elf"
+    check "$b mesh: the ELF checks include the mesh part's RAM (ancestor map, facing bits, vertex cache)" \
+        "$(grep -q "^ok - fw: .*mesh part's RAM" "$out/$t.build.txt" || echo 'no passing mesh RAM line in the build output')"
+
+    budget=$dir/$model/budget.json
+    want_depth=$(mkvar FW_DEPTH BOARD=$b FW_MESH=1)
+    want_screen=$(mkvar FW_SCREEN BOARD=$b FW_MESH=1)
+    want_faces=$(mkvar FW_MESH_FACES BOARD=$b FW_MESH=1)
+    want_faces=${want_faces:-0}
+    read -r depth screen faces capped flash ram < <(python3 -c 'import json,sys; b=json.load(open(sys.argv[1])); p=b.get("pmesh", {}); print(b["depth"], "%dx%d" % tuple(b["screen"]), p.get("faces", 0), p.get("input", {}).get("collapses_applied_for_max_faces", 0), b["flash"]["image"], b["ram"]["image"])' "$budget")
+    check "$b mesh: baked with its mesh part as the board asks: depth $want_depth, screen $want_screen, faces $want_faces (0: all)" \
+        "$([ "$depth $screen" = "$want_depth $want_screen" ] && [ "${faces:-0}" -gt 0 ] &&
+            { { [ "$want_faces" = 0 ] && [ "$capped" = 0 ]; } || [ "$faces" -le "$want_faces" ]; } ||
+            echo "budget.json says depth $depth screen $screen faces $faces (collapses for --max-faces: $capped)")"
+    if [ $b = lm3s6965evb ]; then
+        check "$b mesh: $faces faces with the vertex cache at $screen fit 256 KiB flash and 64 KiB RAM (budget.json image: flash $flash, RAM $ram)" \
+            "$(grep -q '^ok - fw: .*fits the board' "$out/$t.build.txt" && [ "$flash" -le 262144 ] && [ "$ram" -le 65536 ] ||
+                grep 'fits the board' "$out/$t.build.txt" | oneline)"
+    fi
+
+    # ---- run under QEMU, compare with the host ---------------------------------------------------
+    start=$(date +%s)
+    make -s --no-print-directory firmware-run MODEL=$model BOARD=$b FW_MESH=1 FW_QEMU_TIMEOUT=120 >"$out/$t.run.txt" 2>&1
+    st=$?
+    secs=$(($(date +%s) - start))
+    run=$dir/$model.run.txt
+    check "$b mesh: make firmware-run FW_MESH=1: QEMU runs the firmware to \"done\", exit status 0 (${secs} s with the host viewer's link)" \
+        "$([ $st -eq 0 ] && grep -q '^done' "$run" 2>/dev/null || echo "exit $st: $(tail -5 "$out/$t.run.txt" | oneline)")"
+    grep '^frame ' "$run" >"$out/$t.fw-frames.txt" 2>/dev/null
+    grep '^mesh frame ' "$run" >"$out/$t.fw-mesh.txt" 2>/dev/null
+    $dir/$model/$model-view --checksums >"$out/$t.host.txt" 2>"$out/$t.host-err.txt"
+    hst=$?
+    grep '^frame ' "$out/$t.host.txt" >"$out/$t.host-frames.txt"
+    grep '^mesh frame ' "$out/$t.host.txt" >"$out/$t.host-mesh.txt"
+    check "$b mesh: the host viewer's --checksums prints $nviews point and then $nviews mesh frame lines (exit 0)" \
+        "$([ $hst -eq 0 ] && [ "$(wc -l <"$out/$t.host-frames.txt")" -eq "$nviews" ] &&
+            [ "$(wc -l <"$out/$t.host-mesh.txt")" -eq "$nviews" ] && [ "$(wc -l <"$out/$t.host.txt")" -eq $((2 * nviews)) ] &&
+            [ "$(head -1 "$out/$t.host-mesh.txt")" = "$(sed -n "$((nviews + 1))p" "$out/$t.host.txt")" ] ||
+            echo "exit $hst, $(wc -l <"$out/$t.host.txt") lines")"
+    nfw=$(wc -l <"$out/$t.fw-mesh.txt")
+    first_mesh=$(grep -n '^mesh frame ' "$run" | head -1 | cut -d: -f1)
+    last_point=$(grep -n '^frame ' "$run" | tail -1 | cut -d: -f1)
+    check "$b mesh: firmware prints $nviews mesh frame lines after the point frames, every frame MC_OK" \
+        "$([ "$nfw" -eq "$nviews" ] && ! grep -qv ' rc 0 ' "$out/$t.fw-mesh.txt" &&
+            [ "${first_mesh:-0}" -gt "${last_point:-0}" ] || echo "$nfw lines: $(head -3 "$out/$t.fw-mesh.txt" | oneline)")"
+    check "$b mesh: the frames draw the three styles, each at two levels or more, the full level and five levels in all" \
+        "$(mesh_schedule "$out/$t.fw-mesh.txt")"
+    base=$(sed -n 's/^modelc firmware: mesh .* (base \([0-9]*\), .*/\1/p' "$run")
+    check "$b mesh: a frame draws the base level (${base:-?} vertices)" \
+        "$([ -n "$base" ] && grep -q " level $base of " "$out/$t.fw-mesh.txt" || echo "no frame at level '$base'")"
+    check "$b mesh: mesh frame checksum lines (style, level, faces drawn, FNV-1a) equal the host's, all $nviews views" \
+        "$([ "$nfw" -gt 0 ] && cmp -s "$out/$t.fw-mesh.txt" "$out/$t.host-mesh.txt" ||
+            diff "$out/$t.fw-mesh.txt" "$out/$t.host-mesh.txt" | head -4 | oneline)"
+    check "$b mesh: point frame checksums of the mesh bake equal the host's, all $nviews views" \
+        "$([ "$(wc -l <"$out/$t.fw-frames.txt")" -eq "$nviews" ] && cmp -s "$out/$t.fw-frames.txt" "$out/$t.host-frames.txt" ||
+            diff "$out/$t.fw-frames.txt" "$out/$t.host-frames.txt" | head -4 | oneline)"
+    used=$(sed -n 's/^stack used \([0-9]*\) of.*/\1/p' "$run")
+    bound=$(sed -n 's/^# .*stack bound \([0-9]*\) bytes.*/\1/p' "$out/$t.build.txt" | head -1)
+    check "$b mesh: measured stack high-water mark (${used:-?} bytes) is within the static bound (${bound:-?} bytes)" \
         "$([ -n "$used" ] && [ -n "$bound" ] && [ "$used" -gt 0 ] && [ "$used" -le "$bound" ] || echo "used '${used}' bound '${bound}'")"
 done
 exit $status

@@ -7,7 +7,9 @@ failed. The checks:
      _sbrk/sbrk) and no __wrap_/__real_ symbol. The link used --wrap=malloc,calloc,realloc,free with
      no wrapper definitions, so a heap call would not even link; this confirms nothing else pulled one.
   2. model data exact: every array budget.json lists under flash.arrays is a symbol of exactly that
-     size, and the frame buffers (ram.color_buffer, ram.depth_buffer) are symbols of exactly those sizes.
+     size, and the frame buffers (ram.color_buffer, ram.depth_buffer) and, with a mesh part, its state
+     (ram.pmesh_lod, pmesh_facing, pmesh_cache: the app binding's ancestor map, facing bits and vertex
+     cache) are symbols of exactly those sizes.
   3. ELF against budget totals: flash used (the sections arm-none-eabi-size -A places in flash) minus
      budget.json's flash.image (its estimate of the image), or flash.total (model data only) for an
      older budget.json, and RAM used (sections in RAM except the stack reservation) minus its
@@ -116,6 +118,17 @@ def main():
     bad = [f"{sym}: ELF {syms.get(sym)} vs budget {ram.get(k)}" for k, sym in bufs.items()
            if k in ram and syms.get(sym) != ram[k]]
     check(f"{elfname}: frame buffers have exactly budget.json's sizes", "; ".join(bad))
+    # the mesh part's state in the app binding (NAME_app.c), with a mesh part (--as both): each its
+    # budget's bytes, or those rounded up to whole 32-bit words (an array the binding declares in words
+    # for alignment); an item of 0 bytes (a bake without that buffer) must have no symbol
+    mesh = {"pmesh_lod": f"mc_{model}_pmesh_anc", "pmesh_facing": f"mc_{model}_pmesh_facing",
+            "pmesh_cache": f"mc_{model}_pmesh_cache"}
+    mesh = {k: sym for k, sym in mesh.items() if k in ram}
+    if mesh:
+        bad = [f"{sym}: ELF {syms.get(sym)} vs budget {ram[k]}" for k, sym in mesh.items()
+               if syms.get(sym) not in ({ram[k], (ram[k] + 3) // 4 * 4} if ram[k] else {None})]
+        check(f"{elfname}: the mesh part's RAM ({', '.join(mesh)}) has exactly budget.json's sizes",
+              "; ".join(bad))
 
     # 3. totals within the margins. Sections from arm-none-eabi-size -A: flash holds every allocated
     # section below the RAM's origin plus the initial values of .data; static RAM is every section in

@@ -5,9 +5,13 @@
  * --checksums prints it (../common/frames.h: FNV-1a of the finished colour and depth buffers); the frame of
  * view MC_FRONT_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
  * semihosting argument after the program name (default "frame.ppm"); then the measured stack
- * high-water mark and the free RAM it may grow into, and "done". With the word "bench" after the
- * file name, also a line "cost frame I clear N render N finish N" per frame: the instructions of each
- * stage counted through SysTick, meaningful under qemu-system-arm -icount shift=0 (counter.h).
+ * high-water mark and the free RAM it may grow into, and "done". When the bake has a mesh part
+ * (modelc --as both), the mesh frames of ../common/mesh_frames.h come after the point frames, one line
+ * each, again exactly as the host viewer's --checksums prints them. With the word "bench" after the
+ * file name, also a line "cost frame I clear N render N finish N" per point frame and "cost mesh frame
+ * I lod N draw N ..." per mesh frame: the instructions of each stage counted through SysTick,
+ * meaningful under qemu-system-arm -icount shift=0 (counter.h); for the mesh frames with lines, also
+ * the same view and level drawn shaded only, so that the lines' own instructions are the difference.
  * Exits (semihosting) with 0, or 1
  * if a render or the file failed. All buffers are the model's static frame buffers (mc_app_model,
  * sized by modelc --screen); nothing is allocated.
@@ -22,6 +26,7 @@
 #include "counter.h"
 #include "mark.h"   /* defines MC_FRONT_MARK before frames.h */
 #include "../common/frames.h"
+#include "../common/mesh_frames.h"
 #include "ppm_out.h"
 #include "stack.h"
 
@@ -45,6 +50,47 @@ static void read_cmdline(void)
         if (word == 1) ppm_path = start;
         if (word == 2 && strcmp(start, "bench") == 0) bench = 1;
     }
+}
+
+static uint32_t marked(unsigned from, unsigned to)
+{
+    return mc_fw_counter_insns(mc_fw_marks[from], mc_fw_marks[to]);
+}
+
+/* The mesh frames after the point frames; returns 1 if a frame failed. */
+static int mesh_frames(const mc_pmesh *pm, const mc_target *t)
+{
+    int status = 0;
+    mc_pmesh_lod lod;
+    mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
+    printf("modelc firmware: mesh %lu vertices %lu faces (base %lu, %lu) vertex cache %s\n",
+           (unsigned long)pm->vertices, (unsigned long)pm->faces, (unsigned long)pm->base_vertices,
+           (unsigned long)pm->base_faces, mc_app_model.pmesh_cache ? "yes" : "no");
+    for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+        mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, i, t);
+        printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
+        if (r.rc != MC_OK) status = 1;
+        if (!bench) continue;
+        const uint32_t lod_insns = marked(MC_FRONT_MESH_MARK_LOD, MC_FRONT_MESH_MARK_DRAW);
+        const uint32_t draw = marked(MC_FRONT_MESH_MARK_DRAW, MC_FRONT_MESH_MARK_DONE);
+        uint32_t shaded = draw;
+        if (r.style != MC_FRONT_SHADED) {
+            /* not checked: the frame again without its lines, at the same level and view */
+            const mc_view v = mc_front_view_get(i);
+            MC_FRONT_MARK(MC_FRONT_MESH_MARK_DRAW);
+            mc_front_mesh_frame(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, &v, MC_FRONT_SHADED, t, 0);
+            MC_FRONT_MARK(MC_FRONT_MESH_MARK_DONE);
+            shaded = marked(MC_FRONT_MESH_MARK_DRAW, MC_FRONT_MESH_MARK_DONE);
+        }
+        printf("cost mesh frame %u style %s lod %lu draw %lu shaded-only %lu faces %lu drawn %lu face-pixels %lu "
+               "edges %lu lines %lu line-pixels %lu\n",
+               i, mc_front_mesh_style_name(r.style), (unsigned long)lod_insns, (unsigned long)draw,
+               (unsigned long)shaded, (unsigned long)r.faces, (unsigned long)r.st.faces.drawn,
+               (unsigned long)r.st.faces.pixels, (unsigned long)r.st.lines.edges,
+               (unsigned long)(r.st.lines.silhouettes + r.st.lines.creases + r.st.lines.borders - r.st.lines.skipped),
+               (unsigned long)r.st.lines.pixels);
+    }
+    return status;
 }
 
 int main(void)
@@ -86,6 +132,8 @@ int main(void)
             }
         }
     }
+    if (model->pmesh && mc_app_model.pmesh_anc && mc_app_model.pmesh_facing && mesh_frames(model->pmesh, &t))
+        status = 1;
     printf("stack used %lu of %lu bytes free for it\n", (unsigned long)mc_fw_stack_used(),
            (unsigned long)mc_fw_stack_room());
     printf("done\n");

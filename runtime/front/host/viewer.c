@@ -27,6 +27,7 @@
 #include "term.h"
 #include "timing.h"
 #include "../common/frames.h"   /* the view list and frame checksum the firmware prints: --checksums */
+#include "../common/mesh_frames.h"   /* and its mesh frames, when the bake has a mesh part */
 
 static uint8_t rgb_buffer[4096 * 4096 * 3];
 
@@ -39,8 +40,9 @@ static void usage(FILE *f)
             "  --bench N       render N frames of one full turn and print ms per frame (median)\n"
             "  --checksums     render the firmware's fixed view list (runtime/front/common/views.h) at the\n"
             "                  baked screen size and the model's depth (unless --size, --depth) and\n"
-            "                  print the firmware's checksum line per frame; --ppm/--png then write\n"
-            "                  the frame the firmware writes out\n"
+            "                  print the firmware's checksum line per frame, then with a mesh part\n"
+            "                  (--as both) its mesh frames' (runtime/front/common/mesh_frames.h);\n"
+            "                  --ppm/--png then write the frame the firmware writes out\n"
             "  --yaw DEG       rotation about the vertical axis (default 0)\n"
             "  --pitch DEG     rotation about the horizontal axis (default 0)\n"
             "  --roll DEG      rotation about the view axis (default 0)\n"
@@ -118,7 +120,8 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
     return 0;
 }
 
-/* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c). */
+/* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c): the
+ * point frames, then the mesh frames when the bake has a mesh part. */
 static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth, const char *png, const char *ppm)
 {
     int status = 0;
@@ -130,6 +133,16 @@ static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth
             mc_host_to_rgb(t, octree->palette, rgb_buffer);
             if (png && mc_host_write_png(png, rgb_buffer, t->width, t->height)) return die("cannot write PNG", png);
             if (ppm && mc_host_write_ppm(ppm, rgb_buffer, t->width, t->height)) return die(strerror(errno), ppm);
+        }
+    }
+    const mc_pmesh *pm = mc_app_model.model->pmesh;
+    if (pm && mc_app_model.pmesh_anc && mc_app_model.pmesh_facing) {
+        mc_pmesh_lod lod;
+        mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
+        for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+            mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, i, t);
+            printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
+            if (r.rc != MC_OK) status = 1;
         }
     }
     return status;
