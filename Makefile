@@ -144,6 +144,10 @@ demo: deps
 readme-images: $(BUILD)/bunny00/bunny00-view $(BUILD)/nefertiti/nefertiti-view
 	$(BUILD)/bunny00/bunny00-view --png models/img/bunny00.png --zoom 0.9 --yaw 25 --pitch 10
 	$(BUILD)/nefertiti/nefertiti-view --png models/img/nefertiti.png --zoom 0.85 --yaw -30 --pitch 5
+	$(MAKE) --no-print-directory view MODEL=$(BUILD)/models/bunny00.off NAME=bunny00_mesh BAKE_OPTS="--as both"
+	for m in shaded lines shaded+lines; do \
+	  $(BUILD)/bunny00_mesh/bunny00_mesh-view --mode $$m --png models/img/bunny00_$$(echo $$m | tr + _).png \
+	    --zoom 0.9 --yaw 25 --pitch 10; done
 
 # ---- tests and benchmarks --------------------------------------------------------------------
 test:
