@@ -8,9 +8,10 @@
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
-#   make bench-mesh              filled triangles (mc_mesh_render) against Mesa llvmpipe on one thread
+#   make bench-mesh              filled triangles and line drawings against Mesa llvmpipe on one thread
 #   make bench-silhouette        silhouette search: recall against work, against the exact scan
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
+#   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -180,6 +181,13 @@ bench-silhouette: $(MODELC) models
 .PHONY: bench-lod-auto
 bench-lod-auto: $(MODELC) models
 	@tests/bench/lod_auto.sh
+
+# run time against error for the mesh's level of detail: shaded frames at 1-100 % of the faces against
+# the full level (PSNR, coverage), time and instructions per frame (a RESULTS.md section,
+# tests/bench/lod_error.png and tests/bench/lod_strip.png; make bench runs it too)
+.PHONY: bench-lod-error
+bench-lod-error: $(MODELC) models
+	@tests/bench/lod_error.sh
 
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models

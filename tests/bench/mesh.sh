@@ -4,11 +4,17 @@
 # Mesa's llvmpipe on one thread through OSMesa (tests/bench/osmesa_mesh.c: the same triangles in the
 # same palette colours, uploaded once into a vertex buffer, the same orthographic view, depth test on
 # a 16-bit buffer); the frontal frame's coverage masks compared; per round, a full turn timed by each,
-# alternately; callgrind instructions of mc_mesh_render per frame and per face. Appends (replacing an
-# earlier copy) a marked section to RESULTS.md.
+# alternately; callgrind instructions of mc_mesh_render per frame and per face. Then line drawings
+# (silhouettes, creases, borders, hidden lines removed) the same way: modelc's mc_front_mesh_frame in
+# the lines style (mesh_frames --style lines) against Mesa "the GPU way" (osmesa_mesh --style lines: a
+# depth pre-pass of the faces with polygon offset, then GL_LINES of the same edges, listed from the
+# runtime before the timing), a second table; the frontal drawings' line pixels compared and shown
+# side by side in tests/bench/lines_NAME.png. Appends (replacing an earlier copy) a marked section to
+# RESULTS.md.
 #   tests/bench/mesh.sh [RESULTS.md]
 #   MESH_MODELS ("bunny00 fandisk lion_head"), MESH_ROUNDS (7), MESH_FRAMES (100), MESH_SIZE (320x240),
-#   MESH_CG_FRAMES (20: frames of the turn under callgrind),
+#   MESH_CG_FRAMES (20: frames of the turn under callgrind), MESH_LINES_MODELS (MESH_MODELS: the line
+#   drawings' table), MESH_LINES_PICTURE (bunny00: the model of tests/bench/lines_NAME.png, if drawn),
 #   MESH_RUNTIME_REV (empty: the working tree's runtime/; else a git revision to take runtime/ from,
 #   e.g. HEAD, for when the working tree's runtime does not match build/bin/modelc's output)
 set -euo pipefail
@@ -16,6 +22,7 @@ cd "$(dirname "$0")/../.."
 results=${1:-tests/bench/RESULTS.md}
 models=${MESH_MODELS:-bunny00 fandisk lion_head} rounds=${MESH_ROUNDS:-7} frames=${MESH_FRAMES:-100}
 size=${MESH_SIZE:-320x240} cg_frames=${MESH_CG_FRAMES:-20} rev=${MESH_RUNTIME_REV:-}
+lines_models=${MESH_LINES_MODELS:-$models} lines_picture=${MESH_LINES_PICTURE:-bunny00}
 out=build/bench/mesh
 modelc=build/bin/modelc
 [ -x "$modelc" ] || { echo "mesh.sh: $modelc missing: run make gen" >&2; exit 1; }
@@ -31,17 +38,18 @@ run_glob() { cmds+=("$1"); eval "$1"; }
 rm -rf "$out/src"
 mkdir -p "$out/src"
 if [ -n "$rev" ]; then
-    git archive "$rev" runtime/include runtime/src runtime/front/host | tar -x -C "$out/src"
+    git archive "$rev" runtime/include runtime/src runtime/front/host runtime/front/common | tar -x -C "$out/src"
     runtime_from="git revision $rev ($(git rev-parse --short "$rev"))"
 else
     mkdir -p "$out/src/runtime/front"
     cp -r runtime/include runtime/src "$out/src/runtime/"
-    cp -r runtime/front/host "$out/src/runtime/front/"
+    cp -r runtime/front/host runtime/front/common "$out/src/runtime/front/"
     runtime_from="the working tree"
 fi
 rt=$out/src/runtime
 rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c | sha256sum | cut -c1-12)
-flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host")
+lines_sha=$(cat "$rt"/src/{mesh_lines,line}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
+flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
 : >"$out/rows.txt"
 for m in $models; do
@@ -57,11 +65,11 @@ EOF
     rm -rf "${out:?}/$m"
     run "$modelc" "$src" -o "$out" --name "$m" --depth 5 --as both -q
     run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -o $out/$m-frames \
-tests/bench/mesh_frames.c $rt/src/*.c $out/$m/*.c" ||
+tests/bench/mesh_frames.c $rt/src/*.c $rt/front/common/mesh_frame.c $out/$m/*.c" ||
         { echo "mesh.sh: the bake does not build against the runtime from $runtime_from: is $modelc older" \
                "than runtime/ (make gen), or set MESH_RUNTIME_REV=HEAD" >&2; exit 1; }
     run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -ffunction-sections -fdata-sections \
--o $out/$m-osmesa tests/bench/osmesa_mesh.c $rt/src/pmesh.c $rt/src/mesh_render.c $out/$m/*.c -Wl,--gc-sections -lOSMesa -lm"
+-o $out/$m-osmesa tests/bench/osmesa_mesh.c $rt/src/*.c $out/$m/*.c -Wl,--gc-sections -lOSMesa -lm"
     # the frontal frame: images and coverage masks of both
     run "$out/$m-frames" --size "$size" --yaw 0 --ppm "$out/$m.modelc.ppm" --mask "$out/$m.modelc.pgm" >"$out/$m.img.txt"
     run env LP_NUM_THREADS=0 "$out/$m-osmesa" --size "$size" --yaw 0 --ppm "$out/$m.mesa.ppm" \
@@ -87,14 +95,44 @@ tests/bench/mesh_frames.c $rt/src/*.c $out/$m/*.c" ||
     echo "$m" >>"$out/rows.txt"
 done
 cmds+=("$out/NAME-frames --time $frames --size $size; env LP_NUM_THREADS=0 $out/NAME-osmesa --time $frames --size $size   # per round, alternately, $rounds rounds")
+
+# line drawings: the same binaries, --style lines
+: >"$out/lines_rows.txt"
+for m in $lines_models; do
+    [ -x "$out/$m-frames" ] || { echo "mesh.sh: $m of MESH_LINES_MODELS is not in MESH_MODELS" >&2; exit 1; }
+    run "$out/$m-frames" --style lines --size "$size" --yaw 0 --ppm "$out/$m.lines.modelc.ppm" \
+        --mask "$out/$m.lines.modelc.pgm" >"$out/$m.lines.img.txt"
+    run env LP_NUM_THREADS=0 "$out/$m-osmesa" --style lines --size "$size" --yaw 0 --ppm "$out/$m.lines.mesa.ppm" \
+        --mask "$out/$m.lines.mesa.pgm" >"$out/$m.lines.mesa.img.txt"
+    run valgrind --tool=callgrind --toggle-collect=mc_front_mesh_frame --callgrind-out-file="$out/$m.lines.cg" \
+        "$out/$m-frames" --style lines --frames "$cg_frames" --size "$size" >"$out/$m.lines.cg.txt" 2>"$out/$m.lines.cg.log"
+    : >"$out/$m.lines.times"
+    for r in $(seq 1 "$rounds"); do
+        for side in $( [ $((r % 2)) = 1 ] && echo "modelc mesa" || echo "mesa modelc"); do
+            if [ "$side" = modelc ]; then
+                "$out/$m-frames" --style lines --time "$frames" --size "$size" >"$out/$m.lines.r$r.modelc.txt"
+            else
+                env LP_NUM_THREADS=0 "$out/$m-osmesa" --style lines --time "$frames" --size "$size" \
+                    >"$out/$m.lines.r$r.mesa.txt"
+            fi
+        done
+        a=$(sed -n 's/^ms per frame (median) //p' "$out/$m.lines.r$r.modelc.txt")
+        b=$(sed -n 's/^ms per frame (median) //p' "$out/$m.lines.r$r.mesa.txt")
+        c=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.lines.r$r.mesa.txt")
+        d=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.lines.r$r.modelc.txt")
+        echo "$a $b $c $d" >>"$out/$m.lines.times"
+    done
+    echo "$m" >>"$out/lines_rows.txt"
+done
+cmds+=("$out/NAME-frames --style lines --time $frames --size $size; env LP_NUM_THREADS=0 $out/NAME-osmesa --style lines --time $frames --size $size   # per round, alternately, $rounds rounds")
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 renderer=$(sed -n 's/^renderer: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
 version=$(sed -n 's/^version: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
 cc_version=$(gcc --version | head -n1)
 python3 - "$out" "$rounds" "$frames" "$size" "$cg_frames" "$load" "$renderer" "$version" "$cc_version" \
-    "$runtime_from" "$rt_sha" >"$out/section.md" <<'PY'
-import re, statistics, sys
-out, rounds, frames, size, cg_frames, load, renderer, version, cc, rt_from, rt_sha = sys.argv[1:12]
+    "$runtime_from" "$rt_sha" "$lines_sha" "$lines_picture" >"$out/section.md" <<'PY'
+import re, statistics, struct, sys, zlib
+out, rounds, frames, size, cg_frames, load, renderer, version, cc, rt_from, rt_sha, lines_sha, picture = sys.argv[1:14]
 cg_frames = int(cg_frames)
 
 def netpbm(path):
@@ -160,10 +198,113 @@ print("Per round (modelc wall / Mesa wall / Mesa CPU ms per frame): " + "; ".joi
 print()
 print("Frontal frame, pixels both cover whose colour differs (a different face wins a pixel near an edge or where "
       "depths tie): " + "; ".join(colours) + ".")
+
+# ---- line drawings --------------------------------------------------------------------------------
+def png(path, w, h, rgb):
+    raw = b"".join(b"\0" + rgb[3 * w * y:3 * w * (y + 1)] for y in range(h))
+    chunk = lambda t, d: struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+    open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                           chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+lines_rows = open(f"{out}/lines_rows.txt").read().split()
+if lines_rows:
+    closed = ", ".join(f"{m} " + ("closed" if re.search(r"closed 1", open(f"{out}/{m}.lines.r1.modelc.txt").read())
+                                  else "open") for m in lines_rows)
+    print("\n## Line drawings: mc_front_mesh_frame (lines) against Mesa llvmpipe's depth pre-pass + GL_LINES\n")
+    print(f"The same bakes, binaries and view, the line-drawing style: silhouettes, creases and borders with hidden lines "
+          "removed. modelc: `mesh_frames --style lines`, per frame `mc_front_mesh_frame(..., MC_FRONT_LINES, ...)` "
+          "(runtime/front/common/mesh_frame.c: `mc_clear`, the faces drawn in paper for hidden-line removal by "
+          f"`mc_mesh_render` with `MC_MESH_DRAW_PAPER`, back faces culled when the part is closed ({closed}), then `mc_mesh_lines` "
+          "finds every face's facing and every edge's kind and draws the silhouettes, creases and borders with a per-edge "
+          "depth offset, then the empty pixels made paper), the vertex cache on, mc_mesh_lines' memory "
+          "(`MC_MESH_LINES_BYTES(faces)`) static; an untimed frame first computes the level's crease bits, which "
+          "mc_mesh_lines keeps while the level is unchanged. Mesa \"the GPU way\": `osmesa_mesh --style lines`: for each "
+          "frame of the turn, the edges modelc draws in it are listed before the timing from the runtime, exactly as "
+          "mc_mesh_lines enumerates them (`mc_mesh_facing` for the frame's view, each face's edges with the neighbour "
+          "`mc_pmesh_lod_opposite` none or later, `mc_mesh_edge_kind`, silhouettes, creases and borders kept) and put "
+          "with their colours into the vertex buffer after the faces (one upload); timed per frame: `glClear` + the depth "
+          "pre-pass (`glDrawArrays(GL_TRIANGLES)` of all the faces in paper, `glPolygonOffset(1, 1)` on "
+          "`GL_POLYGON_OFFSET_FILL`, back faces culled) + `glDrawArrays(GL_LINES)` of the frame's edges + `glFinish`, depth "
+          "test `GL_LEQUAL`. So Mesa is not charged for finding the edges; \"edge list ms\" is what that listing took per "
+          "frame on the CPU (wall clock, median, once per run). Both sides list the same number of lines over the turn "
+          "(checked every round). Lines per frame: silhouettes + creases + borders (`mc_lines_stats`, mean over the turn); "
+          "line pixels: the pixels of modelc's lines before the depth test (`mc_lines_stats.pixels`, mean). Rounds, medians "
+          "and ratio as above (ratio: median over rounds of Mesa's wall ms / modelc's; CPU ratio likewise with both "
+          "sides' process CPU time). Instructions: callgrind, `mc_front_mesh_frame` only (with everything it calls: "
+          f"clear, faces, lines, paper fill), a turn of {cg_frames} frames after the untimed one. mesh_lines.c, line.c, "
+          f"mesh_frame.c: sha256 {lines_sha}.\n")
+    print("| mesh | lines per frame | silhouettes / creases / borders | line pixels | modelc ms | modelc CPU ms | "
+          "Mesa wall ms | Mesa CPU ms | ratio | CPU ratio | edge list ms | modelc Ir per frame |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    per_round, cmp_lines = [], []
+    for m in lines_rows:
+        rows = [list(map(float, l.split())) for l in open(f"{out}/{m}.lines.times")]
+        a = statistics.median(r[0] for r in rows)
+        b = statistics.median(r[1] for r in rows)
+        c = statistics.median(r[2] for r in rows)
+        d = statistics.median(r[3] for r in rows)
+        ratio = statistics.median(r[1] / r[0] for r in rows)
+        cratio = statistics.median(r[2] / r[3] for r in rows)
+        f1 = f"{out}/{m}.lines.r1.modelc.txt"
+        nl, px = field(f1, "lines per frame"), field(f1, "line pixels per frame")
+        sil, cre, bor = (field(f1, k + " per frame") for k in ("silhouettes", "creases", "borders"))
+        for r in range(1, len(rows) + 1):
+            ta = field(f"{out}/{m}.lines.r{r}.modelc.txt", "lines total")
+            tb = field(f"{out}/{m}.lines.r{r}.mesa.txt", "lines total")
+            if ta != tb:
+                bad.append(f"{m} (lines listed: modelc {ta:.0f}, Mesa {tb:.0f})")
+        lms = statistics.median(field(f"{out}/{m}.lines.r{r}.mesa.txt", "edge list ms per frame (median)")
+                                for r in range(1, len(rows) + 1))
+        refs = int(re.search(r"refs:\s+([\d,]+)", open(f"{out}/{m}.lines.cg.log").read()).group(1).replace(",", ""))
+        print(f"| {m} | {nl:,.0f} | {sil:,.0f} / {cre:,.0f} / {bor:,.0f} | {px:,.0f} | {a:.2f} | {d:.2f} | {b:.2f} | "
+              f"{c:.2f} | {ratio:.2f}x | {cratio:.2f}x | {lms:.2f} | {refs / cg_frames / 1e6:.2f} M |")
+        per_round.append(f"{m}: " + ", ".join(f"{r[0]:.2f} / {r[3]:.2f} / {r[1]:.2f} / {r[2]:.2f}" for r in rows))
+        # the frontal drawings: line pixels (modelc: a line colour; Mesa: alpha 255, a line drawn there)
+        w, h, ma = netpbm(f"{out}/{m}.lines.modelc.pgm")
+        w2, h2, mb = netpbm(f"{out}/{m}.lines.mesa.pgm")
+        assert (w, h) == (w2, h2)
+        n = w * h
+        na, nb = sum(1 for i in range(n) if ma[i]), sum(1 for i in range(n) if mb[i])
+        only_a = sum(1 for i in range(n) if ma[i] and not mb[i])
+        only_b = sum(1 for i in range(n) if mb[i] and not ma[i])
+        either = na + nb - (na - only_a)
+        nlf = re.search(r"lines (\d+)", open(f"{out}/{m}.lines.img.txt").read()).group(1)
+        cmp_lines.append(f"{m}: {int(nlf):,} lines, line pixels modelc {na:,}, Mesa {nb:,}; modelc's only {only_a:,}, "
+                         f"Mesa's only {only_b:,}: {100 * (only_a + only_b) / max(either, 1):.1f} % of the {either:,} "
+                         "pixels either draws")
+        if m == picture:
+            _, _, ca = netpbm(f"{out}/{m}.lines.modelc.ppm")
+            _, _, cb = netpbm(f"{out}/{m}.lines.mesa.ppm")
+            gap, W = 4, 3 * w + 2 * 4
+            img = bytearray([160]) * (3 * W * h)
+            for y in range(h):
+                for x in range(w):
+                    i = y * w + x
+                    for k, (x0, src) in enumerate(((0, ca), (w + gap, cb))):
+                        o = 3 * (y * W + x0 + x)
+                        img[o:o + 3] = src[3 * i:3 * i + 3]
+                    o = 3 * (y * W + 2 * (w + gap) + x)
+                    img[o:o + 3] = (bytes((0, 0, 0)) if ma[i] and mb[i] else bytes((220, 0, 0)) if ma[i]
+                                    else bytes((0, 70, 255)) if mb[i] else bytes((255, 255, 255)))
+            png(f"tests/bench/lines_{m}.png", W, h, bytes(img))
+    print()
+    print("Per round (modelc wall / modelc CPU / Mesa wall / Mesa CPU ms per frame): " + "; ".join(per_round) + ".")
+    print()
+    print("Frontal drawings (yaw 0), the pixels holding a line: " + "; ".join(cmp_lines) + ". They differ by the "
+          "rasterization rules, not by the edges (the same list): modelc's `mc_line` draws the Bresenham line between the pixels holding the projected endpoints (their 1/16-pixel positions "
+          "truncated), both ends included, and hides a line pixel only where a face is nearer by more than a per-edge "
+          "offset (2 depth units plus one pixel of the steeper depth slope of the edge's two faces); llvmpipe draws the "
+          "diamond-exit line between the exact endpoints (the last pixel left out) against faces pushed back by "
+          "`glPolygonOffset(1, 1)`. Where a line runs one pixel apart the two masks differ by twice its length; where a "
+          "silhouette runs over faces seen nearly edge-on the offsets decide whether it shows.")
+    if picture in lines_rows:
+        print(f"\n![{picture}: modelc, Mesa, both](lines_{picture}.png)\n")
+        print(f"`tests/bench/lines_{picture}.png`: the frontal drawing of {picture} by modelc (left) and by Mesa "
+              "(middle); right, the line pixels of both (black), of modelc only (red) and of Mesa only (blue).\n")
 print(f"Load average at the end: {load}.")
 if bad:
-    print(f"\n**Coverage masks differ by more than 1 % for: {', '.join(bad)}.**")
-    sys.stderr.write(f"mesh.sh: coverage masks differ by more than 1 % for {', '.join(bad)}\n")
+    print(f"\n**Coverage masks differ by more than 1 %, or the line lists differ, for: {', '.join(bad)}.**")
+    sys.stderr.write(f"mesh.sh: coverage masks differ by more than 1 % or line lists differ for {', '.join(bad)}\n")
     open(f"{out}/FAILED", "w").write(" ".join(bad) + "\n")
 PY
 sed -i '/^<!-- mesh: begin -->$/,/^<!-- mesh: end -->$/d' "$results"

@@ -1,8 +1,9 @@
 /* The modelc side of the filled-triangle benchmark (tests/bench/mesh.sh): mc_mesh_render drawing a
  * bake's progressive mesh at its full level of detail, one full turn of frames, against Mesa's
  * llvmpipe drawing the same triangles (tests/bench/osmesa_mesh.c). Built like pmesh_lod.c:
- * -DPM=mc_pmesh_NAME -include NAME.h, the bake's .c files and all of runtime/src, -Iruntime/include
- * -Iruntime/front/host (timing.h).
+ * -DPM=mc_pmesh_NAME -include NAME.h, the bake's .c files, all of runtime/src and
+ * runtime/front/common/mesh_frame.c, -Iruntime/include -Iruntime/front/host (timing.h)
+ * -Iruntime/front/common (mesh_frame.h).
  *
  *   mesh_frames --time N [--size WxH] [--cull]
  *       N frames of one turn (yaw = i * MC_ANGLE_FULL / N, pitch = roll = 0, zoom 1, orthographic:
@@ -20,6 +21,26 @@
  * --cull: MC_MESH_CULL_BACK. --no-cache: mc_mesh_render without its vertex cache (each face projects
  * its corners; the same images), else with a static one. Sizes up to 1024x1024 (static buffers).
  * Default size 320x240.
+ *
+ * --style lines: the line drawing instead (the line-drawing benchmark of mesh.sh): each frame is
+ * mc_front_mesh_frame(..., MC_FRONT_LINES, ...) (runtime/front/common/mesh_frame.c: mc_clear, the
+ * faces in paper for hidden-line removal, back faces culled when the part is closed, then
+ * mc_mesh_lines' silhouettes, creases and borders, then the empty pixels made paper), with a static
+ * mc_mesh_lines memory of MC_MESH_LINES_BYTES(faces) (uint32-aligned, zeroed at the start) and the
+ * static vertex cache (--no-cache: none); --cull is ignored (the frame decides). Before the frames
+ * (untimed, and outside mc_front_mesh_frame, so callgrind's --toggle-collect=mc_front_mesh_frame
+ * leaves it out) one frame at yaw 0 is drawn by mc_mesh_render + mc_mesh_lines directly: it warms
+ * the buffers and computes the level's crease bits, which mc_mesh_lines keeps while the level is
+ * unchanged (every frame here is at the full level). Then
+ *   --time N   also prints "lines per frame L" (mean of silhouettes + creases + borders of
+ *              mc_lines_stats: the edges drawn, or skipped at the near plane), "silhouettes per
+ *              frame", "creases per frame", "borders per frame", "skipped per frame", "line pixels
+ *              per frame P" (mean of mc_lines_stats.pixels: the lines' pixels before the depth
+ *              test) and "lines total T" (summed over the turn: tests/bench/osmesa_mesh.c --style
+ *              lines --time N must find the same number)
+ *   --frames N prints "lines per frame L" as well
+ *   --ppm      the drawing (paper, black silhouettes, grey creases, blue borders); --mask FILE 255
+ *              where a pixel holds a line's colour (MC_LINES_SILHOUETTE_COLOR .. BORDER_COLOR)
  */
 /* -include NAME.h comes first: build with -D_POSIX_C_SOURCE=200809L for time.h's clocks */
 #ifndef _POSIX_C_SOURCE
@@ -30,9 +51,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "modelc/mesh_lines.h"
 #include "modelc/mesh_render.h"
 #include "modelc/target.h"
-#include "timing.h"   /* runtime/front/host: clocks, medians */
+#include "mesh_frame.h"   /* runtime/front/common: mc_front_mesh_frame */
+#include "timing.h"       /* runtime/front/host: clocks, medians */
 
 #define MAX_SIDE 1024
 
@@ -42,6 +65,14 @@ static uint8_t color[MAX_SIDE * MAX_SIDE];
 static uint16_t depth[MAX_SIDE * MAX_SIDE];
 static uint32_t anc[1u << 22];   /* the ancestor map: V entries of up to 4 bytes */
 static mc_xvertex vcache[1u << 22];   /* mc_mesh_render's vertex cache: MC_MESH_CACHE_BYTES(V) */
+#define MAX_FACES (1u << 23)
+/* mc_mesh_lines' memory (--style lines): MC_MESH_LINES_BYTES(F), uint32-aligned */
+static uint32_t lines_mem[(MC_MESH_LINES_BYTES(MAX_FACES) + 3u) / 4u];
+
+static int is_line_color(uint8_t c)
+{
+    return c == MC_LINES_SILHOUETTE_COLOR || c == MC_LINES_CREASE_COLOR || c == MC_LINES_BORDER_COLOR;
+}
 
 static mc_view frame_view(int32_t yaw)
 {
@@ -56,14 +87,16 @@ static mc_view frame_view(int32_t yaw)
 
 static int32_t turn_yaw(int i, int n) { return (int32_t)((int64_t)MC_ANGLE_FULL * i / n); }
 
-static int write_image(const char *path, const mc_target *t, int mask)
+static int write_image(const char *path, const mc_target *t, int mask, int lines)
 {
     static const uint8_t white[3] = {255, 255, 255};
     FILE *f = fopen(path, "wb");
     if (!f) { perror(path); return -1; }
     fprintf(f, "%s\n%u %u\n255\n", mask ? "P5" : "P6", (unsigned)t->width, (unsigned)t->height);
     for (uint32_t i = 0; i < (uint32_t)t->width * t->height; i++) {
-        if (mask) {
+        if (mask && lines) {
+            fputc(is_line_color(t->color[i]) ? 255 : 0, f);
+        } else if (mask) {
             fputc(t->depth[i] != MC_DEPTH_EMPTY ? 255 : 0, f);
         } else {
             uint8_t rgb[3];
@@ -74,16 +107,88 @@ static int write_image(const char *path, const mc_target *t, int mask)
     return fclose(f);
 }
 
+/* --style lines: see the header */
+static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int time_n, int frames_n,
+                      const char *ppm, const char *mask, long yaw)
+{
+    uint8_t *mem = (uint8_t *)lines_mem;
+    memset(lines_mem, 0, MC_MESH_LINES_BYTES(PM.faces));
+    mc_front_mesh_stats st;
+    {   /* warm up, outside mc_front_mesh_frame: buffers, and the level's crease bits */
+        const mc_view v = frame_view(0);
+        const unsigned cull = PM.closed ? MC_MESH_CULL_BACK : 0u;
+        mc_clear(t);
+        if (mc_mesh_render(lod, &v, cull | MC_MESH_DRAW_PAPER, t, cache, &st.faces) != MC_OK ||
+            mc_mesh_lines(lod, &v, MC_LINES_ALL, t, mem, cache, &st.lines) != MC_OK)
+            return 1;
+    }
+    if (frames_n) {   /* untimed: what callgrind counts (mc_front_mesh_frame only) */
+        double nl = 0;
+        for (int i = 0; i < frames_n; i++) {
+            const mc_view v = frame_view(turn_yaw(i, frames_n));
+            if (mc_front_mesh_frame(lod, mem, cache, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
+            nl += (double)st.lines.silhouettes + st.lines.creases + st.lines.borders;
+        }
+        printf("frames %d style lines closed %u\n", frames_n, (unsigned)PM.closed);
+        printf("faces per frame %u\n", (unsigned)lod->faces);
+        printf("lines per frame %.1f\n", nl / frames_n);
+    }
+    if (time_n) {
+        double *ms = malloc((size_t)time_n * sizeof *ms), *cpu = malloc((size_t)time_n * sizeof *cpu);
+        if (!ms || !cpu) return 1;
+        double sil = 0, cre = 0, bor = 0, skip = 0, px = 0, fpx = 0;
+        for (int i = 0; i < time_n; i++) {
+            const mc_view v = frame_view(turn_yaw(i, time_n));
+            const double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
+            const int rc = mc_front_mesh_frame(lod, mem, cache, &v, MC_FRONT_LINES, t, &st);
+            ms[i] = mc_host_now_ms() - t0;
+            cpu[i] = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
+            if (rc != MC_OK) return 1;
+            sil += st.lines.silhouettes, cre += st.lines.creases, bor += st.lines.borders;
+            skip += st.lines.skipped, px += st.lines.pixels, fpx += st.faces.pixels;
+        }
+        printf("frames %d size %ux%u style lines closed %u\n", time_n, (unsigned)t->width, (unsigned)t->height,
+               (unsigned)PM.closed);
+        printf("ms per frame (median) %.4f\n", mc_host_median(ms, (size_t)time_n));
+        printf("cpu ms per frame (median) %.4f\n", mc_host_median(cpu, (size_t)time_n));
+        printf("triangles per frame %u\n", (unsigned)st.faces.faces);
+        printf("face pixels per frame %.1f\n", fpx / time_n);
+        printf("lines per frame %.1f\n", (sil + cre + bor) / time_n);
+        printf("silhouettes per frame %.1f\n", sil / time_n);
+        printf("creases per frame %.1f\n", cre / time_n);
+        printf("borders per frame %.1f\n", bor / time_n);
+        printf("skipped per frame %.1f\n", skip / time_n);
+        printf("line pixels per frame %.1f\n", px / time_n);
+        printf("lines total %.0f\n", sil + cre + bor);
+        free(ms);
+        free(cpu);
+    }
+    if (ppm || mask) {
+        const mc_view v = frame_view((int32_t)yaw);
+        if (mc_front_mesh_frame(lod, mem, cache, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
+        long drawn = 0;
+        for (uint32_t i = 0; i < (uint32_t)t->width * t->height; i++) drawn += is_line_color(t->color[i]);
+        printf("image yaw %ld style lines: lines %u (silhouettes %u creases %u borders %u skipped %u) "
+               "line pixels %u shown %ld\n", yaw,
+               (unsigned)(st.lines.silhouettes + st.lines.creases + st.lines.borders), (unsigned)st.lines.silhouettes,
+               (unsigned)st.lines.creases, (unsigned)st.lines.borders, (unsigned)st.lines.skipped,
+               (unsigned)st.lines.pixels, drawn);
+        if (ppm && write_image(ppm, t, 0, 1)) return 1;
+        if (mask && write_image(mask, t, 1, 1)) return 1;
+    }
+    return 0;
+}
+
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--cull] [--no-cache]\n");
+                    "[--yaw U] [--size WxH] [--cull] [--no-cache] [--style shaded|lines]\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
-    int time_n = 0, frames_n = 0, w = 320, h = 240;
+    int time_n = 0, frames_n = 0, w = 320, h = 240, lines = 0;
     unsigned flags = 0;
     long yaw = 0;
     const char *ppm = NULL, *mask = NULL;
@@ -100,20 +205,26 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--ppm")) ppm = v;
         else if (!strcmp(a, "--mask")) mask = v;
         else if (!strcmp(a, "--yaw")) yaw = atol(v);
-        else return usage();
+        else if (!strcmp(a, "--style")) {
+            if (!strcmp(v, "lines")) lines = 1;
+            else if (strcmp(v, "shaded")) return usage();
+        } else return usage();
     }
     if (time_n < 0 || frames_n < 0 || (!time_n && !frames_n && !ppm && !mask)) return usage();
     if (w < 1 || h < 1 || w > MAX_SIDE || h > MAX_SIDE) {
         fprintf(stderr, "mesh_frames: size %dx%d beyond 1..%d\n", w, h, MAX_SIDE);
         return 2;
     }
-    if (PM.vertices > sizeof anc / sizeof anc[0] || MC_MESH_CACHE_BYTES(PM.vertices) > sizeof vcache) return 2;
+    if (PM.vertices > sizeof anc / sizeof anc[0] || MC_MESH_CACHE_BYTES(PM.vertices) > sizeof vcache ||
+        PM.faces > MAX_FACES)
+        return 2;
 
     mc_pmesh_lod lod;
     mc_pmesh_lod_init(&lod, &PM, anc);
     mc_pmesh_lod_set(&lod, PM.vertices);   /* the full mesh */
     const mc_target t = {color, depth, (uint16_t)w, (uint16_t)h};
     mc_mesh_stats st;
+    if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw);
 
     if (frames_n) {   /* untimed: what callgrind counts (mc_mesh_render only) */
         for (int i = 0; i < frames_n; i++) {
@@ -161,8 +272,8 @@ int main(int argc, char **argv)
         for (uint32_t i = 0; i < (uint32_t)w * h; i++) covered += depth[i] != MC_DEPTH_EMPTY;
         printf("image yaw %ld: faces %u drawn %u skipped %u pixels %u covered %ld\n", yaw, (unsigned)st.faces,
                (unsigned)st.drawn, (unsigned)st.skipped, (unsigned)st.pixels, covered);
-        if (ppm && write_image(ppm, &t, 0)) return 1;
-        if (mask && write_image(mask, &t, 1)) return 1;
+        if (ppm && write_image(ppm, &t, 0, 0)) return 1;
+        if (mask && write_image(mask, &t, 1, 0)) return 1;
     }
     return 0;
 }
