@@ -41,12 +41,12 @@ inline constexpr ModuleCode kModules[] = {
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
-    {"pmesh", 976, 976, "progressive-mesh level of detail and neighbours (pmesh.c)"},
+    {"pmesh", 1124, 1124, "progressive-mesh level of detail and neighbours (pmesh.c)"},
     {"xform_vertex", 1212, 1212, "vertex projection, orthographic and perspective (xform_vertex.c)"},
     {"raster", 3444, 3444, "filled triangles with a z-buffer (raster.c)"},
     {"line", 1236, 1236, "clipped lines with a depth test (line.c)"},
     {"mesh_render", 1828, 1828, "flat-shaded faces of the current level (mesh_render.c)"},
-    {"mesh_lines", 1884, 1884, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
+    {"mesh_lines", 2512, 2512, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
     {"silhouette", 924, 924, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
