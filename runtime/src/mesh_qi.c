@@ -1,5 +1,10 @@
 /* Hidden lines by quantitative invisibility: see modelc/mesh_qi.h.
  *
+ * Long because it is one algorithm whose parts share one set of integer bounds (below) and one work
+ * buffer layout: the screen grids, the batched ray tests, the exact crossings and their ordering, the
+ * face-by-face fallback and the pixel walk all depend on the same invariants, and split across files
+ * they would each have to restate them.
+ *
  * Bounds every product below relies on: projected x, y lie in the band, |x|, |y| <= 2^21 (1/16
  * pixel), so a difference of two is below 2^22 in magnitude, twice the area of a triangle of three
  * such points at most 2^44, a cross product of two differences at most 2^45; depths are below 2^16.

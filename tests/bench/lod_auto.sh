@@ -7,6 +7,7 @@
 #   AUTO_MODEL (bunny00), AUTO_FRAMES (300), AUTO_TARGETS ("shaded:1 shaded:2 shaded:3 lines:2 lines:4 lines:6")
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 model=${AUTO_MODEL:-bunny00} frames=${AUTO_FRAMES:-300}
 targets=${AUTO_TARGETS:-shaded:1 shaded:2 shaded:3 lines:2 lines:4 lines:6}
@@ -50,16 +51,4 @@ for line in open(f"{out}/rows.txt"):
     print(f"| {style} | {float(t):g} | {med:.3f} | {held} of {n} ({100 * held / n:.0f} %) | {faces:,.0f} | {fmed:.3f} |")
 print(f"\nLoad average at the end: {load}.")
 PY
-sed -i '/^<!-- lod-auto: begin -->$/,/^<!-- lod-auto: end -->$/d' "$results"
-{
-    echo "<!-- lod-auto: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}"
-    echo '```'
-    echo "<!-- lod-auto: end -->"
-} >>"$results"
-cat "$out/section.md"
+write_section "$results" lod-auto "$out/section.md" "${cmds[@]}"

@@ -16,6 +16,7 @@
 #   LOD_STRIP_PERCENTS ("1 2 5 20 100")
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${LOD_MODELS:-bunny00 fandisk} percents=${LOD_PERCENTS:-1 2 5 10 20 50 100} views=${LOD_VIEWS:-12}
 size=${LOD_SIZE:-320x240} reps=${LOD_REPS:-20} pitch=${LOD_PITCH:-228} strip_view=${LOD_STRIP_VIEW:-1}
@@ -200,16 +201,4 @@ print(f"`tests/bench/lod_strip.png`: view {strip_view} of the turn (yaw {strip_v
       + "; ".join(f"{m} ({', '.join(f'{int(n):,}' for n in strip_faces[m])} faces)" for m in models) + ".")
 PY
 gnuplot "$out/plot.gp"
-sed -i '/^<!-- lod-error: begin -->$/,/^<!-- lod-error: end -->$/d' "$results"
-{
-    echo "<!-- lod-error: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}"
-    echo '```'
-    echo "<!-- lod-error: end -->"
-} >>"$results"
-cat "$out/section.md"
+write_section "$results" lod-error "$out/section.md" "${cmds[@]}"

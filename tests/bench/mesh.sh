@@ -19,6 +19,7 @@
 #   e.g. HEAD, for when the working tree's runtime does not match build/bin/modelc's output)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${MESH_MODELS:-bunny00 fandisk lion_head} rounds=${MESH_ROUNDS:-7} frames=${MESH_FRAMES:-100}
 size=${MESH_SIZE:-320x240} cg_frames=${MESH_CG_FRAMES:-20} rev=${MESH_RUNTIME_REV:-}
@@ -307,17 +308,5 @@ if bad:
     sys.stderr.write(f"mesh.sh: coverage masks differ by more than 1 % or line lists differ for {', '.join(bad)}\n")
     open(f"{out}/FAILED", "w").write(" ".join(bad) + "\n")
 PY
-sed -i '/^<!-- mesh: begin -->$/,/^<!-- mesh: end -->$/d' "$results"
-{
-    echo "<!-- mesh: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}"
-    echo '```'
-    echo "<!-- mesh: end -->"
-} >>"$results"
-cat "$out/section.md"
+write_section "$results" mesh "$out/section.md" "${cmds[@]}"
 if [ -f "$out/FAILED" ]; then rm -f "$out/FAILED"; exit 1; fi

@@ -11,6 +11,7 @@
 #   PMESH_MODELS ("bunny00 fandisk"), PMESH_ROUNDS (7)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${PMESH_MODELS:-bunny00 fandisk} rounds=${PMESH_ROUNDS:-7}
 out=build/bench/pmesh
@@ -72,16 +73,4 @@ print()
 print("Per round (modelc / OpenMesh ns): " + "; ".join(per_round) + ".")
 print(f"Load average at the end: {load}.")
 PY
-sed -i '/^<!-- pmesh: begin -->$/,/^<!-- pmesh: end -->$/d' "$results"
-{
-    echo "<!-- pmesh: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}"
-    echo '```'
-    echo "<!-- pmesh: end -->"
-} >>"$results"
-cat "$out/section.md"
+write_section "$results" pmesh "$out/section.md" "${cmds[@]}"

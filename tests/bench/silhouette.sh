@@ -11,6 +11,7 @@
 #   SIL_DEG (2)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${SIL_MODELS:-bunny00 fandisk} budgets=${SIL_BUDGETS:-2000 5000 10000 15000 20000 30000}
 frames=${SIL_FRAMES:-60} deg=${SIL_DEG:-2}
@@ -84,18 +85,5 @@ with open(f"{out}/plot.gp", "w") as f:
         f'"{out}/plot.dat" index {i} using 1:3 with points title "{m} min"' for i, m in enumerate(pts)) + "\n")
 PY
 gnuplot "$out/plot.gp"
-sed -i '/^<!-- silhouette: begin -->$/,/^<!-- silhouette: end -->$/d' "$results"
-{
-    echo "<!-- silhouette: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "![recall against instructions](silhouette.png)"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}"
-    echo '```'
-    echo "<!-- silhouette: end -->"
-} >>"$results"
-cat "$out/section.md"
+printf '\n%s\n' "![recall against instructions](silhouette.png)" >>"$out/section.md"
+write_section "$results" silhouette "$out/section.md" "${cmds[@]}"
