@@ -88,15 +88,20 @@ COMMON_HDR := $(wildcard runtime/front/common/*.h)
 HOST_SRC := $(wildcard runtime/front/host/*.c)
 HOST_OBJ := $(patsubst runtime/front/host/%.c,$(BUILD)/host/%.o,$(HOST_SRC)) \
   $(patsubst runtime/front/common/%.c,$(BUILD)/common/%.o,$(COMMON_SRC))
+# each function and object in its own section, so that a program's --gc-sections drops what it never calls
 $(BUILD)/runtime/%.o: runtime/src/%.c $(RT_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
+	$(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -c -o $@ $<
 $(BUILD)/host/%.o: runtime/front/host/%.c $(RT_HDR) $(wildcard runtime/front/host/*.h) $(COMMON_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(HOST_CFLAGS) -c -o $@ $<
 $(BUILD)/common/%.o: runtime/front/common/%.c $(RT_HDR) $(COMMON_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
+# the runtime and the host front end's objects alone: the tests link them (tests/lib.sh rt_objs)
+# wherever they test the runtime as the viewers have it, instead of compiling it again
+.PHONY: runtime-objs
+runtime-objs: $(RT_OBJ) $(HOST_OBJ)
 
 # ---- models, bakes and viewers -----------------------------------------------------------------
 MODEL_FILES := $(foreach m,$(CATALOGUE),$(BUILD)/models/$(notdir $($(m).src)))

@@ -7,6 +7,16 @@
 # exactly as the build does), with optional overrides such as BOARD=...
 mkvar() { make -s --no-print-directory --eval 'mc-print-%: ; @echo $($*)' "mc-print-$1" "${@:2}"; }
 
+# rt_objs [host]: the runtime's objects as the Makefile builds them for the viewers (CFLAGS and
+# RT_CFLAGS, no hooks), made when out of date; with "host", the host front end's objects too. A test
+# that checks the runtime as it ships links these instead of compiling runtime/src again (compiling
+# it is most of several suites' time); a test that needs other flags or a hook compiles its own.
+rt_objs() {
+    make -s runtime-objs >/dev/null 2>&1 || { echo "rt_objs: make runtime-objs failed" >&2; return 1; }
+    mkvar RT_OBJ
+    [ "${1:-}" != host ] || mkvar HOST_OBJ
+}
+
 # ASan + UBSan, halting at the first report: the flags every sanitized test build uses, and the
 # runtime options that make a report end the program.
 SAN_FLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"

@@ -5,6 +5,7 @@ set -u
 cd "$(dirname "$0")/../.."
 out=build/tests/accuracy
 mkdir -p "$out"
+. tests/lib.sh
 MODELC=${MODELC:-build/bin/modelc}
 [ -x "$MODELC" ] || { echo "not ok - accuracy: $MODELC missing (make gen)"; exit 1; }
 for f in bunny00.off kitten.xyz; do
@@ -25,7 +26,7 @@ if ! "$MODELC" build/models/kitten.xyz -o "$out" --name acc_kitten --depth 7 -q 
 fi
 echo "ok - modelc --dump-reference writes the reference dumps (mesh, point set)"
 if ! gcc -std=c99 -O2 -g -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -o "$out/meshref_test" \
-    tests/accuracy/meshref_test.c runtime/ref/mesh_ref.c runtime/ref/ref.c runtime/src/*.c "$out/acc_bunny00"/acc_bunny00_data_*.c \
+    tests/accuracy/meshref_test.c runtime/ref/mesh_ref.c runtime/ref/ref.c $(rt_objs | tr '\n' ' ') "$out/acc_bunny00"/acc_bunny00_data_*.c \
     "$out/acc_bunny00/acc_bunny00_octree.c" "$out/acc_kitten"/acc_kitten_data_*.c "$out/acc_kitten/acc_kitten_octree.c" -lm 2>"$out/build.log"; then
     echo "not ok - accuracy: test build failed: $(head -n 3 "$out/build.log" | tr '\n' ' ')"; exit 1
 fi

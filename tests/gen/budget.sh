@@ -16,6 +16,7 @@ check() { check_cmd "$@"; }   # check NAME COMMAND...
 json() { python3 -c "import json,sys; b=json.load(open(sys.argv[1])); print($2)" "$1"; }
 bunny=build/models/bunny00.off
 rt_cc="gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include"
+rt=$(rt_objs | tr '\n' ' ')   # the runtime's objects as the Makefile builds them (one function a section)
 
 # the slow part first, in the background: bunny00 voxelized at depth 8 for lm3s6965evb
 lm="--flash-budget 256K --ram-budget 64KiB --stack-budget 8K"
@@ -79,7 +80,7 @@ wait $colr_pid
 check "monochrome: budget.json has no colour bytes, the data files no colour arrays" \
     test "$(json "$tmp/m/mono/budget.json" '"%d %d" % (b["flash"]["colors"], b["palette_entries"])')" = "0 1" -a \
     -z "$(grep -l '_c[0-9]*_[0-9]*\[' "$tmp/m/mono"/*.c)"
-if $rt_cc -I"$tmp/m/colr" -I"$tmp/m/mono" -o "$tmp/mono" tests/lib/mono.c runtime/src/*.c "$tmp/m/colr"/*.c \
+if $rt_cc -I"$tmp/m/colr" -I"$tmp/m/mono" -o "$tmp/mono" tests/lib/mono.c $rt "$tmp/m/colr"/*.c \
     "$tmp/m/mono"/*.c 2>"$tmp/mono.log"; then
     "$tmp/mono" | sed 's/^\(not \)\{0,1\}ok - /&budget: /' | tee "$tmp/mono.out"
     grep -q '^not ok' "$tmp/mono.out" && fails=$((fails + 1))
@@ -117,7 +118,7 @@ sec = readme.split("## Use as a library", 1)[1].split("\n## ", 1)[0]
 code = sec.split("```c\n", 1)[1].split("```", 1)[0]
 assert code == open("tests/lib/example.c").read()
 PY
-if $rt_cc -I"$tmp/lib/bunny00" -o "$tmp/example" tests/lib/example.c runtime/src/*.c "$tmp/lib/bunny00"/*.c 2>"$tmp/ex.log" &&
+if $rt_cc -I"$tmp/lib/bunny00" -o "$tmp/example" tests/lib/example.c $rt "$tmp/lib/bunny00"/*.c 2>"$tmp/ex.log" &&
     "$tmp/example" >"$tmp/example.out"; then
     check "the README example links with the runtime and renders 8 frames, each lighting pixels" \
         test "$(grep -c 'pixels lit' "$tmp/example.out")" = 8 -a -z "$(grep ': 0 pixels' "$tmp/example.out")"
@@ -126,7 +127,7 @@ else
 fi
 # what a program does not call is not linked: the example draws and fills one-pixel holes only
 if $rt_cc -ffunction-sections -fdata-sections -I"$tmp/lib/bunny00" -o "$tmp/example-gc" tests/lib/example.c \
-    runtime/src/*.c "$tmp/lib/bunny00"/*.c -Wl,--gc-sections 2>"$tmp/gc.log"; then
+    $rt "$tmp/lib/bunny00"/*.c -Wl,--gc-sections 2>"$tmp/gc.log"; then
     syms=$(nm "$tmp/example-gc")
     check "--gc-sections: the example links mc_octree_render and mc_finish_pixel_holes but not mc_finish_scanline_holes or mc_finish" \
         test -n "$(grep ' T mc_octree_render$' <<<"$syms")" -a -n "$(grep ' T mc_finish_pixel_holes$' <<<"$syms")" -a \
@@ -136,7 +137,7 @@ else
 fi
 over=('-DMC_BUNNY00_SECTION=__attribute__((section(".models")))' '-DMC_BUNNY00_ALIGN=__attribute__((aligned(4)))'
       -DMC_BUNNY00_PREFIX=board_)
-if $rt_cc "${over[@]}" -I"$tmp/lib/bunny00" -o "$tmp/example2" tests/lib/example.c runtime/src/*.c "$tmp/lib/bunny00"/*.c 2>"$tmp/ex2.log"; then
+if $rt_cc "${over[@]}" -I"$tmp/lib/bunny00" -o "$tmp/example2" tests/lib/example.c $rt "$tmp/lib/bunny00"/*.c 2>"$tmp/ex2.log"; then
     syms=$(nm "$tmp/example2")
     check "section, alignment and prefix macros: .models section, global symbols board_*, same frames" \
         test -n "$(objdump -h "$tmp/example2" | grep ' \.models ')" -a -n "$(grep ' board_model$' <<<"$syms")" -a \

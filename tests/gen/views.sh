@@ -24,9 +24,13 @@ for spec in "" "front" "front:abc" "front:200" "front:-5" "all,front:30" "front:
     fi
 done
 
-# a viewer for one bake, linked like the Makefile's link_view
+# a viewer for one bake, linked like the Makefile's link_view (its runtime and front-end objects)
+view_objs=$(rt_objs host | tr '\n' ' ')
+view_cc="$(mkvar CC) $(mkvar CFLAGS) $(mkvar RT_CFLAGS)"
+view_ld=$(mkvar VIEW_LDFLAGS)
 link() {
-    cc -O2 -std=c99 -Iruntime/include -o "$1/view" "$1"/*.c runtime/src/*.c runtime/front/host/*.c runtime/front/common/*.c -lm
+    # shellcheck disable=SC2086
+    $view_cc -o "$1/view" "$1"/*.c $view_objs $view_ld
 }
 # frontal images of two bakes, byte for byte: sizes x depths x finishing
 same_front() {

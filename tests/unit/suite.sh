@@ -68,23 +68,53 @@ run_cmocka() {
     fi
 }
 
-# The runtime sources a test program is built with: all of them for test_view; the others test
-# number helpers and never draw, so they leave out the renderer, whose leaf switch is most of the
-# compile time (several times more under the sanitizers). A test that needs it fails to link.
-runtime_sources() {
-    local f
-    for f in runtime/src/*.c; do
-        [ "$1" = test_view ] || [ "$(basename "$f")" != octree_render.c ] && echo "$f"
-    done
+# The runtime a test program links: an archive of runtime/src compiled with the program's own flags,
+# built once per set of flags and shared by every program with that set (compiling the runtime is
+# most of this suite's time). test_view's has the renderer; the others test number helpers and never
+# draw, so theirs leaves it out: its leaf switch is most of the compile time (several times more
+# under the sanitizers). A test that needs a left-out file fails to link.
+# runtime_archive WITH_RENDERER FLAGS...: prints the archive's path; the compiler's messages go to
+# ARCHIVE.log
+runtime_archive() {
+    local renderer=$1 key dir f srcs=()
+    shift
+    key=$(echo "$CC_UNIT $flags $renderer $*" | md5sum | cut -c1-12)
+    dir=$out/rt-$key
+    if [ ! -f "$dir/libmodelc.a" ]; then
+        rm -rf "$dir"
+        mkdir -p "$dir"
+        for f in runtime/src/*.c; do
+            [ "$renderer" = 1 ] || [ "$(basename "$f")" != octree_render.c ] && srcs+=("$f")
+        done
+        # shellcheck disable=SC2086
+        if printf '%s\n' "${srcs[@]}" | xargs -P "$(nproc 2>/dev/null || echo 2)" -I{} sh -c \
+            'f=$1; shift; exec "$@" -c -o "'"$dir"'/$(basename "$f" .c).o" "$f"' sh {} \
+            $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "$@" >"$dir.log" 2>&1 &&
+            ar rcs "$dir/libmodelc.a.tmp" "$dir"/*.o 2>>"$dir.log"; then
+            mv "$dir/libmodelc.a.tmp" "$dir/libmodelc.a"
+        fi
+    fi
+    echo "$dir/libmodelc.a"
 }
 
 build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
-    local pfx=$1 name=$2
+    local pfx=$1 name=$2 lib renderer=0
     shift 2
     local prog="$out/$name"
-    # shellcheck disable=SC2086,SC2046
-    if ! $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "$@" -o "$prog" \
-        "tests/unit/${name%%-*}.c" $(runtime_sources "${name%%-*}") -lcmocka -lm >"$prog.build.log" 2>&1; then
+    [ "${name%%-*}" = test_view ] && renderer=1
+    # the flags before any source file (runtime/ref/...) are the program's, and the runtime's
+    local cflags=() extra=() a
+    for a in "$@"; do
+        case $a in *.c) extra+=("$a") ;; *) cflags+=("$a") ;; esac
+    done
+    lib=$(runtime_archive "$renderer" "${cflags[@]}")
+    if [ ! -f "$lib" ]; then
+        notok "${pfx}build" "the runtime archive: $(grep -m 3 -E 'error|warning' "${lib%/libmodelc.a}.log" | oneline)"
+        return
+    fi
+    # shellcheck disable=SC2086
+    if ! $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "${cflags[@]}" -o "$prog" \
+        "tests/unit/${name%%-*}.c" "${extra[@]}" "$lib" -lcmocka -lm >"$prog.build.log" 2>&1; then
         notok "${pfx}build" "$(head -n 5 "$prog.build.log" | oneline)"
         return
     fi
@@ -92,8 +122,11 @@ build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
 }
 
 # fixed point and views at the default and both extreme MC_FRAC_BITS
+# (F=15 is config.h's default: that program shares the archive of the programs below)
 for f in 15 8 24; do
-    build_and_run "unit: fixed F=$f: " "test_fixed-f$f" -DMC_FRAC_BITS=$f
+    fb=()
+    [ "$f" = 15 ] || fb=(-DMC_FRAC_BITS=$f)
+    build_and_run "unit: fixed F=$f: " "test_fixed-f$f" "${fb[@]}"
 done
 build_and_run "unit: trig: " test_trig
 build_and_run "unit: bits, rng, chunk: " test_bits
@@ -125,20 +158,24 @@ if [ "${SANITIZE:-0}" != 1 ]; then
     # Not the memory functions (memcpy, memset, __aeabi_memcpy...): those come from a libc.
     helpers='^(__(u?(div|mod|mul)[sdt]i3|u?divmod[sdt]i4|(ash[lr]|lshr)[sdt]i3|(popcount|ctz|clz|parity|ffs|bswap)[sdt]i2|cmp[dt]i2|ucmp[dt]i2|neg[dt]i2|aeabi_(l|ui|i|ul)(div|divmod|mul|asr|lsl|lsr|cmp|ucmp)|aeabi_(idiv|uidiv|idivmod|uidivmod|ldivmod|uldivmod|lmul|llsl|llsr|lasr|lcmp|ulcmp))|_GLOBAL_OFFSET_TABLE_)$'
 
-    levels=${UNIT_OPT_LEVELS:--O0 -O2 -Os}
+    base_levels=${UNIT_OPT_LEVELS:--O0 -O2 -Os}
     # fs_build TAG "CC FLAGS...": compiles every runtime/src/*.c at several optimisation levels into
     # $fs/TAG/O*/, with only the compiler's own headers on the include path (-nostdinc), and prints
-    # the problems, if any
+    # the problems, if any. On x86-64 (tags gcc and clang) the -O2 build also has
+    # -mgeneral-regs-only: gcc then refuses any floating-point operation and clang turns it into
+    # soft-float library calls (__muldf3...), which no compiler helper below allows.
     fs_build() {
-        local tag=$1 cc=$2 inc o f dir
+        local tag=$1 cc=$2 inc o f dir nofloat
         inc=$($cc -print-file-name=include 2>/dev/null)
         case $cc in clang*) inc="$(clang -print-resource-dir)/include" ;; esac
         for o in $levels; do
             dir="$fs/$tag/O${o#-O}"
             mkdir -p "$dir"
+            nofloat=""
+            [ "$o" = -O2 ] && { [ "$tag" = gcc ] || [ "$tag" = clang ]; } && nofloat=-mgeneral-regs-only
             for f in runtime/src/*.c; do
                 # shellcheck disable=SC2086
-                if ! $cc $o $FS_FLAGS -nostdinc -isystem "$inc" -c -o "$dir/$(basename "$f" .c).o" "$f" \
+                if ! $cc $o $nofloat $FS_FLAGS -nostdinc -isystem "$inc" -c -o "$dir/$(basename "$f" .c).o" "$f" \
                     >"$dir/$(basename "$f" .c).log" 2>&1; then
                     echo "$f at $o: $(head -n 3 "$dir/$(basename "$f" .c).log" | oneline)"
                 fi
@@ -170,12 +207,16 @@ if [ "${SANITIZE:-0}" != 1 ]; then
     fi
     for t in "${targets[@]}"; do
         IFS='|' read -r tag cc ld nm <<<"$t"
+        levels=$base_levels   # (x86-64 adds -O2 below for its no-floating-point build)
+        nofloat_name="unit: freestanding: $tag builds runtime/src with -mgeneral-regs-only (no floating point)"
+        case $tag in gcc | clang) [[ " $levels " == *" -O2 "* ]] || levels+=" -O2" ;; *) nofloat_name="" ;; esac
         problems=$(fs_build "$tag" "$cc")
         if [ -z "$problems" ]; then
             ok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at $levels"
         else
             notok "unit: freestanding: $tag compiles runtime/src with $FS_FLAGS -nostdinc at $levels" \
                 "$(echo "$problems" | oneline)"
+            [ -n "$nofloat_name" ] && notok "$nofloat_name" "$(echo "$problems" | grep -e '-O2' | oneline)"
             continue
         fi
         problems=$(fs_undefined "$tag" "$ld" "$nm")
@@ -185,30 +226,10 @@ if [ "${SANITIZE:-0}" != 1 ]; then
             notok "unit: freestanding: $tag runtime object (ld -r) has no undefined symbols but compiler helpers" \
                 "$(echo "$problems" | oneline)"
         fi
-    done
-
-    # no floating point: with -mgeneral-regs-only (x86-64) gcc refuses any floating-point operation,
-    # clang turns it into soft-float library calls (__muldf3...), which no compiler helper above allows
-    for cc in gcc clang; do
-        problems=""
-        mkdir -p "$fs/nofloat-$cc"
-        for f in runtime/src/*.c; do
-            o=$fs/nofloat-$cc/$(basename "$f" .c).o
-            # shellcheck disable=SC2086
-            if ! $cc -O2 $FS_FLAGS -mgeneral-regs-only -c -o "$o" "$f" >"$o.log" 2>&1; then
-                problems+="$f: $(head -n 2 "$o.log" | oneline) "
-            fi
-        done
-        if [ -z "$problems" ]; then
-            if ld -r -o "$fs/nofloat-$cc.o" "$fs/nofloat-$cc"/*.o 2>"$fs/nofloat-$cc.log"; then
-                bad=$(nm -u "$fs/nofloat-$cc.o" | awk '{print $NF}' | grep -Ev "$helpers" | tr '\n' ' ')
-                [ -n "$bad" ] && problems+="the runtime needs: $bad"
-            else
-                problems+="ld -r failed: $(head -n 2 "$fs/nofloat-$cc.log" | oneline)"
-            fi
+        # the -O2 build had -mgeneral-regs-only: it compiled, and needs no soft-float routine
+        if [ -n "$nofloat_name" ]; then
+            check_problems "$nofloat_name" "$(echo "$problems" | grep -e '^-O2 ' | oneline)"
         fi
-        if [ -z "$problems" ]; then ok "unit: freestanding: $cc builds runtime/src with -mgeneral-regs-only (no floating point)"
-        else notok "unit: freestanding: $cc builds runtime/src with -mgeneral-regs-only (no floating point)" "$problems"; fi
     done
 
     # the runtime's sources and headers, comments removed: no float/double types, no float literals
