@@ -43,8 +43,9 @@ inline constexpr ModuleCode kModules[] = {
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 1124, 1124, "progressive-mesh level of detail and neighbours (pmesh.c)"},
     {"xform_vertex", 1212, 1212, "vertex projection, orthographic and perspective (xform_vertex.c)"},
-    {"raster", 3444, 3444, "filled triangles with a z-buffer (raster.c)"},
-    {"line", 1236, 1236, "clipped lines with a depth test (line.c)"},
+    {"raster", 6120, 6120, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
+    {"line", 2580, 2580, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
+    {"sdepth", 648, 648, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 1828, 1828, "flat-shaded faces of the current level (mesh_render.c)"},
     {"mesh_lines", 2512, 2512, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
     {"silhouette", 924, 924, "silhouette edges, exact and searched within a work bound (silhouette.c)"},

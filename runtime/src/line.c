@@ -43,10 +43,23 @@ static uint32_t step_reaching(uint32_t k, uint32_t d, uint32_t m)
 
 static int coord_ok(int32_t c) { return c >= -MC_LINE_COORD_MAX && c <= MC_LINE_COORD_MAX; }
 
-uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t color, const mc_line_style *s)
+/* A line's walk over the run of its steps on a w x h frame: the first step's pixel (index idx, and
+ * x, y), the steps, and the error terms of the minor coordinate (r against d2, growing by m2) and
+ * of the depth (z, stepped by zstep and, when zr reaches d2, by zunit). */
+typedef struct walk {
+    uint32_t idx, count;
+    uint32_t ustep, vstep;          /* index increments, modulo 2^32 */
+    int32_t x, y, xu, yu, xv, yv;   /* the pixel, and its steps along u and v */
+    uint32_t r, m2, d2;
+    int32_t z, zstep, zunit;
+    uint32_t zr, zrstep;
+} walk;
+
+/* Sets up the walk of the line from a to b on a w x h frame (w, h not 0); returns its step count on
+ * the frame, 0 for none. */
+MC_ALWAYS_INLINE uint32_t walk_init(uint32_t w, uint32_t h, mc_line_vertex a, mc_line_vertex b, walk *wk)
 {
-    if (!coord_ok(a.x) || !coord_ok(a.y) || !coord_ok(b.x) || !coord_ok(b.y) || !t->width || !t->height)
-        return 0;
+    if (!coord_ok(a.x) || !coord_ok(a.y) || !coord_ok(b.x) || !coord_ok(b.y) || !w || !h) return 0;
     uint32_t za = a.z < MC_LINE_DEPTH_MAX ? a.z : MC_LINE_DEPTH_MAX;
     uint32_t zb = b.z < MC_LINE_DEPTH_MAX ? b.z : MC_LINE_DEPTH_MAX;
     int32_t dx = b.x - a.x, dy = b.y - a.y;   /* |d| <= 2^25 */
@@ -66,7 +79,6 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
         za = zb;
     }
 
-    const uint32_t w = t->width, h = t->height;
     int32_t u0, v0, vm0;
     uint32_t d, m, wu, wv, ustep, vstep;   /* steps: index increments, modulo 2^32 */
     int vneg;
@@ -112,9 +124,25 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
 
     const uint32_t ui = (uint32_t)u0 + first;   /* on the target: 0 .. wu-1 */
     const uint32_t vi = vneg ? (uint32_t)v0 - k : (uint32_t)v0 + k;
-    uint32_t idx = xmajor ? vi * w + ui : ui * w + vi;
-    if (vneg) vstep = 0u - vstep;
+    wk->idx = xmajor ? vi * w + ui : ui * w + vi;
+    wk->x = (int32_t)(xmajor ? ui : vi), wk->y = (int32_t)(xmajor ? vi : ui);
+    wk->xu = xmajor, wk->yu = !xmajor;
+    wk->xv = xmajor ? 0 : (vneg ? -1 : 1), wk->yv = xmajor ? (vneg ? -1 : 1) : 0;
+    wk->ustep = ustep, wk->vstep = vneg ? 0u - vstep : vstep;
+    wk->count = last - first + 1u;
+    wk->r = r, wk->m2 = m2, wk->d2 = d2;
+    wk->z = z, wk->zstep = zstep, wk->zunit = zunit, wk->zr = zr, wk->zrstep = zrstep;
+    return wk->count;
+}
 
+uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t color, const mc_line_style *s)
+{
+    walk k;
+    if (!walk_init(t->width, t->height, a, b, &k)) return 0;
+    uint32_t idx = k.idx, r = k.r, zr = k.zr;
+    int32_t z = k.z;
+    const uint32_t ustep = k.ustep, vstep = k.vstep, m2 = k.m2, d2 = k.d2, zrstep = k.zrstep;
+    const int32_t zstep = k.zstep, zunit = k.zunit;
     const uint32_t off = s ? s->depth_offset : 0;
     const uint32_t flags = s ? s->flags : 0;
     /* no test: every stored depth (< 2^16) passes z - off < depth + 2^16 */
@@ -122,7 +150,7 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
     const int write = (flags & MC_LINE_WRITE_DEPTH) != 0;
     uint8_t *const cbuf = t->color;
     uint16_t *const dbuf = t->depth;
-    const uint32_t count = last - first + 1u;
+    const uint32_t count = k.count;
     for (uint32_t n = count;;) {
         MC_LINE_STEP_HOOK();
         const uint32_t zt = (uint32_t)z > off ? (uint32_t)z - off : 0;
@@ -145,4 +173,31 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
         }
     }
     return count;
+}
+
+uint32_t mc_line_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset)
+{
+    walk k;
+    if (!walk_init(s->width, s->height, a, b, &k)) return 0;
+    uint32_t r = k.r, zr = k.zr, x = (uint32_t)k.x, y = (uint32_t)k.y;
+    int32_t z = k.z;
+    for (uint32_t n = k.count;;) {
+        MC_LINE_STEP_HOOK();
+        const uint32_t zt = (uint32_t)z > depth_offset ? (uint32_t)z - depth_offset : 0;
+        mc_sdepth_insert(s, x, y, (uint16_t)zt, color);
+        if (--n == 0) break;
+        x += (uint32_t)k.xu, y += (uint32_t)k.yu;
+        r += k.m2;
+        if (r >= k.d2) {
+            r -= k.d2;
+            x += (uint32_t)k.xv, y += (uint32_t)k.yv;
+        }
+        z += k.zstep;
+        zr += k.zrstep;
+        if (zr >= k.d2) {
+            zr -= k.d2;
+            z += k.zunit;
+        }
+    }
+    return k.count;
 }

@@ -218,6 +218,36 @@ static uint64_t plane_step(const tri *g, int64_t p)
     return (uint64_t)round_div(p * ((int64_t)1 << k), g->area);
 }
 
+/* The face pass over a sparse depth buffer (mc_raster_triangle_hide): of pixels first .. last of row
+ * j, whose first pixel has plane value acc (stepped by gx), empties those in use whose entry is not
+ * strictly nearer than the face there, visiting only the pixels in use (leading zeros of the in-use
+ * words). Returns how many it emptied. */
+MC_ALWAYS_INLINE uint32_t hide_span(const tri *g, mc_sdepth *s, uint32_t j, uint32_t first, uint32_t last,
+                                    uint64_t acc, uint64_t gx)
+{
+    uint32_t *const u = s->used + j * s->blocks;
+    const uint16_t *const drow = s->depth + j * s->width;
+    const uint32_t zmin = g->zmin, zmax = g->zmax, b1 = last >> 5;
+    uint32_t removed = 0;
+    for (uint32_t b = first >> 5; b <= b1; b++) {
+        uint32_t m = u[b];
+        if (b == first >> 5) m &= 0xFFFFFFFFu >> (first & 31u);
+        if (b == b1) m &= 0xFFFFFFFFu << (31u - (last & 31u));
+        while (m) {
+            const uint32_t c = mc_clz32(m), x = 32u * b + c;
+            m &= ~(0x80000000u >> c);
+            uint32_t d = (uint32_t)((acc + (uint64_t)(x - first) * gx) >> FRAC);
+            if (d < zmin) d = zmin;
+            if (d > zmax) d = zmax;
+            if (d <= drow[x]) {
+                mc_sdepth_remove(s, x, j);
+                removed++;
+            }
+        }
+    }
+    return removed;
+}
+
 /* Writes pixels first .. last of a row whose first pixel has plane value acc (stepped by gx), with
  * the depth test. */
 MC_ALWAYS_INLINE void span(const tri *g, uint8_t *crow, uint16_t *drow, uint32_t first, uint32_t last,
@@ -248,8 +278,8 @@ typedef struct edge {
  * the first covered pixel (fi, fj), and at (i, j) that plus (i - fi) gx + (j - fj) gy modulo 2^64,
  * the same sum the row path steps to; gx and gy are divided out only when a pixel needs them (a
  * one-pixel triangle needs neither). */
-MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
-                                     uint8_t color)
+MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, mc_sdepth *sd, tri *g, int32_t i0, int32_t i1, int32_t j0,
+                                     int32_t j1, uint8_t color)
 {
     /* E_k(p) = dx (py - ay) - dy (px - ax) - bias for edge a -> b, covered where all three are
      * >= 0: bias 0 for a left edge (dy < 0) or a top edge (dy = 0, dx > 0), whose centres are
@@ -265,6 +295,7 @@ MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, tri *g, int32_t i0, int
     const uint32_t at = (uint32_t)j0 * width;
     if (i0 == i1 && j0 == j1) {   /* one centre: most triangles of a dense mesh */
         if ((e0 | e1 | e2) < 0) return 0;
+        if (sd) return hide_span(g, sd, (uint32_t)j0, (uint32_t)i0, (uint32_t)i0, plane_first(g, i0, j0), 0);
         span(g, t->color + at, t->depth + at, (uint32_t)i0, (uint32_t)i0, plane_first(g, i0, j0), 0, color);
         return 1;
     }
@@ -302,8 +333,12 @@ MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, tri *g, int32_t i0, int
             }
             if ((lo != fi || hi != lo) && !have_gx) gx = plane_step(g, g->pa), have_gx = 1;
             acc += (uint64_t)(int64_t)(lo - fi) * gx;
-            span(g, crow, drow, (uint32_t)lo, (uint32_t)hi, acc, gx, color);
-            count += (uint32_t)(hi - lo) + 1u;
+            if (sd) {
+                count += hide_span(g, sd, (uint32_t)j, (uint32_t)lo, (uint32_t)hi, acc, gx);
+            } else {
+                span(g, crow, drow, (uint32_t)lo, (uint32_t)hi, acc, gx, color);
+                count += (uint32_t)(hi - lo) + 1u;
+            }
         }
         if (++j > j1) break;
         e0 += 16 * dx0, e1 += 16 * dx1, e2 += 16 * dx2;
@@ -312,13 +347,11 @@ MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, tri *g, int32_t i0, int
     return count;
 }
 
-/* The row path: spans from the edges' bounds, stepped from row to row. Not inlined: the small
- * path, most triangles of a dense mesh, keeps its registers. */
-#if defined(__GNUC__) || defined(__clang__)
-__attribute__((noinline))
-#endif
-static uint32_t draw_rows(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
-                          uint8_t color)
+/* The row path: spans from the edges' bounds, stepped from row to row. Not inlined into the
+ * triangle (draw_rows, draw_rows_hide below): the small path, most triangles of a dense mesh, keeps
+ * its registers. */
+MC_ALWAYS_INLINE uint32_t rows_path(const mc_target *t, mc_sdepth *sd, tri *g, int32_t i0, int32_t i1, int32_t j0,
+                                    int32_t j1, uint8_t color)
 {
     /* Edge a -> b, E(p) = dx (py - ay) - dy (px - ax), positive inside. At a centre px = 16 i + 8 on
      * row centre py, with ax - 8 = 16 k + m (0 <= m < 16):
@@ -382,15 +415,38 @@ static uint32_t draw_rows(const mc_target *t, tri *g, int32_t i0, int32_t i1, in
                 row -= first * gx;
                 have_plane = 1;
             }
-            span(g, crow, drow, first, last, row + first * gx, gx, color);
-            count += last - first + 1u;
+            if (sd) {
+                count += hide_span(g, sd, (uint32_t)j, first, last, row + first * gx, gx);
+            } else {
+                span(g, crow, drow, first, last, row + first * gx, gx, color);
+                count += last - first + 1u;
+            }
         }
         row += gy;
     }
     return count;
 }
 
-uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags)
+#if defined(__GNUC__) || defined(__clang__)
+#define NOINLINE __attribute__((noinline))
+#else
+#define NOINLINE
+#endif
+NOINLINE static uint32_t draw_rows(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
+                                   uint8_t color)
+{
+    return rows_path(t, 0, g, i0, i1, j0, j1, color);
+}
+NOINLINE static uint32_t draw_rows_hide(const mc_target *t, mc_sdepth *sd, tri *g, int32_t i0, int32_t i1, int32_t j0,
+                                        int32_t j1)
+{
+    return rows_path(t, sd, g, i0, i1, j0, j1, 0);
+}
+
+/* The triangle either drawn into t (sd null) or hiding the entries of sd (t then describes sd's
+ * frame). A constant sd makes two functions of it. */
+MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_raster_vertex v[3], uint8_t color,
+                                   unsigned flags)
 {
     const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
     const int32_t xmin = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
@@ -413,6 +469,7 @@ uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uin
     if (j1 > (int32_t)t->height - 1) j1 = (int32_t)t->height - 1;
     if (i1 > (int32_t)t->width - 1) i1 = (int32_t)t->width - 1;
     if (j0 > j1 || i0 > i1) return 0;   /* also an empty target */
+    if (sd && !mc_sdepth_any(sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1)) return 0;
 
     /* twice the signed area; below 2^46 in magnitude: a triangle fills at most half its 2^23-sided box */
     const int64_t area = (int64_t)(x1 - x0) * (y2 - y0) - (int64_t)(x2 - x0) * (y1 - y0);
@@ -428,6 +485,21 @@ uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uin
         g.x[1] = x2, g.y[1] = y2, g.x[2] = x1, g.y[2] = y1;
     }
     if (xmax - xmin < SMALL_SIDE && ymax - ymin < SMALL_SIDE && (i1 - i0 + 1) * (j1 - j0 + 1) <= SMALL_CENTRES)
-        return draw_small(t, &g, i0, i1, j0, j1, color);
-    return draw_rows(t, &g, i0, i1, j0, j1, color);
+        return draw_small(t, sd, &g, i0, i1, j0, j1, color);
+    return sd ? draw_rows_hide(t, sd, &g, i0, i1, j0, j1) : draw_rows(t, &g, i0, i1, j0, j1, color);
+}
+
+uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags)
+{
+    return triangle(t, 0, v, color, flags);
+}
+
+uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags)
+{
+    mc_target t;   /* the frame's size, for the clipping the two share */
+    /* the row pointers the drawing path steps are never read here; without colours they step
+     * through the depth array's bytes, so that they always point into an array */
+    t.color = s->color ? s->color : (uint8_t *)(void *)s->depth;
+    t.depth = s->depth, t.width = s->width, t.height = s->height;
+    return triangle(&t, s, v, 0, flags);
 }

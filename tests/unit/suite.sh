@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, the
-# progressive mesh's level of detail (pmesh), clipped lines (line), filled triangles against their
+# progressive mesh's level of detail (pmesh), clipped lines (line), the sparse depth buffer and its
+# line and face passes (sdepth), filled triangles against their
 # double-precision reference (raster), vertex projection (xform), view clamping,
 # mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
@@ -80,6 +81,10 @@ runtime_archive() {
     shift
     key=$(echo "$CC_UNIT $flags $renderer $*" | md5sum | cut -c1-12)
     dir=$out/rt-$key
+    # made again when a runtime source or header changed since
+    if [ -f "$dir/libmodelc.a" ] && [ -n "$(find runtime/src runtime/include -newer "$dir/libmodelc.a" -print -quit)" ]; then
+        rm -f "$dir/libmodelc.a"
+    fi
     if [ ! -f "$dir/libmodelc.a" ]; then
         rm -rf "$dir"
         mkdir -p "$dir"
@@ -136,6 +141,7 @@ linehook='-DMC_LINE_STEP_HOOK()=do { extern unsigned long mc_test_line_steps; mc
 build_and_run "unit: line: " test_line "$linehook"
 build_and_run "unit: raster: " test_raster runtime/ref/raster_ref.c
 build_and_run "unit: xform: " test_xform runtime/ref/xform_ref.c
+build_and_run "unit: sdepth: " test_sdepth
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to

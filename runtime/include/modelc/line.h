@@ -1,5 +1,6 @@
 /* Lines on a target: the silhouettes, creases and borders of a mesh line drawing, drawn after its
- * faces and hidden by their depths (z-buffer hidden-line removal with a depth offset).
+ * faces and hidden by their depths (z-buffer hidden-line removal with a depth offset), or offered to
+ * a sparse depth buffer before the faces (sdepth.h).
  *
  * Promise (pixels): mc_line draws exactly the pixels of the unclipped Bresenham line between its
  * endpoints that lie on the target, both endpoints included, and returns how many there are (before
@@ -37,6 +38,7 @@
 #define MODELC_LINE_H
 
 #include <stdint.h>
+#include "sdepth.h"
 #include "target.h"
 
 /* Largest |x|, |y| of an endpoint. */
@@ -62,5 +64,11 @@ typedef struct mc_line_style {
 /* Draws the line from a to b in palette index color; returns its pixels on the target (drawn or
  * hidden). s may be null. */
 uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t color, const mc_line_style *s);
+
+/* The same line's pixels on the frame of a sparse depth buffer (sdepth.h), each offered to it
+ * (mc_sdepth_insert) with colour color and its depth less depth_offset, saturating at 0: the
+ * depth the face pass (raster.h mc_raster_triangle_hide) tests, as mc_line tests against faces
+ * drawn first. Returns the line's pixels on the frame. */
+uint32_t mc_line_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset);
 
 #endif

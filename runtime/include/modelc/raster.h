@@ -40,6 +40,7 @@
 #define MODELC_RASTER_H
 
 #include <stdint.h>
+#include "sdepth.h"
 #include "target.h"
 
 #define MC_RASTER_SUBPIXEL_BITS 4
@@ -57,5 +58,12 @@ typedef struct mc_raster_vertex {
 /* Draws v[0], v[1], v[2] in `color` with the depth test and returns the number of target pixels the
  * triangle covers (before the depth test; 0 when culled, degenerate or out of range). */
 uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags);
+
+/* The face pass of hidden-line removal over a sparse depth buffer (sdepth.h): empties every pixel in
+ * use that mc_raster_triangle would cover, with the same flags, at a depth there not greater than
+ * the pixel's entry (the entry survives only where it is strictly nearer than the triangle, as a
+ * line drawn after the faces with mc_line's depth test). Visits only pixels in use: a triangle whose
+ * box holds none costs its box. Returns the pixels emptied. */
+uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags);
 
 #endif

@@ -1,0 +1,88 @@
+/* The sparse depth buffer: depth (and optionally colour) entries at a few pixels of a frame, with
+ * bit vectors that say which pixels hold one, so that a pass over faces visits only those pixels
+ * (Kissling, Mitchell, Oskam and Gross's structure for edge-based tracking; modelc also draws its
+ * hidden-line drawings with it, mesh_lines.h).
+ *
+ * Layout. Each row of width pixels is cut into blocks of 32 (MC_SDEPTH_BLOCKS(width) a row, the last
+ * one partly outside the row). Per block one word of in-use bits: pixel x of the row is bit
+ * 31 - (x mod 32) of word y * blocks + x / 32, so the count of leading zeros finds the leftmost pixel
+ * in use. Per row, MC_SDEPTH_ROW_WORDS(width) words of block bits: block b's bit, 31 - (b mod 32) of
+ * word y * row_words + b / 32, is set exactly when its in-use word is not 0, so that whole blocks
+ * with nothing in them are skipped. The depths and colours are the caller's dense arrays (width *
+ * height, row-major: a target's buffers, target.h), so an entry costs no more than a pixel of the
+ * target; the bit vectors are 4 (blocks + row_words) bytes a row (1,024 bytes for 240 rows of 320).
+ *
+ * Promise: a pixel not in use holds empty_depth and empty_color; a pixel in use holds the depth and
+ * colour of the entry kept there. mc_sdepth_init makes every pixel empty (a full pass over the
+ * arrays); mc_sdepth_clear empties the pixels in use only (work proportional to them and to the
+ * blocks and rows, not to the area). mc_sdepth_insert keeps, of the entries given for a pixel, the
+ * first one of the least depth (a later entry replaces the kept one only when strictly nearer).
+ * Removal (mc_sdepth_remove, and the face pass of raster.h, mc_raster_triangle_hide) empties a pixel
+ * and clears its bits. No heap, no floating point, no division. Freestanding.
+ */
+#ifndef MODELC_SDEPTH_H
+#define MODELC_SDEPTH_H
+
+#include <stdint.h>
+#include "bits.h"
+#include "target.h"
+
+/* Blocks of 32 pixels in a row of w pixels, and words of block bits a row. */
+#define MC_SDEPTH_BLOCKS(w) (((uint32_t)(w) + 31u) / 32u)
+#define MC_SDEPTH_ROW_WORDS(w) ((MC_SDEPTH_BLOCKS(w) + 31u) / 32u)
+/* Words of bit vectors for a w x h buffer: what mc_sdepth_init takes. */
+#define MC_SDEPTH_WORDS(w, h) ((uint32_t)(h) * (MC_SDEPTH_BLOCKS(w) + MC_SDEPTH_ROW_WORDS(w)))
+
+typedef struct mc_sdepth {
+    uint16_t *depth;        /* width * height, the caller's */
+    uint8_t *color;         /* width * height, the caller's, or null: no colours kept */
+    uint32_t *used;         /* height * blocks in-use words */
+    uint32_t *rows;         /* height * row_words block words */
+    uint16_t width, height;
+    uint16_t blocks, row_words;
+    uint16_t empty_depth;   /* what a pixel not in use holds */
+    uint8_t empty_color;
+} mc_sdepth;
+
+/* Sets s up for a width x height frame over the caller's arrays (bits: MC_SDEPTH_WORDS(width,
+ * height) words; depth, and color unless null: width * height) and empties every pixel. Returns
+ * MC_OK, MC_ERR_ARG (a null array other than color) or MC_ERR_SIZE (a side 0 or over
+ * MC_TARGET_MAX). */
+int mc_sdepth_init(mc_sdepth *s, uint16_t width, uint16_t height, uint32_t *bits, uint16_t *depth, uint8_t *color,
+                   uint16_t empty_depth, uint8_t empty_color);
+
+/* Empties the pixels in use, and only those. */
+void mc_sdepth_clear(mc_sdepth *s);
+
+/* Pixels in use. */
+uint32_t mc_sdepth_count(const mc_sdepth *s);
+
+/* Whether any pixel of columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1, j0 <= j1) is in use. */
+int mc_sdepth_any(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1);
+
+/* Whether pixel (x, y) (on the frame) is in use. */
+MC_ALWAYS_INLINE int mc_sdepth_in_use(const mc_sdepth *s, uint32_t x, uint32_t y)
+{
+    return (s->used[y * s->blocks + (x >> 5)] >> (31u - (x & 31u))) & 1u;
+}
+
+/* Offers pixel (x, y) (on the frame) an entry of depth z (below empty_depth to be told apart) and
+ * colour c: stored when the pixel is empty or holds a farther entry. Returns whether it was stored. */
+MC_ALWAYS_INLINE int mc_sdepth_insert(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c)
+{
+    const uint32_t i = y * s->width + x, w = y * s->blocks + (x >> 5), bit = 0x80000000u >> (x & 31u);
+    if (s->used[w] & bit) {
+        if (z >= s->depth[i]) return 0;
+    } else {
+        s->used[w] |= bit;
+        s->rows[y * s->row_words + (x >> 10)] |= 0x80000000u >> ((x >> 5) & 31u);
+    }
+    s->depth[i] = z;
+    if (s->color) s->color[i] = c;
+    return 1;
+}
+
+/* Empties pixel (x, y) (on the frame; in use or not). */
+void mc_sdepth_remove(mc_sdepth *s, uint32_t x, uint32_t y);
+
+#endif

@@ -1,0 +1,72 @@
+/* The sparse depth buffer: see modelc/sdepth.h. */
+#include "modelc/sdepth.h"
+
+int mc_sdepth_init(mc_sdepth *s, uint16_t width, uint16_t height, uint32_t *bits, uint16_t *depth, uint8_t *color,
+                   uint16_t empty_depth, uint8_t empty_color)
+{
+    if (!s || !bits || !depth) return MC_ERR_ARG;
+    if (!width || !height || width > MC_TARGET_MAX || height > MC_TARGET_MAX) return MC_ERR_SIZE;
+    s->depth = depth, s->color = color;
+    s->width = width, s->height = height;
+    s->blocks = (uint16_t)MC_SDEPTH_BLOCKS(width), s->row_words = (uint16_t)MC_SDEPTH_ROW_WORDS(width);
+    s->used = bits, s->rows = bits + (uint32_t)height * s->blocks;
+    s->empty_depth = empty_depth, s->empty_color = empty_color;
+    const uint32_t n = (uint32_t)width * height, words = MC_SDEPTH_WORDS(width, height);
+    for (uint32_t i = 0; i < words; i++) bits[i] = 0;
+    for (uint32_t i = 0; i < n; i++) depth[i] = empty_depth;
+    if (color)
+        for (uint32_t i = 0; i < n; i++) color[i] = empty_color;
+    return MC_OK;
+}
+
+void mc_sdepth_clear(mc_sdepth *s)
+{
+    for (uint32_t y = 0; y < s->height; y++) {
+        uint32_t *rw = s->rows + y * s->row_words;
+        for (uint32_t k = 0; k < s->row_words; k++) {
+            for (uint32_t m = rw[k]; m; m &= ~(0x80000000u >> mc_clz32(m))) {
+                const uint32_t b = 32u * k + mc_clz32(m), w = y * s->blocks + b;
+                for (uint32_t u = s->used[w]; u; u &= ~(0x80000000u >> mc_clz32(u))) {
+                    const uint32_t i = y * s->width + 32u * b + mc_clz32(u);
+                    s->depth[i] = s->empty_depth;
+                    if (s->color) s->color[i] = s->empty_color;
+                }
+                s->used[w] = 0;
+            }
+            rw[k] = 0;
+        }
+    }
+}
+
+uint32_t mc_sdepth_count(const mc_sdepth *s)
+{
+    uint32_t n = 0;
+    for (uint32_t w = 0; w < (uint32_t)s->height * s->blocks; w++) n += mc_popcount32(s->used[w]);
+    return n;
+}
+
+int mc_sdepth_any(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1)
+{
+    const uint32_t b0 = i0 >> 5, b1 = i1 >> 5;
+    const uint32_t first = 0xFFFFFFFFu >> (i0 & 31u), last = 0xFFFFFFFFu << (31u - (i1 & 31u));
+    for (uint32_t j = j0; j <= j1; j++) {
+        const uint32_t *u = s->used + j * s->blocks;
+        if (b0 == b1) {
+            if (u[b0] & first & last) return 1;
+            continue;
+        }
+        if ((u[b0] & first) || (u[b1] & last)) return 1;
+        for (uint32_t b = b0 + 1; b < b1; b++)
+            if (u[b]) return 1;
+    }
+    return 0;
+}
+
+void mc_sdepth_remove(mc_sdepth *s, uint32_t x, uint32_t y)
+{
+    const uint32_t w = y * s->blocks + (x >> 5), i = y * s->width + x;
+    s->used[w] &= ~(0x80000000u >> (x & 31u));
+    if (!s->used[w]) s->rows[y * s->row_words + (x >> 10)] &= ~(0x80000000u >> ((x >> 5) & 31u));
+    s->depth[i] = s->empty_depth;
+    if (s->color) s->color[i] = s->empty_color;
+}

@@ -1,0 +1,322 @@
+/* The sparse depth buffer (modelc/sdepth.h) and the two passes that use it, against plain models:
+ *   - random inserts, removals and clears on frames 1x1 to 1100x3 (rows of one block, of a partial
+ *     block, and of more than 32 blocks: two words of block bits a row) against a dense array of
+ *     (in use, depth, colour): the same state after every operation, pixels not in use holding the
+ *     empty values, the bit vectors consistent (a block's bit set exactly when its word is not 0),
+ *     mc_sdepth_any over random boxes equal to a scan, mc_sdepth_clear touching only pixels in use;
+ *   - mc_line_sdepth: random lines, on and off the frame, against mc_line drawn with no depth test
+ *     into a target: the same pixels and count, each entry the line's depth there less the offset
+ *     (saturating at 0), nearest kept where lines cross;
+ *   - mc_raster_triangle_hide: random triangles (the rasterizer's own generator ranges: specks to
+ *     triangles far beyond the frame, both orientations, culled or not) over random entries against
+ *     mc_raster_triangle drawn into an empty target: an entry is emptied exactly where the triangle
+ *     covers its pixel at a depth not greater than the entry's, and the count returned is those.
+ * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include <modelc/line.h>
+#include <modelc/raster.h>
+#include <modelc/rng.h>
+#include <modelc/sdepth.h>
+
+#define EMPTY_D 0xFFFEu
+#define EMPTY_C 200u
+
+typedef struct frame {
+    mc_sdepth s;
+    uint32_t *bits;
+    uint16_t *depth;
+    uint8_t *color;
+    /* the model */
+    uint8_t *in;
+    uint16_t *md;
+    uint8_t *mcol;
+} frame;
+
+static void frame_new(frame *f, unsigned w, unsigned h)
+{
+    f->bits = malloc(4u * MC_SDEPTH_WORDS(w, h));
+    f->depth = malloc(2u * w * h);
+    f->color = malloc(w * h);
+    f->in = calloc(w * h, 1);
+    f->md = malloc(2u * w * h);
+    f->mcol = malloc(w * h);
+    assert_non_null(f->bits);
+    /* garbage first: init must set everything */
+    memset(f->bits, 0xA5, 4u * MC_SDEPTH_WORDS(w, h));
+    memset(f->depth, 0x5A, 2u * w * h);
+    memset(f->color, 0x33, w * h);
+    assert_int_equal(mc_sdepth_init(&f->s, (uint16_t)w, (uint16_t)h, f->bits, f->depth, f->color, EMPTY_D, EMPTY_C),
+                     MC_OK);
+    for (unsigned i = 0; i < w * h; i++) f->md[i] = EMPTY_D, f->mcol[i] = EMPTY_C;
+}
+
+static void frame_free(frame *f)
+{
+    free(f->bits), free(f->depth), free(f->color), free(f->in), free(f->md), free(f->mcol);
+}
+
+/* the buffer against the model, and the bit vectors against each other */
+static void frame_check(const frame *f)
+{
+    const mc_sdepth *s = &f->s;
+    uint32_t n = 0;
+    for (unsigned y = 0; y < s->height; y++) {
+        for (unsigned x = 0; x < s->width; x++) {
+            const unsigned i = y * s->width + x;
+            if (mc_sdepth_in_use(s, x, y) != f->in[i] || s->depth[i] != f->md[i] || s->color[i] != f->mcol[i])
+                fail_msg("pixel (%u, %u): in use %d depth %u colour %u, model %d %u %u", x, y, mc_sdepth_in_use(s, x, y),
+                         s->depth[i], s->color[i], f->in[i], f->md[i], f->mcol[i]);
+            n += f->in[i];
+        }
+        for (unsigned b = 0; b < s->blocks; b++) {
+            const uint32_t word = s->used[y * s->blocks + b];
+            if (32u * b + 32u > s->width && s->width % 32u)   /* bits beyond the row stay clear */
+                assert_int_equal(word & (0xFFFFFFFFu >> (s->width % 32u)), 0);
+            const int bit = (s->rows[y * s->row_words + b / 32u] >> (31u - b % 32u)) & 1u;
+            if (bit != (word != 0)) fail_msg("row %u block %u: block bit %d, word %08x", y, b, bit, word);
+        }
+        for (unsigned b = s->blocks; b < 32u * s->row_words; b++)
+            assert_int_equal((s->rows[y * s->row_words + b / 32u] >> (31u - b % 32u)) & 1u, 0);
+    }
+    assert_int_equal(mc_sdepth_count(s), n);
+}
+
+static void model_insert(frame *f, unsigned x, unsigned y, uint16_t z, uint8_t c)
+{
+    const unsigned i = y * f->s.width + x;
+    if (f->in[i] && z >= f->md[i]) return;
+    f->in[i] = 1, f->md[i] = z, f->mcol[i] = c;
+}
+
+static void model_remove(frame *f, unsigned x, unsigned y)
+{
+    const unsigned i = y * f->s.width + x;
+    f->in[i] = 0, f->md[i] = EMPTY_D, f->mcol[i] = EMPTY_C;
+}
+
+static void ops_on(unsigned w, unsigned h, int rounds, uint64_t seed)
+{
+    mc_rng r;
+    mc_rng_seed(&r, seed, 5);
+    frame f;
+    frame_new(&f, w, h);
+    frame_check(&f);
+    for (int round = 0; round < rounds; round++) {
+        const unsigned ops = mc_rng_below(&r, 4u * w * h / 3u + 2u);
+        for (unsigned k = 0; k < ops; k++) {
+            const unsigned x = mc_rng_below(&r, w), y = mc_rng_below(&r, h);
+            if (mc_rng_below(&r, 4) == 0) {
+                mc_sdepth_remove(&f.s, x, y);
+                model_remove(&f, x, y);
+            } else {
+                /* few distinct depths, so that ties happen */
+                const uint16_t z = (uint16_t)(mc_rng_below(&r, 2) ? mc_rng_below(&r, 8) : mc_rng_below(&r, EMPTY_D));
+                const uint8_t c = (uint8_t)mc_rng_below(&r, 256);
+                const unsigned i = y * w + x;
+                const int want = !f.in[i] || z < f.md[i];
+                assert_int_equal(mc_sdepth_insert(&f.s, x, y, z, c), want);
+                model_insert(&f, x, y, z, c);
+            }
+        }
+        frame_check(&f);
+        for (int q = 0; q < 50; q++) {
+            unsigned i0 = mc_rng_below(&r, w), i1 = mc_rng_below(&r, w), j0 = mc_rng_below(&r, h), j1 = mc_rng_below(&r, h);
+            if (i0 > i1) { unsigned t = i0; i0 = i1; i1 = t; }
+            if (j0 > j1) { unsigned t = j0; j0 = j1; j1 = t; }
+            int any = 0;
+            for (unsigned y = j0; y <= j1 && !any; y++)
+                for (unsigned x = i0; x <= i1 && !any; x++) any = f.in[y * w + x];
+            if (mc_sdepth_any(&f.s, i0, i1, j0, j1) != any)
+                fail_msg("%ux%u: any(%u..%u, %u..%u) = %d, scan %d", w, h, i0, i1, j0, j1, !any, any);
+        }
+        if (mc_rng_below(&r, 3) == 0) {
+            /* clear touches the pixels in use only: mark the others, they must keep the mark */
+            for (unsigned i = 0; i < w * h; i++)
+                if (!f.in[i]) f.depth[i] = 7, f.color[i] = 9;
+            mc_sdepth_clear(&f.s);
+            for (unsigned i = 0; i < w * h; i++) {
+                if (!f.in[i]) {
+                    assert_int_equal(f.depth[i], 7);
+                    assert_int_equal(f.color[i], 9);
+                    f.depth[i] = EMPTY_D, f.color[i] = EMPTY_C;
+                }
+                model_remove(&f, i % w, i / w);
+            }
+            frame_check(&f);
+        }
+    }
+    frame_free(&f);
+}
+
+static void test_ops_1x1(void **state) { (void)state; ops_on(1, 1, 400, 1); }
+static void test_ops_31x7(void **state) { (void)state; ops_on(31, 7, 200, 2); }
+static void test_ops_64x5(void **state) { (void)state; ops_on(64, 5, 200, 3); }
+static void test_ops_97x13(void **state) { (void)state; ops_on(97, 13, 100, 4); }
+static void test_ops_1100x3(void **state) { (void)state; ops_on(1100, 3, 60, 5); }
+
+static void test_init_errors(void **state)
+{
+    (void)state;
+    mc_sdepth s;
+    uint32_t bits[64];
+    uint16_t d[64];
+    assert_int_equal(mc_sdepth_init(&s, 8, 8, 0, d, 0, 1, 0), MC_ERR_ARG);
+    assert_int_equal(mc_sdepth_init(&s, 8, 8, bits, 0, 0, 1, 0), MC_ERR_ARG);
+    assert_int_equal(mc_sdepth_init(0, 8, 8, bits, d, 0, 1, 0), MC_ERR_ARG);
+    assert_int_equal(mc_sdepth_init(&s, 0, 8, bits, d, 0, 1, 0), MC_ERR_SIZE);
+    assert_int_equal(mc_sdepth_init(&s, 8, 0, bits, d, 0, 1, 0), MC_ERR_SIZE);
+    /* no colours: entries keep depths only */
+    assert_int_equal(mc_sdepth_init(&s, 8, 8, bits, d, 0, 1000, 0), MC_OK);
+    assert_int_equal(mc_sdepth_insert(&s, 3, 4, 10, 5), 1);
+    assert_int_equal(d[4 * 8 + 3], 10);
+    mc_sdepth_remove(&s, 3, 4);
+    assert_int_equal(d[4 * 8 + 3], 1000);
+    assert_int_equal(mc_sdepth_count(&s), 0);
+}
+
+/* ---- lines ------------------------------------------------------------------------------------ */
+
+static int32_t rnd_coord(mc_rng *r, unsigned side)
+{
+    switch (mc_rng_below(r, 6)) {
+    case 0: return (int32_t)mc_rng_below(r, 2 * side + 40) - (int32_t)side / 2 - 20;
+    case 1: return (int32_t)mc_rng_below(r, 4000) - 2000;
+    case 2: return mc_rng_below(r, 2) ? MC_LINE_COORD_MAX - (int32_t)mc_rng_below(r, 3) : -MC_LINE_COORD_MAX + (int32_t)mc_rng_below(r, 3);
+    default: return (int32_t)mc_rng_below(r, side);
+    }
+}
+
+static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
+{
+    mc_rng r;
+    mc_rng_seed(&r, seed, 7);
+    frame f;
+    frame_new(&f, w, h);
+    uint8_t *tc = malloc(w * h);
+    uint16_t *td = malloc(2u * w * h);
+    mc_target t = {tc, td, (uint16_t)w, (uint16_t)h};
+    for (int n = 0; n < count; n++) {
+        mc_line_vertex a, b;
+        a.x = rnd_coord(&r, w), a.y = rnd_coord(&r, h), b.x = rnd_coord(&r, w), b.y = rnd_coord(&r, h);
+        if (mc_rng_below(&r, 8) == 0) b.x = a.x + (int32_t)mc_rng_below(&r, 3) - 1, b.y = a.y;
+        a.z = mc_rng_below(&r, 2) ? mc_rng_below(&r, 0x10000) : mc_rng_below(&r, 300);
+        b.z = mc_rng_below(&r, 2) ? mc_rng_below(&r, 0x10000) : mc_rng_below(&r, 300);
+        const uint16_t off = (uint16_t)(mc_rng_below(&r, 2) ? mc_rng_below(&r, 40) : mc_rng_below(&r, 0x10000));
+        const uint8_t c = (uint8_t)mc_rng_below(&r, 200);
+        /* mc_line, no depth test, depths written, into a target marked empty */
+        for (unsigned i = 0; i < w * h; i++) tc[i] = 255, td[i] = MC_DEPTH_EMPTY;
+        mc_line_style st = {0, MC_LINE_NO_DEPTH_TEST | MC_LINE_WRITE_DEPTH};
+        const uint32_t want = mc_line(&t, a, b, c, &st);
+        const uint32_t got = mc_line_sdepth(&f.s, a, b, c, off);
+        if (got != want) fail_msg("line (%d,%d)-(%d,%d) on %ux%u: %u pixels, mc_line %u", a.x, a.y, b.x, b.y, w, h, got, want);
+        uint32_t drawn = 0;
+        for (unsigned i = 0; i < w * h; i++)
+            if (tc[i] != 255) {
+                drawn++;
+                const uint16_t zt = (uint16_t)(td[i] > off ? td[i] - off : 0);
+                model_insert(&f, i % w, i / w, zt, c);
+            }
+        assert_true(drawn <= want);   /* (a line may pass a pixel once only: equal) */
+        assert_int_equal(drawn, want);
+        if (n % 16 == 15 || n == count - 1) frame_check(&f);
+        if (mc_rng_below(&r, 10) == 0) {
+            mc_sdepth_clear(&f.s);
+            for (unsigned i = 0; i < w * h; i++) model_remove(&f, i % w, i / w);
+        }
+    }
+    frame_free(&f);
+    free(tc), free(td);
+}
+
+static void test_lines_33x17(void **state) { (void)state; lines_on(33, 17, 20000, 21); }
+static void test_lines_320x240(void **state) { (void)state; lines_on(320, 240, 1000, 22); }
+static void test_lines_1100x9(void **state) { (void)state; lines_on(1100, 9, 300, 23); }
+
+/* ---- the face pass ------------------------------------------------------------------------------ */
+
+static void random_triangle(mc_rng *r, unsigned w, unsigned h, mc_raster_vertex v[3])
+{
+    const unsigned kind = mc_rng_below(r, 5);
+    const int32_t cx = (int32_t)mc_rng_below(r, 16 * w), cy = (int32_t)mc_rng_below(r, 16 * h);
+    const int32_t spread = kind == 0 ? 24 : kind == 1 ? 80 : kind == 2 ? 400 : kind == 3 ? 16 * (int32_t)(w + h) : 1 << 21;
+    for (int k = 0; k < 3; k++) {
+        v[k].x = cx + (int32_t)mc_rng_below(r, 2u * (uint32_t)spread + 1u) - spread;
+        v[k].y = cy + (int32_t)mc_rng_below(r, 2u * (uint32_t)spread + 1u) - spread;
+        v[k].z = mc_rng_below(r, 2) ? 100 + mc_rng_below(r, 400) : mc_rng_below(r, MC_DEPTH_EMPTY - 1u);
+    }
+}
+
+static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
+{
+    mc_rng r;
+    mc_rng_seed(&r, seed, 9);
+    frame f;
+    frame_new(&f, w, h);
+    uint8_t *tc = malloc(w * h);
+    uint16_t *td = malloc(2u * w * h);
+    mc_target t = {tc, td, (uint16_t)w, (uint16_t)h};
+    uint32_t emptied_total = 0;
+    for (int n = 0; n < count; n++) {
+        /* now and then a fresh start (entries nearer than any face pile up), then a sprinkle of
+         * entries, sometimes dense, sometimes none in most blocks */
+        if (n % 8 == 0) {
+            mc_sdepth_clear(&f.s);
+            for (unsigned i = 0; i < w * h; i++) model_remove(&f, i % w, i / w);
+        }
+        const unsigned fill = mc_rng_below(&r, 3) == 0 ? w * h / 2u : mc_rng_below(&r, w * h / 16u + 2u);
+        for (unsigned k = 0; k < fill; k++) {
+            const unsigned x = mc_rng_below(&r, w), y = mc_rng_below(&r, h);
+            const uint16_t z = (uint16_t)(mc_rng_below(&r, 2) ? 100 + mc_rng_below(&r, 400) : mc_rng_below(&r, EMPTY_D));
+            mc_sdepth_insert(&f.s, x, y, z, 1);
+            model_insert(&f, x, y, z, 1);
+        }
+        mc_raster_vertex v[3];
+        random_triangle(&r, w, h, v);
+        const unsigned flags = mc_rng_below(&r, 2) ? MC_RASTER_CULL_BACK : 0;
+        for (unsigned i = 0; i < w * h; i++) tc[i] = 0, td[i] = MC_DEPTH_EMPTY;
+        mc_raster_triangle(&t, v, 1, flags);
+        uint32_t want = 0;
+        for (unsigned i = 0; i < w * h; i++)
+            if (tc[i] && f.in[i] && td[i] <= f.md[i]) {
+                model_remove(&f, i % w, i / w);
+                want++;
+            }
+        const uint32_t got = mc_raster_triangle_hide(&f.s, v, flags);
+        if (got != want)
+            fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) on %ux%u: %u emptied, want %u", v[0].x, v[0].y, v[0].z,
+                     v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, w, h, got, want);
+        emptied_total += got;
+        frame_check(&f);
+    }
+    /* the test is worth its time only if triangles did hide entries */
+    assert_true(4u * emptied_total > (uint32_t)count);
+    print_message("# info: %ux%u: %d triangles emptied %u entries\n", w, h, count, emptied_total);
+    frame_free(&f);
+    free(tc), free(td);
+}
+
+static void test_hide_9x7(void **state) { (void)state; hide_on(9, 7, 30000, 31); }
+static void test_hide_67x45(void **state) { (void)state; hide_on(67, 45, 8000, 32); }
+static void test_hide_320x240(void **state) { (void)state; hide_on(320, 240, 500, 33); }
+static void test_hide_1100x7(void **state) { (void)state; hide_on(1100, 7, 2000, 34); }
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_init_errors), cmocka_unit_test(test_ops_1x1),      cmocka_unit_test(test_ops_31x7),
+        cmocka_unit_test(test_ops_64x5),    cmocka_unit_test(test_ops_97x13),    cmocka_unit_test(test_ops_1100x3),
+        cmocka_unit_test(test_lines_33x17), cmocka_unit_test(test_lines_320x240), cmocka_unit_test(test_lines_1100x9),
+        cmocka_unit_test(test_hide_9x7),    cmocka_unit_test(test_hide_67x45),   cmocka_unit_test(test_hide_320x240),
+        cmocka_unit_test(test_hide_1100x7),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
