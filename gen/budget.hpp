@@ -33,7 +33,10 @@ struct Budget {
     size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
     size_t pmesh_facing = 0;                     // the line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES)
     size_t pmesh_cache = 0;                      // the vertex projection cache (mesh_render.h)
-    size_t ram() const { return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache; }
+    size_t pmesh_sdepth = 0;                     // the lines style's sparse depth buffer bits (sdepth.h)
+    size_t ram() const {
+        return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache + pmesh_sdepth;
+    }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
     size_t stack = 0;                            // bound for mc_octree_render at the model's depth
 };
@@ -49,6 +52,7 @@ struct BakeSize {
     size_t pmesh = 0, pmesh_lod = 0;             // the mesh part: its arrays, its state's RAM (0: none)
     size_t pmesh_facing = 0;                     // and its line drawings' facing bits
     size_t pmesh_cache = 0;                      // and its vertex projection cache
+    size_t pmesh_sdepth = 0;                     // and the bits of its lines style's sparse depth buffer
 };
 
 Budget budget_of(const BakeSize &s);

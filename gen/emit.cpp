@@ -1,6 +1,7 @@
 // Emission: see emit.hpp.
 #include "emit.hpp"
 #include "runtime_costs.hpp"
+#include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
 #include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
 
 #include <mstch/mstch.hpp>
@@ -232,6 +233,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
         s.pmesh_lod = opt.pmesh->vertices() * p.index_bytes;
         s.pmesh_facing = 4 + (opt.pmesh->faces.size() + 7) / 8 + (opt.pmesh->faces.size() + 1) / 2;   // MC_MESH_LINES_BYTES
         s.pmesh_cache = opt.pmesh->vertices() * sizeof(mc_xvertex);   // MC_MESH_CACHE_BYTES
+        s.pmesh_sdepth = 4u * MC_SDEPTH_WORDS(opt.screen_w, opt.screen_h);
     }
     return budget_of(s);
 }
@@ -464,6 +466,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"lod_ram", bud.pmesh_lod},
             {"facing_ram", bud.pmesh_facing},
             {"cache_ram", bud.pmesh_cache},
+            {"sdepth_ram", bud.pmesh_sdepth},
             {"closed", pm.closed()},
             {"input",
              {{"faces_with_a_repeated_corner", pm.dropped_faces},
@@ -474,6 +477,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         budget["ram"]["pmesh_lod"] = bud.pmesh_lod;
         budget["ram"]["pmesh_facing"] = bud.pmesh_facing;
         budget["ram"]["pmesh_cache"] = bud.pmesh_cache;
+        budget["ram"]["pmesh_sdepth"] = bud.pmesh_sdepth;
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);

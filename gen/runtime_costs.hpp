@@ -47,7 +47,7 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"line", 2580, 2580, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 648, 648, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 1828, 1828, "flat-shaded faces of the current level (mesh_render.c)"},
-    {"mesh_lines", 2512, 2512, "silhouettes, creases and borders, z-buffer hidden lines (mesh_lines.c)"},
+    {"mesh_lines", 3396, 3396, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer (mesh_lines.c)"},
     {"silhouette", 924, 924, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;

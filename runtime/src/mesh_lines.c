@@ -203,3 +203,68 @@ int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, 
     if (stats) *stats = st;
     return MC_OK;
 }
+
+int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
+                         mc_xvertex *cache, mc_lines_stats *stats)
+{
+    mc_lines_stats st;
+    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = 0;
+    if (!lod || !lod->pm || !view || !sd || !mem) return MC_ERR_ARG;
+    if (sd->width > MC_TARGET_MAX || sd->height > MC_TARGET_MAX) return MC_ERR_SIZE;
+    mc_xform x;
+    mc_xform_init(&x, view, sd->width, sd->height);
+    if (cache) mc_mesh_project(lod, &x, cache);
+    uint8_t *facing = facing_of(mem);
+    const uint8_t *cr = creases_of(mem, lod->pm->faces);
+    update_creases(lod, mem);
+    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        mc_raster_vertex v[3];
+        if (!corners(lod, &x, cache, f, v) && area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
+    }
+    /* the lines first: their pixels become the buffer's entries, the nearest kept */
+    for (uint32_t f = 0; f < lod->faces; f++)
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
+            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
+            const unsigned kind = o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
+                                  : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE
+                                  : is_crease(cr, h)                                  ? MC_EDGE_CREASE
+                                                                                      : MC_EDGE_PLAIN;
+            st.edges++;
+            st.silhouettes += kind == MC_EDGE_SILHOUETTE;
+            st.creases += kind == MC_EDGE_CREASE;
+            st.borders += kind == MC_EDGE_BORDER;
+            if (!(kind & flags)) continue;
+            mc_raster_vertex v[3], w[3];
+            if (corners(lod, &x, cache, f, v)) { st.skipped++; continue; }
+            uint64_t off = slope_offset(v);
+            if (o != MC_NO_HALF_EDGE && corners(lod, &x, cache, MC_HALF_FACE(o), w) == 0) {
+                const uint64_t og = slope_offset(w);
+                if (og > off) off = og;
+            }
+            off += 2u;
+            const mc_raster_vertex *a = &v[k], *b = &v[(k + 1) % 3];
+            mc_line_vertex la, lb;
+            la.x = a->x >> MC_XFORM_SUBPIXEL_BITS, la.y = a->y >> MC_XFORM_SUBPIXEL_BITS, la.z = a->z;
+            lb.x = b->x >> MC_XFORM_SUBPIXEL_BITS, lb.y = b->y >> MC_XFORM_SUBPIXEL_BITS, lb.z = b->z;
+            const unsigned color = kind == MC_EDGE_SILHOUETTE ? MC_LINES_SILHOUETTE_COLOR
+                                   : kind == MC_EDGE_CREASE   ? MC_LINES_CREASE_COLOR
+                                                              : MC_LINES_BORDER_COLOR;
+            st.pixels += mc_line_sdepth(sd, la, lb, (uint8_t)color,
+                                        (uint16_t)(off > MC_LINE_DEPTH_MAX ? MC_LINE_DEPTH_MAX : off));
+        }
+    /* then the faces mc_mesh_render would draw empty the entries they hide; a face whose box holds
+     * no entry costs its corners and its box */
+    if (!(flags & MC_LINES_NO_HIDING)) {
+        const int cull = lod->pm->closed;
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            if (cull && !front(facing, f)) continue;
+            mc_raster_vertex v[3];
+            if (corners(lod, &x, cache, f, v)) continue;
+            mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
+        }
+    }
+    if (stats) *stats = st;
+    return MC_OK;
+}

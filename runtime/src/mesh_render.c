@@ -164,3 +164,5 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
     if (stats) *stats = st;
     return MC_OK;
 }
+
+void mc_mesh_project(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache) { project_level(lod, x, cache); }

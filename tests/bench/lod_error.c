@@ -6,7 +6,7 @@
  * runtime/front/common/mesh_frame.c, -Iruntime/include -Iruntime/front/host (timing.h)
  * -Iruntime/front/common (mesh_frame.h), -D_POSIX_C_SOURCE=200809L.
  *
- * A frame: mc_front_mesh_frame(&lod, mem, cache, &view, MC_FRONT_SHADED, &t, &st) (mc_clear, the
+ * A frame: mc_front_mesh_frame(&lod, mem, cache, 0, &view, MC_FRONT_SHADED, &t, &st) (mc_clear, the
  * flat-shaded faces, back faces culled when the part is closed), with the static vertex cache
  * (--no-cache: none) and mc_mesh_lines' memory (MC_MESH_LINES_BYTES(F), zeroed; the shaded style
  * does not use it). View i of N: yaw i * MC_ANGLE_FULL / N, pitch --pitch (angle units, default 0),
@@ -80,7 +80,7 @@ static int frame(mc_pmesh_lod *lod, int i, const mc_target *t)
 {
     const mc_view v = view_of(i);
     mc_front_mesh_stats st;
-    return mc_front_mesh_frame(lod, (uint8_t *)lines_mem, cache, &v, MC_FRONT_SHADED, t, &st);
+    return mc_front_mesh_frame(lod, (uint8_t *)lines_mem, cache, 0, &v, MC_FRONT_SHADED, t, &st);
 }
 
 static uint32_t budget_of(double p) { return (uint32_t)((double)PM.faces * p / 100.0); }

@@ -23,11 +23,12 @@
  * Default size 320x240.
  *
  * --style lines: the line drawing instead (the line-drawing benchmark of mesh.sh): each frame is
- * mc_front_mesh_frame(..., MC_FRONT_LINES, ...) (runtime/front/common/mesh_frame.c: mc_clear, the
- * faces in paper for hidden-line removal, back faces culled when the part is closed, then
- * mc_mesh_lines' silhouettes, creases and borders, then the empty pixels made paper), with a static
- * mc_mesh_lines memory of MC_MESH_LINES_BYTES(faces) (uint32-aligned, zeroed at the start) and the
- * static vertex cache (--no-cache: none); --cull is ignored (the frame decides). Before the frames
+ * mc_front_mesh_frame(..., MC_FRONT_LINES, ...) (runtime/front/common/mesh_frame.c with its sparse
+ * depth buffer: the target made paper, the silhouettes, creases and borders offered to the buffer,
+ * then the faces, back faces culled when the part is closed, emptying the line pixels they hide:
+ * mc_mesh_lines_sparse), with a static mc_mesh_lines memory of MC_MESH_LINES_BYTES(faces)
+ * (uint32-aligned, zeroed at the start), static sparse depth buffer bits and the static vertex cache
+ * (--no-cache: none); --cull is ignored (the frame decides). Before the frames
  * (untimed, and outside mc_front_mesh_frame, so callgrind's --toggle-collect=mc_front_mesh_frame
  * leaves it out) one frame at yaw 0 is drawn by mc_mesh_render + mc_mesh_lines directly: it warms
  * the buffers and computes the level's crease bits, which mc_mesh_lines keeps while the level is
@@ -68,6 +69,8 @@ static mc_xvertex vcache[1u << 22];   /* mc_mesh_render's vertex cache: MC_MESH_
 #define MAX_FACES (1u << 23)
 /* mc_mesh_lines' memory (--style lines): MC_MESH_LINES_BYTES(F), uint32-aligned */
 static uint32_t lines_mem[(MC_MESH_LINES_BYTES(MAX_FACES) + 3u) / 4u];
+/* the sparse depth buffer's bits (the lines style's hidden-line removal, mesh_frame.h) */
+static uint32_t sdepth_bits[MC_SDEPTH_WORDS(MAX_SIDE, MAX_SIDE)];
 
 static int is_line_color(uint8_t c)
 {
@@ -126,7 +129,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
         double nl = 0;
         for (int i = 0; i < frames_n; i++) {
             const mc_view v = frame_view(turn_yaw(i, frames_n));
-            if (mc_front_mesh_frame(lod, mem, cache, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
+            if (mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
             nl += (double)st.lines.silhouettes + st.lines.creases + st.lines.borders;
         }
         printf("frames %d style lines closed %u\n", frames_n, (unsigned)PM.closed);
@@ -140,7 +143,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
         for (int i = 0; i < time_n; i++) {
             const mc_view v = frame_view(turn_yaw(i, time_n));
             const double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
-            const int rc = mc_front_mesh_frame(lod, mem, cache, &v, MC_FRONT_LINES, t, &st);
+            const int rc = mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st);
             ms[i] = mc_host_now_ms() - t0;
             cpu[i] = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID) - c0;
             if (rc != MC_OK) return 1;
@@ -165,7 +168,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
     }
     if (ppm || mask) {
         const mc_view v = frame_view((int32_t)yaw);
-        if (mc_front_mesh_frame(lod, mem, cache, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
+        if (mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
         long drawn = 0;
         for (uint32_t i = 0; i < (uint32_t)t->width * t->height; i++) drawn += is_line_color(t->color[i]);
         printf("image yaw %ld style lines: lines %u (silhouettes %u creases %u borders %u skipped %u) "

@@ -33,6 +33,7 @@
 
 #include <math.h>
 
+#include "modelc/finish.h"   /* MC_DEPTH_FILLED */
 #include "modelc/mesh_lines.h"
 #include "modelc/mesh_render.h"
 #include "modelc/pmesh.h"
@@ -404,12 +405,56 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
     }
     if (!bad && (mism || guard))
         bad++, snprintf(first, sizeof first, "%u line pixels not as their edges' lines, %zu guard-zone entries touched", mism, guard);
+    /* hidden lines over the sparse depth buffer (mc_mesh_lines_sparse, with the vertex cache) against
+     * the z-buffer way the front end takes without one: the faces drawn in paper with the same culling
+     * (closed parts), then mc_mesh_lines. A pixel shows a line in one exactly where it does in the
+     * other (either keeps a pixel whose nearest line pixel, or any, is not hidden by the faces); the
+     * colour may differ only where lines of two kinds pass (each keeps another of them) */
+    uint32_t sparse_shown = 0, kind_ties = 0;
+    {
+        uint8_t *c3 = malloc(px), *c4 = malloc(px);
+        uint16_t *d3 = malloc(2 * px), *d4 = malloc(2 * px);
+        uint32_t *bits = malloc(4u * MC_SDEPTH_WORDS(w, h));
+        mc_xvertex *cache = malloc(MC_MESH_CACHE_BYTES(PM.vertices));
+        if (!c3 || !c4 || !d3 || !d4 || !bits || !cache) return 2;
+        mc_target t4 = {c4, d4, (uint16_t)w, (uint16_t)h};
+        mc_clear(&t4);
+        mc_mesh_render(lod, &v, MC_MESH_DRAW_PAPER | (PM.closed ? MC_MESH_CULL_BACK : 0u), &t4, NULL, NULL);
+        mc_lines_stats s4, s3;
+        mc_mesh_lines(lod, &v, MC_LINES_ALL, &t4, lmem, NULL, &s4);
+        mc_sdepth sd;
+        int rc = mc_sdepth_init(&sd, (uint16_t)w, (uint16_t)h, bits, d3, c3, MC_DEPTH_FILLED, MC_MESH_PAPER);
+        if (rc == MC_OK) rc = mc_mesh_lines_sparse(lod, &v, MC_LINES_ALL, &sd, lmem, cache, &s3);
+        uint32_t mask_diff = 0, color_diff = 0;
+        for (size_t i = 0; i < px; i++) {
+            const int l4 = d4[i] != MC_DEPTH_EMPTY && (c4[i] == MC_LINES_SILHOUETTE_COLOR || c4[i] == MC_LINES_CREASE_COLOR ||
+                                                       c4[i] == MC_LINES_BORDER_COLOR);
+            const int l3 = c3[i] == MC_LINES_SILHOUETTE_COLOR || c3[i] == MC_LINES_CREASE_COLOR || c3[i] == MC_LINES_BORDER_COLOR;
+            const int in_use = mc_sdepth_in_use(&sd, (uint32_t)(i % w), (uint32_t)(i / w));
+            if (l3 != l4 || l3 != in_use || (!l3 && (c3[i] != MC_MESH_PAPER || d3[i] != MC_DEPTH_FILLED))) mask_diff++;
+            if (l3 && l4 && c3[i] != c4[i]) {
+                if (want[i] & (want[i] - 1u)) kind_ties++;
+                else color_diff++;
+            }
+            sparse_shown += l3;
+        }
+        if (!bad && (rc != MC_OK || s3.edges != s4.edges || s3.silhouettes != s4.silhouettes || s3.creases != s4.creases ||
+                     s3.borders != s4.borders || s3.pixels != s4.pixels || s3.skipped != s4.skipped))
+            bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse: rc %d, counts %u edges %u %u %u %u px, z-buffer %u %u %u %u %u",
+                            rc, s3.edges, s3.silhouettes, s3.creases, s3.borders, s3.pixels, s4.edges, s4.silhouettes,
+                            s4.creases, s4.borders, s4.pixels);
+        if (!bad && (mask_diff || color_diff))
+            bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse against the z-buffer: %u pixels differ in showing a line "
+                            "(or hold other than paper), %u in colour where one kind passes", mask_diff, color_diff);
+        free(c3), free(c4), free(d3), free(d4), free(bits), free(cache);
+    }
     if (bad)
         printf("not ok: %u problems; first: %s\n", bad, first);
     else
         printf("ok: level %u, %u edges: %u silhouettes, %u creases, %u borders (%u on a rounding tie); %u line pixels, "
-               "%u hidden by the faces, %u shown\n", n, edges, count[MC_EDGE_SILHOUETTE], count[MC_EDGE_CREASE],
-               count[MC_EDGE_BORDER], ties, line_px, hidden, shown);
+               "%u hidden by the faces, %u shown; sparse depth buffer: the same %u shown (%u where two kinds pass take "
+               "the other's colour)\n", n, edges, count[MC_EDGE_SILHOUETTE], count[MC_EDGE_CREASE],
+               count[MC_EDGE_BORDER], ties, line_px, hidden, shown, sparse_shown, kind_ties);
     free(lmem), free(rf), free(facing), free(table), free(cmem), free(cmem2), free(dmem), free(dmem2), free(want);
     return bad ? 1 : 0;
 }

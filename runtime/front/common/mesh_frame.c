@@ -3,14 +3,21 @@
 
 #include <modelc/finish.h>   /* MC_DEPTH_FILLED */
 
-int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache, const mc_view *view,
-                        mc_front_style style, const mc_target *t, mc_front_mesh_stats *stats)
+int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache, uint32_t *sdepth,
+                        const mc_view *view, mc_front_style style, const mc_target *t, mc_front_mesh_stats *stats)
 {
     mc_front_mesh_stats st;
     st.faces.faces = st.faces.drawn = st.faces.skipped = st.faces.pixels = 0;
     st.lines.edges = st.lines.silhouettes = st.lines.creases = st.lines.borders = st.lines.skipped = 0;
     st.lines.pixels = 0;
     if (!lod || !lod->pm || !t) return MC_ERR_ARG;
+    if (style == MC_FRONT_LINES && sdepth) {
+        mc_sdepth sd;
+        int rc = mc_sdepth_init(&sd, t->width, t->height, sdepth, t->depth, t->color, MC_DEPTH_FILLED, MC_MESH_PAPER);
+        if (rc == MC_OK) rc = mc_mesh_lines_sparse(lod, view, MC_LINES_ALL, &sd, facing, cache, &st.lines);
+        if (stats) *stats = st;
+        return rc;
+    }
     const unsigned cull = lod->pm->closed ? MC_MESH_CULL_BACK : 0u;
     mc_clear(t);
     int rc = mc_mesh_render(lod, view, cull | (style == MC_FRONT_LINES ? MC_MESH_DRAW_PAPER : 0u), t, cache, &st.faces);

@@ -53,10 +53,10 @@ typedef struct mc_front_mesh_result {
     uint32_t hash;              /* FNV-1a of the colour and depth buffers, as frames.h */
 } mc_front_mesh_result;
 
-/* lod: initialized on the model's part (mc_pmesh_lod_init), at any level; facing and cache: the app
- * binding's (app.h; cache may be null). */
+/* lod: initialized on the model's part (mc_pmesh_lod_init), at any level; facing, cache and sdepth: the
+ * app binding's (app.h; cache and sdepth may be null). */
 static inline mc_front_mesh_result mc_front_mesh_check(mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache,
-                                                       unsigned i, const mc_target *t)
+                                                       uint32_t *sdepth, unsigned i, const mc_target *t)
 {
     mc_front_mesh_result r;
     const mc_view v = mc_front_view_get(i);
@@ -65,7 +65,7 @@ static inline mc_front_mesh_result mc_front_mesh_check(mc_pmesh_lod *lod, uint8_
     r.level = mc_pmesh_lod_fit(lod, mc_front_mesh_budget(lod->pm, i));
     r.faces = lod->faces;
     MC_FRONT_MARK(MC_FRONT_MESH_MARK_DRAW);
-    r.rc = mc_front_mesh_frame(lod, facing, cache, &v, r.style, t, &r.st);
+    r.rc = mc_front_mesh_frame(lod, facing, cache, sdepth, &v, r.style, t, &r.st);
     MC_FRONT_MARK(MC_FRONT_MESH_MARK_DONE);
     r.hash = mc_front_fnv1a(t);
     return r;

@@ -67,7 +67,8 @@ static int mesh_frames(const mc_pmesh *pm, const mc_target *t)
            (unsigned long)pm->vertices, (unsigned long)pm->faces, (unsigned long)pm->base_vertices,
            (unsigned long)pm->base_faces, mc_app_model.pmesh_cache ? "yes" : "no");
     for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
-        mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, i, t);
+        mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
+                                                         mc_app_model.pmesh_sdepth, i, t);
         printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
         if (r.rc != MC_OK) status = 1;
         if (!bench) continue;
@@ -78,7 +79,8 @@ static int mesh_frames(const mc_pmesh *pm, const mc_target *t)
             /* not checked: the frame again without its lines, at the same level and view */
             const mc_view v = mc_front_view_get(i);
             MC_FRONT_MARK(MC_FRONT_MESH_MARK_DRAW);
-            mc_front_mesh_frame(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, &v, MC_FRONT_SHADED, t, 0);
+            mc_front_mesh_frame(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, mc_app_model.pmesh_sdepth,
+                                &v, MC_FRONT_SHADED, t, 0);
             MC_FRONT_MARK(MC_FRONT_MESH_MARK_DONE);
             shaded = marked(MC_FRONT_MESH_MARK_DRAW, MC_FRONT_MESH_MARK_DONE);
         }

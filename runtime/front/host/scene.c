@@ -64,7 +64,8 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
             if (fabs(budget - now) > 0.04 * now) mc_pmesh_lod_fit(&s->lod, budget < 0 ? 0u : (uint32_t)budget);
         }
     }
-    int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, v, (mc_front_style)s->mode, t, &st);
+    int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, s->app->pmesh_sdepth, v,
+                                 (mc_front_style)s->mode, t, &st);
     if (s->target_ms > 0) {
         const double ms = mc_host_now_ms() - t0;
         const double per = ms / (s->lod.faces ? s->lod.faces : 1u);

@@ -140,7 +140,8 @@ static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth
         mc_pmesh_lod lod;
         mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
         for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
-            mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache, i, t);
+            mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
+                                                         mc_app_model.pmesh_sdepth, i, t);
             printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
             if (r.rc != MC_OK) status = 1;
         }

@@ -11,6 +11,7 @@
 
 #include <stdint.h>
 #include "model.h"
+#include "sdepth.h"
 #include "xform.h"
 
 typedef struct mc_app {
@@ -21,6 +22,8 @@ typedef struct mc_app {
     void *pmesh_anc;       /* the mesh part's ancestor map (pmesh.h mc_pmesh_lod_init), or NULL */
     uint8_t *pmesh_facing; /* its line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES), or NULL */
     mc_xvertex *pmesh_cache; /* its vertex projection cache (mesh_render.h), or NULL */
+    uint32_t *pmesh_sdepth;  /* its lines style's sparse depth buffer bits, MC_SDEPTH_WORDS of the screen
+                                (sdepth.h), or NULL */
 } mc_app;
 
 extern const mc_app mc_app_model;

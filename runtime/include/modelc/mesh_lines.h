@@ -93,4 +93,18 @@ int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_
 int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
                   const mc_xvertex *cache, mc_lines_stats *stats);
 
+/* The same lines with hidden lines removed over a sparse depth buffer (sdepth.h) instead of the
+ * target's z-buffer, and no faces drawn: each line's pixels are offered to sd (mc_line_sdepth, the
+ * same pixels and offset depths as mc_line's test), the nearest kept at a pixel, then the faces
+ * mc_mesh_render would draw (the same culling) empty the entries they hide
+ * (mc_raster_triangle_hide). So an entry survives exactly where mc_mesh_lines would draw its line's
+ * pixel over those faces; where lines cross, the nearer one is kept (mc_mesh_lines: the later one
+ * not hidden by the earlier). The work is the edges' plus, per face, its corners and box; only the
+ * faces whose box holds an entry are set up, and their spans visit only the entries. sd: the
+ * caller's, over the frame it is drawn on (its colours the target's, its empty colour the paper):
+ * what it holds is kept and competes. cache: null, or MC_MESH_CACHE_BYTES of the part's vertices,
+ * filled here (mesh_render.h mc_mesh_project). mem, flags, stats, returns: as mc_mesh_lines. */
+int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
+                         mc_xvertex *cache, mc_lines_stats *stats);
+
 #endif
