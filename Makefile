@@ -282,9 +282,10 @@ FW_HDR := $(wildcard runtime/front/fw/*.h) $(COMMON_HDR)
 FW_BAKE_OPTS = $(strip $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) \
   --screen $(FW_SCREEN) $(if $(FW_MESH),--as both --max-faces $(or $(FW_MESH_FACES),0) $($(BOARD).mesh_opts)))
 # -fstack-usage and -fcallgraph-info give runtime/front/fw/stack_bound.py the frames and the call graph;
-# integer-only printf keeps picolibc's float formatting out of flash
+# integer-only printf keeps picolibc's float formatting out of flash; MC_FW_MESH=1 only with FW_MESH, so
+# that a points-only firmware links no mesh code (budget.json counts none for it)
 FW_CFLAGS := $($(BOARD).cpu) -O2 -g -ffunction-sections -fdata-sections -fstack-usage -fcallgraph-info=su \
-  --specs=picolibc.specs -DPICOLIBC_INTEGER_PRINTF_SCANF
+  --specs=picolibc.specs -DPICOLIBC_INTEGER_PRINTF_SCANF $(if $(FW_MESH),-DMC_FW_MESH=1)
 FW_LDFLAGS := $($(BOARD).cpu) --specs=picolibc.specs --oslib=semihost --crt0=hosted -DPICOLIBC_INTEGER_PRINTF_SCANF \
   -Truntime/front/fw/boards/$(BOARD).ld -Wl,--print-memory-usage -Wl,--gc-sections \
   -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free -Wl,-Map=$(FW_DIR)/$(FW_MODEL).map

@@ -8,9 +8,9 @@
 //     -ffunction-sections -fdata-sections -Iruntime/include -c runtime/src/MODULE.c
 //   arm-none-eabi-size MODULE.o
 // once with the default MC_LEAF_SWITCH=1 and once with -DMC_LEAF_SWITCH=0 (config.h). The runtime
-// has no .data and no .bss: its static RAM is 0. 64-bit divisions (view clamp, perspective) pull
-// in libgcc's __aeabi_ldivmod/__aeabi_uldivmod/__udivmoddi4: 960 bytes, from the link map of a
-// Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (octree_render.o 75847 bytes, with
+// has no .data and no .bss: its static RAM is 0. 64-bit divisions (view clamp, perspective,
+// clipping) pull in libgcc's __aeabi_ldivmod/__aeabi_uldivmod/__udivmoddi4: 960 bytes, from the link
+// map of a Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (octree_render.o 75847 bytes, with
 // the depth test as a select, MC_DEPTH_SELECT's default there); the budget is for the firmware target.
 // Header-only modules (bits.h, chunk.h, rng.h) have no code of their own: what they inline is
 // counted in their callers'.
@@ -42,12 +42,12 @@ inline constexpr ModuleCode kModules[] = {
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 1124, 1124, "progressive-mesh level of detail and neighbours (pmesh.c)"},
-    {"xform_vertex", 1212, 1212, "vertex projection, orthographic and perspective (xform_vertex.c)"},
+    {"xform_vertex", 3896, 3896, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
     {"raster", 6120, 6120, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2580, 2580, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 648, 648, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
-    {"mesh_render", 1828, 1828, "flat-shaded faces of the current level (mesh_render.c)"},
-    {"mesh_lines", 3396, 3396, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer (mesh_lines.c)"},
+    {"mesh_render", 2328, 2328, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
+    {"mesh_lines", 3924, 3924, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 924, 924, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;

@@ -27,6 +27,7 @@ suites=(
     tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
     tests/gen/pmesh.sh        # the progressive mesh: every level valid, levels equal OpenMesh's decimation
     tests/gen/qi.sh           # hidden lines by quantitative invisibility: exact in integers, a double reference
+    tests/gen/clip.sh         # near-plane and guard-band clipping in whole frames: eye inside, magnified, random views
     tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
     tests/render/suite.sh     # renders against the double-precision reference
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode

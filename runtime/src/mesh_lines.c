@@ -44,7 +44,8 @@ int mc_mesh_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
 {
     int32_t p[3][3];
     mc_raster_vertex v[3];
-    return !mc_mesh_face(lod, x, f, p, v) && area2(v) < 0;
+    if (mc_mesh_face(lod, x, f, p, v)) return mc_mesh_face_front(x, (const int32_t(*)[3])p);
+    return area2(v) < 0;
 }
 
 void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
@@ -109,6 +110,64 @@ static uint32_t corners(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xve
     return out;
 }
 
+/* Whether face f, a face with a flagged corner, is front-facing: the plane test (mesh_lines.h). */
+static int face_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
+{
+    int32_t p[3][3];
+    face_positions(lod, f, p);
+    return mc_mesh_face_front(x, (const int32_t(*)[3])p);
+}
+
+#if defined(__GNUC__) || defined(__clang__)
+#define NOINLINE __attribute__((noinline))
+#else
+#define NOINLINE
+#endif
+
+/* slope_offset of face f, a face with a flagged corner: of the largest triangle of its clipped
+ * polygon's fan (0 when nothing is left), as the face's plane has one slope on the screen wherever
+ * it is cut. (Apart, and the clipping's buffers with it: only such a face needs them on the stack.) */
+static NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
+{
+    int32_t p[3][3], q[3][3];
+    mc_xvertex poly[MC_XFORM_CLIP_MAX];
+    mc_raster_vertex tri[3];
+    face_positions(lod, f, p);
+    for (int k = 0; k < 3; k++) mc_xform_view(x, p[k], q[k]);
+    const unsigned n = mc_xform_clip_triangle(x, (const int32_t(*)[3])q, poly);
+    uint64_t best = 0;
+    unsigned at = 0;
+    for (unsigned i = 1; i + 1 < n; i++) {
+        const int64_t a = (int64_t)(poly[i].x - poly[0].x) * (poly[i + 1].y - poly[0].y) -
+                          (int64_t)(poly[i + 1].x - poly[0].x) * (poly[i].y - poly[0].y);
+        if (mag(a) > best) best = mag(a), at = i;
+    }
+    if (best == 0) return 0;
+    const mc_xvertex *c[3] = {&poly[0], &poly[at], &poly[at + 1]};
+    for (int k = 0; k < 3; k++) tri[k].x = c[k]->x, tri[k].y = c[k]->y, tri[k].z = c[k]->z;
+    return slope_offset(tri);
+}
+
+/* The depth offset slope of face f whose corners' flags are `flags` and projections v. */
+static uint64_t face_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, uint32_t flags, const mc_raster_vertex v[3])
+{
+    return flags ? clipped_slope(lod, x, f) : slope_offset(v);
+}
+
+/* Apart (noinline), as clipped_slope: only an edge with a flagged corner on its face needs it. */
+NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t h, mc_raster_vertex ends[2])
+{
+    int32_t p[3][3], q[2][3];
+    mc_xvertex e[2];
+    const uint32_t f = MC_HALF_FACE(h), k = MC_HALF_EDGE_INDEX(h);
+    face_positions(lod, f, p);
+    for (int i = 0; i < 2; i++) mc_xform_view(x, p[(k + (uint32_t)i) % 3], q[i]), mc_xform_project(x, q[i], &e[i]);
+    const int flagged = (e[0].flags | e[1].flags) != 0;
+    if (flagged && !mc_xform_clip_segment(x, q[0], q[1], e)) return 2;
+    for (int i = 0; i < 2; i++) ends[i].x = e[i].x, ends[i].y = e[i].y, ends[i].z = e[i].z;
+    return flagged;
+}
+
 /* The memory's parts (mesh_lines.h MC_MESH_LINES_BYTES): the level the crease bits are for, plus
  * one (0: none yet); the facing bits; four bits a face, bit k set when edge k is a crease. */
 static uint32_t *crease_tag(uint8_t *mem) { return (uint32_t *)(void *)mem; }
@@ -149,11 +208,66 @@ static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
     *crease_tag(mem) = lod->level + 1u;
 }
 
+/* Sets the level's facing bits (mc_mesh_facing's; the corners from the cache when there is one). */
+static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing)
+{
+    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        mc_raster_vertex v[3];
+        if (corners(lod, x, cache, f, v) ? face_front(lod, x, f) : area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
+    }
+}
+
+/* The kind of half-edge h of face f, whose opposite is o, from the facing and crease bits. */
+static unsigned kind_of(const uint8_t *facing, const uint8_t *cr, uint32_t f, uint32_t h, uint32_t o)
+{
+    return o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
+           : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE
+           : is_crease(cr, h)                                  ? MC_EDGE_CREASE
+                                                               : MC_EDGE_PLAIN;
+}
+
+static unsigned kind_color(unsigned kind)
+{
+    return kind == MC_EDGE_SILHOUETTE ? MC_LINES_SILHOUETTE_COLOR
+           : kind == MC_EDGE_CREASE   ? MC_LINES_CREASE_COLOR
+                                      : MC_LINES_BORDER_COLOR;
+}
+
+/* The line of half-edge h (opposite o) as both ways draw it: the pixels holding its ends (clipped
+ * where one is flagged, mc_mesh_edge_ends) in la, lb, and its depth offset. Returns 0 when nothing of
+ * it is left; counts its clipping in st. */
+static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint32_t h, uint32_t o,
+                     mc_lines_stats *st, mc_line_vertex *la, mc_line_vertex *lb, uint16_t *offset)
+{
+    const uint32_t f = MC_HALF_FACE(h), k = MC_HALF_EDGE_INDEX(h);
+    mc_raster_vertex v[3], w[3], ends[2];
+    const uint32_t fl = corners(lod, x, cache, f, v);
+    ends[0] = v[k], ends[1] = v[(k + 1) % 3];
+    if (fl) {   /* a face with a flagged corner: a flagged end clips the segment */
+        const int clipped = mc_mesh_edge_ends(lod, x, h, ends);
+        if (clipped == 2) { st->clipped_away++; return 0; }
+        st->clipped += (uint32_t)clipped;
+    }
+    uint64_t off = face_slope(lod, x, f, fl, v);
+    if (o != MC_NO_HALF_EDGE) {
+        const uint32_t g = MC_HALF_FACE(o), gl = corners(lod, x, cache, g, w);
+        const uint64_t og = face_slope(lod, x, g, gl, w);
+        if (og > off) off = og;
+    }
+    off += 2u;
+    *offset = (uint16_t)(off > MC_LINE_DEPTH_MAX ? MC_LINE_DEPTH_MAX : off);
+    /* 1/16 pixel to the pixel that holds the point (pixel i spans [i, i + 1)) */
+    la->x = ends[0].x >> MC_XFORM_SUBPIXEL_BITS, la->y = ends[0].y >> MC_XFORM_SUBPIXEL_BITS, la->z = ends[0].z;
+    lb->x = ends[1].x >> MC_XFORM_SUBPIXEL_BITS, lb->y = ends[1].y >> MC_XFORM_SUBPIXEL_BITS, lb->z = ends[1].z;
+    return 1;
+}
+
 int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
                   const mc_xvertex *cache, mc_lines_stats *stats)
 {
     mc_lines_stats st;   /* field by field: an aggregate initialiser becomes a memset call at -O0 */
-    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = 0;
+    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = st.clipped = st.clipped_away = 0;
     if (!lod || !lod->pm || !view || !t || !t->color || !t->depth || !mem) return MC_ERR_ARG;
     if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
@@ -161,54 +275,47 @@ int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, 
     uint8_t *facing = facing_of(mem);
     const uint8_t *cr = creases_of(mem, lod->pm->faces);
     update_creases(lod, mem);
-    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
-    for (uint32_t f = 0; f < lod->faces; f++) {
-        mc_raster_vertex v[3];
-        if (!corners(lod, &x, cache, f, v) && area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
-    }
+    set_facing(lod, &x, cache, facing);
     for (uint32_t f = 0; f < lod->faces; f++)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
             if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
-            const unsigned kind = o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
-                                  : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE
-                                  : is_crease(cr, h)                                  ? MC_EDGE_CREASE
-                                                                                      : MC_EDGE_PLAIN;
+            const unsigned kind = kind_of(facing, cr, f, h, o);
             st.edges++;
             st.silhouettes += kind == MC_EDGE_SILHOUETTE;
             st.creases += kind == MC_EDGE_CREASE;
             st.borders += kind == MC_EDGE_BORDER;
             if (!(kind & flags)) continue;
-            mc_raster_vertex v[3], w[3];
-            if (corners(lod, &x, cache, f, v)) { st.skipped++; continue; }   /* (a flagged endpoint flags its face) */
-            uint64_t off = slope_offset(v);
-            if (o != MC_NO_HALF_EDGE && corners(lod, &x, cache, MC_HALF_FACE(o), w) == 0) {
-                const uint64_t og = slope_offset(w);
-                if (og > off) off = og;
-            }
-            off += 2u;
-            mc_line_style style;
-            style.depth_offset = (uint16_t)(off > MC_LINE_DEPTH_MAX ? MC_LINE_DEPTH_MAX : off);
-            style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
-            const mc_raster_vertex *a = &v[k], *b = &v[(k + 1) % 3];
-            /* 1/16 pixel to the pixel that holds the point (pixel i spans [i, i + 1)) */
             mc_line_vertex la, lb;
-            la.x = a->x >> MC_XFORM_SUBPIXEL_BITS, la.y = a->y >> MC_XFORM_SUBPIXEL_BITS, la.z = a->z;
-            lb.x = b->x >> MC_XFORM_SUBPIXEL_BITS, lb.y = b->y >> MC_XFORM_SUBPIXEL_BITS, lb.z = b->z;
-            const unsigned color = kind == MC_EDGE_SILHOUETTE ? MC_LINES_SILHOUETTE_COLOR
-                                   : kind == MC_EDGE_CREASE   ? MC_LINES_CREASE_COLOR
-                                                              : MC_LINES_BORDER_COLOR;
-            st.pixels += mc_line(t, la, lb, (uint8_t)color, &style);
+            mc_line_style style;
+            if (!edge_line(lod, &x, cache, h, o, &st, &la, &lb, &style.depth_offset)) continue;
+            style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
+            st.pixels += mc_line(t, la, lb, (uint8_t)kind_color(kind), &style);
         }
     if (stats) *stats = st;
     return MC_OK;
+}
+
+/* Empties the entries of sd that face f, a face with a flagged corner, hides: the triangles of its
+ * clipped polygon's fan, as mc_mesh_render draws them (not culled). Apart, as clipped_slope. */
+static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
+{
+    int32_t p[3][3];
+    mc_raster_vertex poly[MC_XFORM_CLIP_MAX];
+    face_positions(lod, f, p);
+    const unsigned n = mc_mesh_clip_face(x, (const int32_t(*)[3])p, poly);
+    for (unsigned i = 1; i + 1 < n; i++) {
+        mc_raster_vertex tri[3];
+        tri[0] = poly[0], tri[1] = poly[i], tri[2] = poly[i + 1];
+        mc_raster_triangle_hide(sd, tri, 0u);
+    }
 }
 
 int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
                          mc_xvertex *cache, mc_lines_stats *stats)
 {
     mc_lines_stats st;
-    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = 0;
+    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = st.clipped = st.clipped_away = 0;
     if (!lod || !lod->pm || !view || !sd || !mem) return MC_ERR_ARG;
     if (sd->width > MC_TARGET_MAX || sd->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
@@ -217,52 +324,33 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
     uint8_t *facing = facing_of(mem);
     const uint8_t *cr = creases_of(mem, lod->pm->faces);
     update_creases(lod, mem);
-    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
-    for (uint32_t f = 0; f < lod->faces; f++) {
-        mc_raster_vertex v[3];
-        if (!corners(lod, &x, cache, f, v) && area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
-    }
+    set_facing(lod, &x, cache, facing);
     /* the lines first: their pixels become the buffer's entries, the nearest kept */
     for (uint32_t f = 0; f < lod->faces; f++)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
             if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
-            const unsigned kind = o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
-                                  : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE
-                                  : is_crease(cr, h)                                  ? MC_EDGE_CREASE
-                                                                                      : MC_EDGE_PLAIN;
+            const unsigned kind = kind_of(facing, cr, f, h, o);
             st.edges++;
             st.silhouettes += kind == MC_EDGE_SILHOUETTE;
             st.creases += kind == MC_EDGE_CREASE;
             st.borders += kind == MC_EDGE_BORDER;
             if (!(kind & flags)) continue;
-            mc_raster_vertex v[3], w[3];
-            if (corners(lod, &x, cache, f, v)) { st.skipped++; continue; }
-            uint64_t off = slope_offset(v);
-            if (o != MC_NO_HALF_EDGE && corners(lod, &x, cache, MC_HALF_FACE(o), w) == 0) {
-                const uint64_t og = slope_offset(w);
-                if (og > off) off = og;
-            }
-            off += 2u;
-            const mc_raster_vertex *a = &v[k], *b = &v[(k + 1) % 3];
             mc_line_vertex la, lb;
-            la.x = a->x >> MC_XFORM_SUBPIXEL_BITS, la.y = a->y >> MC_XFORM_SUBPIXEL_BITS, la.z = a->z;
-            lb.x = b->x >> MC_XFORM_SUBPIXEL_BITS, lb.y = b->y >> MC_XFORM_SUBPIXEL_BITS, lb.z = b->z;
-            const unsigned color = kind == MC_EDGE_SILHOUETTE ? MC_LINES_SILHOUETTE_COLOR
-                                   : kind == MC_EDGE_CREASE   ? MC_LINES_CREASE_COLOR
-                                                              : MC_LINES_BORDER_COLOR;
-            st.pixels += mc_line_sdepth(sd, la, lb, (uint8_t)color,
-                                        (uint16_t)(off > MC_LINE_DEPTH_MAX ? MC_LINE_DEPTH_MAX : off));
+            uint16_t off;
+            if (!edge_line(lod, &x, cache, h, o, &st, &la, &lb, &off)) continue;
+            st.pixels += mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), off);
         }
-    /* then the faces mc_mesh_render would draw empty the entries they hide; a face whose box holds
-     * no entry costs its corners and its box */
+    /* then the faces mc_mesh_render would draw empty the entries they hide (a face with a flagged
+     * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
+     * corners and its box */
     if (!(flags & MC_LINES_NO_HIDING)) {
         const int cull = lod->pm->closed;
         for (uint32_t f = 0; f < lod->faces; f++) {
             if (cull && !front(facing, f)) continue;
             mc_raster_vertex v[3];
-            if (corners(lod, &x, cache, f, v)) continue;
-            mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
+            if (corners(lod, &x, cache, f, v)) hide_clipped(sd, lod, &x, f);
+            else mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
         }
     }
     if (stats) *stats = st;

@@ -38,7 +38,8 @@ typedef struct qi_ctx {
     const mc_pmesh_lod *lod;
     mc_xform x;
     const mc_xvertex *cache;   /* null: project on each use */
-    const uint8_t *facing, *back;
+    const uint8_t *facing;     /* mc_mesh_facing's bits */
+    const uint8_t *hides;      /* faces that can hide: no flagged corner, some projected area */
 } qi_ctx;
 
 /* ---- integers ------------------------------------------------------------------------------------ */
@@ -129,11 +130,22 @@ static uint32_t corners(const qi_ctx *c, uint32_t f, uint32_t idx[3], mc_raster_
     return project(c, idx, v);
 }
 
+/* The facing of a face with a flagged corner, corners idx: its plane's (mc_mesh_face_front), as
+ * mc_mesh_facing gives it. */
+static int flagged_front(const qi_ctx *c, const uint32_t idx[3])
+{
+    int32_t p[3][3];
+    for (int k = 0; k < 3; k++) mc_pmesh_position(c->lod->pm, idx[k], p[k]);
+    return mc_mesh_face_front(&c->x, (const int32_t(*)[3])p);
+}
+
 static unsigned bit(const uint8_t *b, uint32_t i) { return (b[i >> 3] >> (i & 7u)) & 1u; }
 
+/* A face that hides is front or back by its facing bit; a face with a flagged corner has a facing
+ * bit too (its plane's, as mc_mesh_lines gives it) but hides nothing. */
 static unsigned face_class(const qi_ctx *c, uint32_t f)
 {
-    return bit(c->facing, f) ? CLS_FRONT : bit(c->back, f) ? CLS_BACK : CLS_NONE;
+    return !bit(c->hides, f) ? CLS_NONE : bit(c->facing, f) ? CLS_FRONT : CLS_BACK;
 }
 
 /* The quantities of face v (area2 a != 0) along the line P + t d, depth zp + t dz (mesh_qi.h's covering
@@ -797,6 +809,7 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
     mc_qi_stats local;
     mc_qi_stats *const st = stats ? stats : &local;
     st->edges = st->silhouettes = st->creases = st->borders = st->skipped = st->skipped_faces = st->lines = 0;
+    st->clipped = st->clipped_away = 0;
     st->contours = st->pixels = st->visible = st->hidden = st->changes = st->crossings = st->pair_tests = 0;
     st->ray_tests = st->exact_lines = st->grid_shift = st->work_needed = 0;
     if (!lod || !lod->pm || !view || !t || !t->color || !t->depth || !buf || !buf->facing || !buf->work) return MC_ERR_ARG;
@@ -820,25 +833,30 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
     const uint32_t fixed = align8((faces + 7u) / 8u) + align8((side + 8u) / 8u) + align8(16u * (side + 1u));
     st->work_needed = MC_QI_WORK_BYTES(faces, 0, 0, side);
     if (buf->work_bytes < st->work_needed || fixed + 8u > bytes) return MC_ERR_SIZE;
-    uint8_t *back = base;
+    uint8_t *hides = base;
     fr.bits = base + align8((faces + 7u) / 8u);
     fr.cnt = (int32_t *)(void *)(fr.bits + align8((side + 8u) / 8u));
     uint8_t *lo = (uint8_t *)fr.cnt + align8(16u * (side + 1u)), *hi = base + bytes;
     fr.contours = (qi_contour *)(void *)lo;
     fr.lines_top = (qi_line *)(void *)hi;
-    fr.c.back = back;
+    fr.c.hides = hides;
 
-    /* 1. facing and back-facing bits */
+    /* 1. facing bits (mc_mesh_facing's: a face with a flagged corner by its plane) and hiding bits */
     if (buf->cache) project_level(lod, &fr.c.x, buf->cache);
     uint8_t *facing = buf->facing;
-    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(faces); i++) facing[i] = 0, back[i] = 0;
+    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(faces); i++) facing[i] = 0, hides[i] = 0;
     for (uint32_t f = 0; f < faces; f++) {
         uint32_t idx[3];
         mc_raster_vertex v[3];
-        if (corners(&fr.c, f, idx, v)) { st->skipped_faces++; continue; }
+        const uint8_t b = (uint8_t)(1u << (f & 7u));
+        if (corners(&fr.c, f, idx, v)) {
+            st->skipped_faces++;
+            if (flagged_front(&fr.c, idx)) facing[f >> 3] |= b;
+            continue;
+        }
         const int64_t a = area2(v);
-        if (a < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
-        else if (a > 0) back[f >> 3] |= (uint8_t)(1u << (f & 7u));
+        if (a < 0) facing[f >> 3] |= b;
+        if (a != 0) hides[f >> 3] |= b;
     }
 
     /* 2. the edges: kinds, contours, lines */
@@ -890,8 +908,17 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
                 C++;
             }
             if (!drawn) continue;
-            if (fflags) { st->skipped++; continue; }   /* as mc_mesh_lines: f has a flagged corner */
-            const mc_raster_vertex *a = &v[k], *b = &v[(k + 1) % 3];
+            mc_raster_vertex ends[2];   /* field by field: a structure assignment may become a memcpy call */
+            for (uint32_t i = 0; i < 2; i++) {
+                const mc_raster_vertex *c = &v[(k + i) % 3];
+                ends[i].x = c->x, ends[i].y = c->y, ends[i].z = c->z;
+            }
+            if (fflags) {   /* as mc_mesh_lines: a flagged end clips the line */
+                const int clipped = mc_mesh_edge_ends(lod, &fr.c.x, h, ends);
+                if (clipped == 2) { st->clipped_away++; continue; }
+                st->clipped += (uint32_t)clipped;
+            }
+            const mc_raster_vertex *a = &ends[0], *b = &ends[1];
             mc_line_vertex la, lb;
             la.x = floor16(a->x), la.y = floor16(a->y), la.z = a->z;
             lb.x = floor16(b->x), lb.y = floor16(b->y), lb.z = b->z;

@@ -3,7 +3,8 @@
  * Per face: its corners (the level's ancestors of the stored ones), their projections (from the
  * frame's vertex cache, or projected here), then a test as cheap as raster.c's first ones (a back
  * face when culling, no pixel centre in the bounding box): only a face that may cover a pixel has its
- * shade worked out and goes to the rasterizer. */
+ * shade worked out and goes to the rasterizer. A face with a corner the projection flags goes to
+ * clipped_face instead (xform.h's clipping). */
 #include "modelc/mesh_render.h"
 
 /* ((2j - 1) / 62)^2 in Q30, j = 1 .. 31: |n.z| / |n| at least (j - 1/2) / 31 means shade j or more */
@@ -89,6 +90,52 @@ MC_ALWAYS_INLINE int may_cover(const mc_raster_vertex v[3], unsigned cull)
     return area < 0;
 }
 
+unsigned mc_mesh_clip_face(const mc_xform *x, const int32_t p[3][3], mc_raster_vertex v[MC_XFORM_CLIP_MAX])
+{
+    int32_t q[3][3];
+    mc_xvertex xv[MC_XFORM_CLIP_MAX];
+    for (int k = 0; k < 3; k++) mc_xform_view(x, p[k], q[k]);
+    const unsigned n = mc_xform_clip_triangle(x, (const int32_t(*)[3])q, xv);
+    for (unsigned i = 0; i < n; i++) v[i].x = xv[i].x, v[i].y = xv[i].y, v[i].z = xv[i].z;
+    return n;
+}
+
+int mc_mesh_face_front(const mc_xform *x, const int32_t p[3][3])
+{
+    int32_t q[3][3];
+    for (int k = 0; k < 3; k++) mc_xform_view(x, p[k], q[k]);
+    return mc_xform_front(x, (const int32_t(*)[3])q);
+}
+
+/* A face with a corner flagged by the projection: culled by its plane (mc_xform_front), not by its
+ * cut polygon's area, else clipped and drawn as a fan with no culling; counted in st. Apart from the
+ * loop below (noinline: the common path keeps its registers). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void clipped_face(const mc_pmesh *pm, const mc_xform *x, const uint32_t c[3], unsigned flags, const mc_target *t,
+                         mc_mesh_stats *st)
+{
+    int32_t p[3][3], q[3][3];
+    for (int k = 0; k < 3; k++) position(pm, c[k], p[k]), mc_xform_view(x, p[k], q[k]);
+    if ((flags & MC_MESH_CULL_BACK) && !mc_xform_front(x, (const int32_t(*)[3])q)) return;
+    mc_xvertex xv[MC_XFORM_CLIP_MAX];
+    const unsigned n = mc_xform_clip_triangle(x, (const int32_t(*)[3])q, xv);
+    if (n == 0) { st->clipped_away++; return; }
+    st->clipped++;
+    const unsigned color = (flags & MC_MESH_DRAW_PAPER) ? MC_MESH_PAPER : mc_mesh_shade(p[0], p[1], p[2]);
+    uint32_t covered = 0;
+    for (unsigned i = 1; i + 1 < n; i++) {
+        mc_raster_vertex v[3];
+        v[0].x = xv[0].x, v[0].y = xv[0].y, v[0].z = xv[0].z;
+        v[1].x = xv[i].x, v[1].y = xv[i].y, v[1].z = xv[i].z;
+        v[2].x = xv[i + 1].x, v[2].y = xv[i + 1].y, v[2].z = xv[i + 1].z;
+        covered += mc_raster_triangle(t, v, (uint8_t)color, 0u);
+    }
+    st->drawn += covered > 0;
+    st->pixels += covered;
+}
+
 /* Projects every vertex present at the level into cache[v]. */
 static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
 {
@@ -109,7 +156,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
                    mc_xvertex *cache, mc_mesh_stats *stats)
 {
     mc_mesh_stats st;   /* field by field: an aggregate initialiser becomes a memset call at -O0 */
-    st.faces = st.drawn = st.skipped = st.pixels = 0;
+    st.faces = st.drawn = st.skipped = st.pixels = st.clipped = st.clipped_away = 0;
     if (!lod || !lod->pm || !view || !t || !t->color || !t->depth) return MC_ERR_ARG;
     if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     const mc_pmesh *pm = lod->pm;
@@ -152,7 +199,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
                     v[k].x = xv.x, v[k].y = xv.y, v[k].z = xv.z;
                 }
             }
-            if (out) { st.skipped++; continue; }
+            if (out) { clipped_face(pm, &x, c, flags, t, &st); continue; }
             if (!may_cover(v, rflags)) continue;
             if (cache && !paper) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
             const unsigned color = paper ? MC_MESH_PAPER : mc_mesh_shade(p[0], p[1], p[2]);

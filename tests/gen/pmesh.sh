@@ -8,9 +8,12 @@
 #   - at chosen levels the faces equal, as a set of oriented triangles of quantized positions, those
 #     OpenMesh's Decimater itself leaves at that many vertices (modelc --dump-pmesh-level);
 #   - mc_mesh_render's images (flat-shaded, z-buffered) equal a composition of the tested parts in
-#     doubles (pmesh_check.c render), orthographic and perspective, culled and not;
+#     doubles (pmesh_check.c render), orthographic and perspective, culled and not, and with the eye
+#     inside the model, where faces through the near plane are clipped (against an exact clipping in
+#     doubles);
 #   - the line drawings: every edge's kind (silhouette, crease, border) as a double-precision
-#     classification of the level's faces gives it, and the lines drawn as those edges' lines;
+#     classification of the level's faces gives it, and the lines drawn as those edges' lines (clipped
+#     at the near plane with the eye inside);
 #   - every eighth checked level: each face's neighbours equal a search of the level's faces;
 #   - silhouettes (tests/gen/sil_check.c): the exact scan equals the line drawing's classification, the
 #     bounded search lists only silhouettes, each once, within its budget, the same on every run;
@@ -66,21 +69,26 @@ bake_check() {
 
 # renders LABEL N...: mc_mesh_render at each level N against the reference composition
 # (pmesh_check.c render): orthographic front, turned with back faces culled, perspective with the
-# eye outside the model, and with the eye inside it (faces behind the near plane skipped)
+# eye outside the model, and with the eye inside it (faces through the near plane clipped); for the
+# catalogue's closed meshes also inside and culled (clipped faces culled by their planes: an open
+# shape seen so may show no face at all)
 renders() {
-    local label=$1 n view r
+    local label=$1 n view r views
     shift
+    views=("96 72 0 0 0 0 65536 131072 0" "96 72 0 700 -300 200 98304 131072 1" "80 60 1 -1100 250 0 65536 131072 1"
+        "80 60 1 2048 100 0 65536 16384 0")
+    case $label in bunny00 | fandisk) views+=("80 60 1 2048 100 0 65536 16384 1") ;; esac
     for n in "$@"; do
-        for view in "96 72 0 0 0 0 65536 131072 0" "96 72 0 700 -300 200 98304 131072 1" \
-            "80 60 1 -1100 250 0 65536 131072 1" "80 60 1 2048 100 0 65536 16384 0"; do
+        for view in "${views[@]}"; do
             r=$("$checker" render "$n" $view 2>&1)
             if [[ $r == ok:* ]]; then ok "$label: mc_mesh_render, view ($view): ${r#ok: }"
             else notok "$label: mc_mesh_render, view ($view)" "${r#not ok: }"; fi
         done
         # line drawings (pmesh_check.c lines): the edges' kinds against the reference's, the lines
-        # drawn as their edges' mc_line, hidden ones a subset; frontal, turned and magnified, perspective
+        # drawn as their edges' mc_line, hidden ones a subset; frontal, turned and magnified, perspective,
+        # and with the eye inside (lines clipped at the near plane)
         for view in "160 120 0 0 0 0 65536 131072" "160 120 0 700 -300 200 262144 131072" \
-            "120 90 1 -1100 250 0 65536 131072"; do
+            "120 90 1 -1100 250 0 65536 131072" "120 90 1 2048 100 0 65536 16384"; do
             r=$("$checker" lines "$n" $view 2>&1)
             if [[ $r == ok:* ]]; then ok "$label: mc_mesh_lines, view ($view): ${r#ok: }"
             else notok "$label: mc_mesh_lines, view ($view)" "${r#not ok: }"; fi

@@ -1,5 +1,7 @@
 /* Checks a baked progressive mesh through the runtime's level of detail (runtime/src/pmesh.c).
  * Built by tests/gen/pmesh.sh with -DPM=mc_pmesh_NAME -include build/.../NAME.h and the bake's files.
+ * Long because its modes check one bake through the same level of detail and edge table, which
+ * separate checkers would each rebuild.
  *
  *   pmesh_check levels        every level of a mesh up to 4000 vertices, else the first and last 200
  *                             and 400 spread between, visited in a shuffled order: every face present
@@ -20,11 +22,29 @@
  *                             mc_xform_vertex, tested on its own, tests/unit/test_xform.c), covered
  *                             and depth-tested by the double
  *                             reference of the rasterizer (runtime/ref/raster_ref.c), shaded by
- *                             |n.z| / |n| in doubles. The covered pixels must be the same set; the
- *                             colour the same wherever the two nearest faces are more than 2 depth
- *                             units apart and the shade is not within 1/100 of a rounding point; the depth
- *                             within 1 unit of the nearest face's; the guard zones untouched; the
- *                             skipped-face count the reference's
+ *                             |n.z| / |n| in doubles. A face with a corner mc_mesh_face flags is
+ *                             clipped as mesh_render.h promises, in doubles from the exact view
+ *                             space (runtime/ref/xform_ref.c mc_ref_clip_triangle: the near plane,
+ *                             and the band's lines, which lie far off the target), culled by its
+ *                             plane (mc_ref_front), its polygon covering the centres inside it, at
+ *                             the depth of its plane there; the runtime's cut vertices lie within
+ *                             1/16 pixel of the exact ones (xform.h), so centres within 1/8 pixel of
+ *                             such a polygon's outline are not judged, and its depth is allowed 2
+ *                             units plus 1/16 pixel of its slopes more. The covered pixels must be
+ *                             the same set; the colour the same wherever the two nearest faces are
+ *                             more than 2 depth units (plus those allowances) apart and the shade is
+ *                             not within 1/100 of a rounding point; the depth within 1 unit (plus
+ *                             the allowance) of the nearest face's; the guard zones untouched; no
+ *                             face skipped, and the clipped and clipped-away counts the reference's
+ *                             (faces with a corner within 2^-26 cube side of the near plane or a
+ *                             facing within rounding may go either way)
+ *   pmesh_check lines N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE
+ *                             mc_mesh_lines' edge kinds against a classification in doubles (a face
+ *                             with a flagged corner faced by its plane, mc_ref_front), its lines the
+ *                             union of its edges' mc_line between their ends (mc_mesh_edge_ends:
+ *                             clipped where one is flagged), hidden ones a subset; guard zones
+ *                             untouched; over the sparse depth buffer (mc_mesh_lines_sparse) the
+ *                             same counts and the same pixels showing a line as the z-buffer way
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -62,6 +82,79 @@ static unsigned ref_shade(const int32_t p[3][3], int *edge)
     return (unsigned)floor(c + 0.5);
 }
 
+/* A candidate of depth z, allowance t (how far the runtime's depth may be from z beyond its own
+ * unit) and shade s at pixel i: the nearest so far goes to d1, any other's least depth to d2. */
+static void nearest(size_t i, double z, double t, unsigned s, int amb, double *d1, double *d2, double *t1,
+                    uint8_t *best_shade, uint8_t *best_amb)
+{
+    if (z < d1[i]) {
+        const double lo = d1[i] - t1[i];
+        if (lo < d2[i]) d2[i] = lo;
+        d1[i] = z, t1[i] = t, best_shade[i] = (uint8_t)s, best_amb[i] = (uint8_t)amb;
+    } else if (z - t < d2[i]) {
+        d2[i] = z - t;
+    }
+}
+
+/* Whether a corner of p lies within 2^-26 cube side of the near plane, where the runtime's view
+ * space (rounded to 2^-31) and the reference's may put it on either side. */
+static int near_border(const mc_view *v, uint32_t w, uint32_t h, const int32_t p[3][3])
+{
+    for (int k = 0; k < 3; k++) {
+        const mc_ref_vertex e = mc_ref_project(v, w, h, p[k]);
+        if (v->projection == MC_PERSPECTIVE && fabs(e.d - 1.0 / 64) < 0x1p-26) return 1;
+    }
+    return 0;
+}
+
+/* The clipped polygon poly (m vertices, pixels, convex, in its turning order) as the reference
+ * composes it: centres farther than 1/8 pixel inside it covered at its plane's depth, allowed 2
+ * units plus 1/16 pixel of its slopes (sure), those nearer its outline than 1/8 pixel set in unsure
+ * (every centre not surely outside, when the face is not sure: a facing or near-plane tie). */
+static void polygon(uint32_t w, uint32_t h, const mc_ref_vertex *poly, int m, int sure, unsigned s, int amb, double *d1,
+                    double *d2, double *t1, uint8_t *best_shade, uint8_t *best_amb, uint8_t *unsure)
+{
+    const double tol = 1.0 / 8;
+    double area = 0, best = 0, x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+    int at = 0;
+    for (int i = 0; i < m; i++) {
+        const mc_ref_vertex *a = &poly[i], *b = &poly[(i + 1) % m];
+        area += a->x * b->y - b->x * a->y;
+        x0 = fmin(x0, a->x), x1 = fmax(x1, a->x), y0 = fmin(y0, a->y), y1 = fmax(y1, a->y);
+    }
+    for (int i = 1; i + 1 < m; i++) {
+        const double a = (poly[i].x - poly[0].x) * (poly[i + 1].y - poly[0].y) - (poly[i + 1].x - poly[0].x) * (poly[i].y - poly[0].y);
+        if (fabs(a) > fabs(best)) best = a, at = i;
+    }
+    /* the plane's depth z0 + gx (x - x0) + gy (y - y0), from the largest triangle of the fan */
+    double gx = 0, gy = 0;
+    if (best != 0) {
+        const mc_ref_vertex *a = &poly[0], *b = &poly[at], *c = &poly[at + 1];
+        const double z1 = b->z - a->z, z2 = c->z - a->z, xa = b->x - a->x, ya = b->y - a->y, xb = c->x - a->x, yb = c->y - a->y;
+        gx = (z1 * yb - z2 * ya) / best, gy = (xa * z2 - xb * z1) / best;
+    }
+    const double allow = 2 + (fabs(gx) + fabs(gy)) / 16, sg = area > 0 ? 1 : -1;
+    const int i0 = (int)fmax(0, floor(x0 - tol - 0.5)), i1 = (int)fmin(w - 1.0, ceil(x1 + tol));
+    const int j0 = (int)fmax(0, floor(y0 - tol - 0.5)), j1 = (int)fmin(h - 1.0, ceil(y1 + tol));
+    for (int j = j0; j <= j1; j++)
+        for (int i = i0; i <= i1; i++) {
+            const double cx = i + 0.5, cy = j + 0.5;
+            double dmin = HUGE_VAL;
+            for (int k = 0; k < m; k++) {
+                const mc_ref_vertex *a = &poly[k], *b = &poly[(k + 1) % m];
+                const double ex = b->x - a->x, ey = b->y - a->y, len = hypot(ex, ey);
+                if (!(len > 0)) continue;
+                /* positive inside: the polygon turns with the sign of its area */
+                dmin = fmin(dmin, sg * (ex * (cy - a->y) - ey * (cx - a->x)) / len);
+            }
+            const size_t px = (size_t)j * w + (size_t)i;
+            if (dmin < -tol) continue;
+            if (!sure || best == 0 || dmin <= tol) { unsure[px] = 1; continue; }
+            nearest(px, poly[0].z + gx * (cx - poly[0].x) + gy * (cy - poly[0].y), allow, s, amb, d1, d2, t1, best_shade,
+                    best_amb);
+        }
+}
+
 static int render_check(mc_pmesh_lod *lod, char **a)
 {
     const uint32_t n = (uint32_t)strtoul(a[0], 0, 10), w = (uint32_t)atoi(a[1]), h = (uint32_t)atoi(a[2]);
@@ -74,7 +167,9 @@ static int render_check(mc_pmesh_lod *lod, char **a)
     uint8_t *cmem = malloc(px + 2 * G), *cov = malloc(px), *best_shade = malloc(px), *best_amb = malloc(px);
     uint16_t *dmem = malloc(2 * (px + 2 * G));
     double *d1 = malloc(sizeof(double) * px), *d2 = malloc(sizeof(double) * px), *fd = malloc(sizeof(double) * px);
-    if (!cmem || !cov || !best_shade || !best_amb || !dmem || !d1 || !d2 || !fd) return 2;
+    double *t1 = malloc(sizeof(double) * px);
+    uint8_t *unsure = calloc(px, 1);
+    if (!cmem || !cov || !best_shade || !best_amb || !dmem || !d1 || !d2 || !fd || !t1 || !unsure) return 2;
     memset(cmem, 0xA5, px + 2 * G);
     for (size_t i = 0; i < px + 2 * G; i++) dmem[i] = 0x5A5A;
     mc_target t = {cmem + G, dmem + G, (uint16_t)w, (uint16_t)h};
@@ -100,42 +195,58 @@ static int render_check(mc_pmesh_lod *lod, char **a)
         }
         free(vc), free(cc), free(dc);
     }
-    /* the reference */
-    for (size_t i = 0; i < px; i++) d1[i] = d2[i] = HUGE_VAL, best_shade[i] = 0, best_amb[i] = 0;
+    /* the reference: per pixel the nearest face's depth d1 and its allowance t1 (0 for a face drawn
+     * from the runtime's corners), and d2 the least depth another face may have there */
+    for (size_t i = 0; i < px; i++) d1[i] = d2[i] = HUGE_VAL, t1[i] = 0, best_shade[i] = 0, best_amb[i] = 0;
     mc_xform x;
     mc_xform_init(&x, &v, w, h);
-    uint32_t skipped = 0;
+    uint32_t flagged = 0, kept = 0, away = 0, either = 0;
     for (uint32_t f = 0; f < lod->faces; f++) {
         int32_t p[3][3];
         mc_raster_vertex rv[3];
-        if (mc_mesh_face(lod, &x, f, p, rv)) { skipped++; continue; }
+        int amb;
+        if (mc_mesh_face(lod, &x, f, p, rv)) {
+            flagged++;
+            const int border = near_border(&v, w, h, p), front = mc_ref_front(&v, w, h, p);
+            if (cull && front < 0 && !border) continue;   /* culled: in neither count */
+            mc_ref_vertex poly[MC_REF_CLIP_MAX];
+            const int m = mc_ref_clip_triangle(&v, w, h, (const int32_t(*)[3])p, poly);
+            const int sure = !border && !(cull && front == 0);
+            if (!sure) either++;
+            else if (m == 0) away++;
+            else kept++;
+            if (m) polygon(w, h, poly, m, sure, ref_shade(p, &amb), amb, d1, d2, t1, best_shade, best_amb, unsure);
+            continue;
+        }
         memset(cov, 0, px);
         if (!mc_raster_ref_triangle(w, h, rv, cull ? MC_RASTER_CULL_BACK : 0u, cov, fd)) continue;
-        int amb;
         unsigned s = ref_shade(p, &amb);
-        for (size_t i = 0; i < px; i++) {
-            if (!cov[i]) continue;
-            if (fd[i] < d1[i]) d2[i] = d1[i], d1[i] = fd[i], best_shade[i] = (uint8_t)s, best_amb[i] = (uint8_t)amb;
-            else if (fd[i] < d2[i]) d2[i] = fd[i];
-        }
+        for (size_t i = 0; i < px; i++)
+            if (cov[i]) nearest(i, fd[i], 0, s, amb, d1, d2, t1, best_shade, best_amb);
     }
     unsigned long coverage = 0, colour = 0, depth = 0, ties = 0, guard = 0, covered = 0;
     for (size_t i = 0; i < G; i++)
         guard += cmem[i] != 0xA5 || cmem[G + px + i] != 0xA5 || dmem[i] != 0x5A5A || dmem[G + px + i] != 0x5A5A;
+    unsigned long beside = 0;
     for (size_t i = 0; i < px; i++) {
         const int ref_cov = d1[i] < HUGE_VAL, got = t.depth[i] != MC_DEPTH_EMPTY;
+        if (unsure[i] && (got || !ref_cov)) { beside++; continue; }   /* beside a clipped polygon's outline */
         if (ref_cov != got) { coverage++; continue; }
         if (!got) continue;
         covered++;
-        if (d2[i] - d1[i] <= 2 || best_amb[i]) { ties++; continue; }
+        if (d2[i] - d1[i] <= 2 + t1[i] || best_amb[i]) { ties++; continue; }
         colour += t.color[i] != best_shade[i];
-        depth += fabs(t.depth[i] - floor(d1[i] + 0.5)) > 1;
+        depth += fabs(t.depth[i] - floor(d1[i] + 0.5)) > 1 + t1[i];
     }
-    int ok = rc == MC_OK && !coverage && !colour && !depth && !guard && st.skipped == skipped && covered > 0;
-    printf("%s: level %u, %u faces (%u skipped), %lu pixels covered; %lu coverage, %lu colour, %lu depth "
-           "differences, %lu guard-zone bytes touched, %lu pixels on depth or shade ties\n",
-           ok ? "ok" : "not ok", n, lod->faces, st.skipped, covered, coverage, colour, depth, guard, ties);
-    free(cmem), free(cov), free(best_shade), free(best_amb), free(dmem), free(d1), free(d2), free(fd);
+    const int counts = st.skipped == 0 && st.clipped >= kept && st.clipped <= kept + either && st.clipped_away >= away &&
+                       st.clipped_away <= away + either && st.clipped + st.clipped_away <= kept + away + either;
+    int ok = rc == MC_OK && !coverage && !colour && !depth && !guard && counts && covered > 0;
+    printf("%s: level %u, %u faces (%u with a flagged corner: %u clipped, %u clipped away, %u skipped; the reference "
+           "%u, %u, %u either way), %lu pixels covered; %lu coverage, %lu colour, %lu depth differences, %lu guard-zone "
+           "bytes touched, %lu pixels on depth or shade ties, %lu beside a clipped outline\n",
+           ok ? "ok" : "not ok", n, lod->faces, flagged, st.clipped, st.clipped_away, st.skipped, kept, away, either,
+           covered, coverage, colour, depth, guard, ties, beside);
+    free(cmem), free(cov), free(best_shade), free(best_amb), free(dmem), free(d1), free(d2), free(fd), free(t1), free(unsure);
     return ok ? 0 : 1;
 }
 
@@ -238,9 +349,8 @@ static unsigned long edge_order_check(char *first, size_t n_first)
 /* ---- lines: the level's edges classified in doubles, against mc_mesh_lines ---------------------- */
 
 typedef struct ref_face {
-    double area;      /* twice the exact signed screen area, pixels^2 */
+    double area;      /* twice the exact signed screen area, pixels^2 (a flagged face: -1 front, 1 not) */
     double tol;       /* how far the runtime's rounded corners (within 1/16 pixel) can move it */
-    int flagged;      /* a corner before the near plane or beyond the guard band */
     double n[3];      /* normal in the model frame */
 } ref_face;
 
@@ -249,8 +359,8 @@ typedef struct ref_face {
 static unsigned ref_kinds(const ref_face *a, const ref_face *b, double crease_cos)
 {
     if (!b) return 1u << MC_EDGE_BORDER;
-    unsigned fa = a->flagged ? 1u : a->area < -a->tol ? 2u : a->area > a->tol ? 1u : 3u;   /* 1 back, 2 front */
-    unsigned fb = b->flagged ? 1u : b->area < -b->tol ? 2u : b->area > b->tol ? 1u : 3u;
+    unsigned fa = a->area < -a->tol ? 2u : a->area > a->tol ? 1u : 3u;   /* 1 back, 2 front */
+    unsigned fb = b->area < -b->tol ? 2u : b->area > b->tol ? 1u : 3u;
     unsigned kinds = 0;
     if ((fa | fb) == 3u) kinds |= 1u << MC_EDGE_SILHOUETTE;                /* they can differ */
     if ((fa & fb) != 0) {                                                  /* they can agree */
@@ -286,16 +396,20 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
         mc_ref_vertex e[3];
         uint32_t c[3];
         mc_pmesh_lod_face(lod, f, c);
-        rf[f].flagged = 0;
+        int flagged = 0;
         for (int k = 0; k < 3; k++) {
             mc_pmesh_position(&PM, c[k], p[k]);
             e[k] = mc_ref_project(&v, w, h, p[k]);
-            rf[f].flagged |= e[k].near || e[k].out;
+            flagged |= e[k].near || e[k].out;
         }
         double ax = e[1].x - e[0].x, ay = e[1].y - e[0].y, bx = e[2].x - e[0].x, by = e[2].y - e[0].y;
         double cx = e[2].x - e[1].x, cy = e[2].y - e[1].y, u = 1.0 / 16;
         rf[f].area = ax * by - bx * ay;
         rf[f].tol = 2 * u * (fabs(ax) + fabs(ay) + fabs(bx) + fabs(by) + fabs(cx) + fabs(cy)) + 8 * u * u;
+        if (flagged) {   /* faced by its plane (mesh_lines.h), either way within rounding */
+            const int front = mc_ref_front(&v, w, h, (const int32_t(*)[3])p);
+            rf[f].area = -front, rf[f].tol = front ? 0 : HUGE_VAL;
+        }
         double d1[3], d2[3];
         for (int i = 0; i < 3; i++) d1[i] = (double)p[1][i] - p[0][i], d2[i] = (double)p[2][i] - p[0][i];
         rf[f].n[0] = d1[1] * d2[2] - d1[2] * d2[1];
@@ -358,10 +472,9 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
             if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
             const unsigned kind = mc_mesh_edge_kind(lod, facing, MC_HALF_EDGE(f, k), o);
             if (kind == MC_EDGE_PLAIN) continue;
-            int32_t p[3][3];
-            mc_raster_vertex rv[3];
-            if (mc_mesh_face(lod, &x, f, p, rv)) continue;
-            mc_line_vertex la = {rv[k].x >> 4, rv[k].y >> 4, 0}, lb = {rv[(k + 1) % 3].x >> 4, rv[(k + 1) % 3].y >> 4, 0};
+            mc_raster_vertex rv[2];   /* the corners projected, or the edge clipped where one is flagged */
+            if (mc_mesh_edge_ends(lod, &x, MC_HALF_EDGE(f, k), rv) == 2) continue;
+            mc_line_vertex la = {rv[0].x >> 4, rv[0].y >> 4, 0}, lb = {rv[1].x >> 4, rv[1].y >> 4, 0};
             uint8_t one[1] = {0};
             (void)one;
             /* mark the line's pixels with the kind's bit */
@@ -439,7 +552,8 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
             sparse_shown += l3;
         }
         if (!bad && (rc != MC_OK || s3.edges != s4.edges || s3.silhouettes != s4.silhouettes || s3.creases != s4.creases ||
-                     s3.borders != s4.borders || s3.pixels != s4.pixels || s3.skipped != s4.skipped))
+                     s3.borders != s4.borders || s3.pixels != s4.pixels || s3.skipped != s4.skipped ||
+                     s3.clipped != s4.clipped || s3.clipped_away != s4.clipped_away))
             bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse: rc %d, counts %u edges %u %u %u %u px, z-buffer %u %u %u %u %u",
                             rc, s3.edges, s3.silhouettes, s3.creases, s3.borders, s3.pixels, s4.edges, s4.silhouettes,
                             s4.creases, s4.borders, s4.pixels);

@@ -2,7 +2,8 @@
 # Hidden lines by quantitative invisibility (runtime/src/mesh_qi.c, modelc/mesh_qi.h): the runtime
 # file builds freestanding and for Cortex-M4 without warnings or floating point; then, for bakes of
 # catalogue meshes and of shapes made here, tests/gen/qi_check.c at chosen levels and views
-# (orthographic and perspective, one with the eye inside the model so that faces are skipped):
+# (orthographic and perspective, one with the eye inside the model so that lines are clipped at the
+# near plane and the faces through it hide nothing):
 #   - edges, kinds and, with nothing hidden, the target byte for byte mc_mesh_lines';
 #   - every line's pixels and depths as line.h's promise gives them, drawn exactly at the steps its
 #     exact visibility changes make visible, and the target the union of those;
@@ -83,7 +84,7 @@ checks() {
 front="320 240 0 0 0 0 65536 131072"
 turned="320 240 0 700 -300 200 98304 131072"
 persp="320 240 1 -1100 250 0 65536 131072"
-inside="160 120 1 2048 100 0 65536 16384"   # the eye inside the model: faces behind the near plane skipped
+inside="160 120 1 2048 100 0 65536 16384"   # the eye inside the model: lines clipped at the near plane
 close="320 240 0 300 150 0 327680 131072"    # zoom 5: most lines run off the target (clipped walks)
 
 # ---- catalogue meshes -------------------------------------------------------------------------------

@@ -1,10 +1,13 @@
 /* Checks the quantitative-invisibility line drawing (runtime/src/mesh_qi.c, modelc/mesh_qi.h) on a
  * baked progressive mesh. Built by tests/gen/qi.sh like pmesh_check.c: -DPM=mc_pmesh_NAME
  * -include NAME.h, the bake's files, the runtime and runtime/ref/xform_ref.c.
+ * Long because its reference (exact fractions, line.h's steps, the brute-force ray test) and its
+ * modes share the runtime set-up and the line records, which split files would each repeat.
  *
  *   qi_check check N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE     (zoom, eye Q16; xform.h)
  *       level N through that view on a W x H target; one line "ok: ..." or "not ok: ...":
- *       - the edges and their kinds counted as mc_mesh_lines counts them, and with
+ *       - the edges and their kinds counted as mc_mesh_lines counts them (its clipped and clipped
+ *         away lines too, none skipped), and with
  *         MC_LINES_NO_HIDING the target byte for byte mc_mesh_lines' with MC_LINES_NO_HIDING;
  *       - each line's steps, pixels and depths as line.h's promise gives them (recomputed here), its
  *         drawn steps those whose t lies in its visible set as its change list gives it (exact, in
@@ -14,7 +17,9 @@
  *         less: MC_ERR_SIZE, nothing drawn); guard zones untouched;
  *       - the reference: at every step on the target and on both sides of every visibility change
  *         (0.3 pixel away, where no other change is that near), a brute-force test in doubles of the exact projections
- *         (runtime/ref/xform_ref.c) against every face of the level other than the line's own:
+ *         (runtime/ref/xform_ref.c; a line with a flagged end between its exactly clipped ends,
+ *         mc_ref_clip_segment) against every face of the level other than the line's own and the
+ *         faces the runtime flags (they hide nothing, mesh_qi.h):
  *         hidden for sure when each of P and 8 points around it 0.15 pixel away lies inside a face
  *         nearer than the line by more than 2 depth units plus 0.3 pixel of both depth slopes,
  *         visible for sure when every face is 0.15 pixel away from P or farther than that; the
@@ -362,9 +367,10 @@ static int check(void)
     mc_mesh_lines(&lod, &view, MC_LINES_ALL | MC_LINES_NO_HIDING, &b.t, lines_mem, NULL, &ls);
     if (rc != MC_OK) PROBLEM("mc_mesh_qi returned %d (no hiding)", rc);
     if (st.edges != ls.edges || st.silhouettes != ls.silhouettes || st.creases != ls.creases || st.borders != ls.borders ||
-        st.skipped != ls.skipped)
-        PROBLEM("counts: edges %u %u %u %u skipped %u, mc_mesh_lines %u %u %u %u skipped %u", st.edges, st.silhouettes,
-                st.creases, st.borders, st.skipped, ls.edges, ls.silhouettes, ls.creases, ls.borders, ls.skipped);
+        st.skipped != 0 || ls.skipped != 0 || st.clipped != ls.clipped || st.clipped_away != ls.clipped_away)
+        PROBLEM("counts: edges %u %u %u %u skipped %u clipped %u away %u, mc_mesh_lines %u %u %u %u skipped %u clipped %u "
+                "away %u", st.edges, st.silhouettes, st.creases, st.borders, st.skipped, st.clipped, st.clipped_away,
+                ls.edges, ls.silhouettes, ls.creases, ls.borders, ls.skipped, ls.clipped, ls.clipped_away);
     if (!gt_same(&a, &b)) PROBLEM("with MC_LINES_NO_HIDING the target is not mc_mesh_lines'");
     if (st.pixels != ls.pixels) PROBLEM("no hiding: %u pixels, mc_mesh_lines %u", st.pixels, ls.pixels);
     gt_free(&a), gt_free(&b);
@@ -457,7 +463,10 @@ static int check(void)
         mc_pmesh_lod_face(&lod, f, c);
         mc_pmesh_position(&PM, c[k], pa);
         mc_pmesh_position(&PM, c[(k + 1) % 3], pb);
-        const mc_ref_vertex ea = mc_ref_project(&view, W, H, pa), eb = mc_ref_project(&view, W, H, pb);
+        /* the exact ends: the corners' projections, or the edge's clipped ends where one is flagged */
+        mc_ref_vertex e[2];
+        if (!mc_ref_clip_segment(&view, W, H, pa, pb, e)) { amb += l->count; continue; }
+        const mc_ref_vertex ea = e[0], eb = e[1];
         const double len = hypot(eb.x - ea.x, eb.y - ea.y), ge = len > 0 ? fabs(eb.z - ea.z) / len : 0;
         for (uint32_t j = 0; j < l->count; j++) {
             const uint32_t s = l->first + j;
@@ -518,12 +527,12 @@ static int check(void)
     if (problems)
         printf("not ok: %lu problems; first: %s\n", problems, first);
     else
-        printf("ok: level %u, %u faces (%u skipped), %u lines (%u silhouettes, %u creases, %u borders), %u contours, "
+        printf("ok: level %u, %u faces (%u flagged: hide nothing), %u lines clipped, %u lines (%u silhouettes, %u creases, %u borders), %u contours, "
                "grid 2^%u px (least work %u B: 2^%u); %u of %u pixels visible, %u changes, %u crossings, %u lines face by face; "
                "reference: %lu steps agree (%lu hidden, %lu visible), %lu within tolerance; %lu change sides agree, %lu within "
                "tolerance, %lu with another change near; "
                "line pixels: QI %lu, z-buffer %lu; the z-buffer draws %lu the QI does not, the QI %lu the z-buffer does not\n",
-               lod.level, F, st.skipped_faces, st.lines, st.silhouettes, st.creases, st.borders, st.contours, st.grid_shift,
+               lod.level, F, st.skipped_faces, st.clipped, st.lines, st.silhouettes, st.creases, st.borders, st.contours, st.grid_shift,
                st.work_needed, least_shift, st.visible, st.pixels, st.changes, st.crossings, st.exact_lines, sure_h + sure_v,
                sure_h, sure_v, amb, csure, camb, cnear, qlines, zlines, zonly, qonly);
     free(ec), free(ed);

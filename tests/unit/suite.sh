@@ -2,7 +2,8 @@
 # Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, the
 # progressive mesh's level of detail (pmesh), clipped lines (line), the sparse depth buffer and its
 # line and face passes (sdepth), filled triangles against their
-# double-precision reference (raster), vertex projection (xform), view clamping,
+# double-precision reference (raster), vertex projection (xform), clipping at the near plane and the
+# guard band (clip), view clamping,
 # mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
@@ -141,6 +142,7 @@ linehook='-DMC_LINE_STEP_HOOK()=do { extern unsigned long mc_test_line_steps; mc
 build_and_run "unit: line: " test_line "$linehook"
 build_and_run "unit: raster: " test_raster runtime/ref/raster_ref.c
 build_and_run "unit: xform: " test_xform runtime/ref/xform_ref.c
+build_and_run "unit: clip: " test_clip runtime/ref/xform_ref.c
 build_and_run "unit: sdepth: " test_sdepth
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop

@@ -7,9 +7,9 @@ int mc_front_mesh_frame(const mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *ca
                         const mc_view *view, mc_front_style style, const mc_target *t, mc_front_mesh_stats *stats)
 {
     mc_front_mesh_stats st;
-    st.faces.faces = st.faces.drawn = st.faces.skipped = st.faces.pixels = 0;
+    st.faces.faces = st.faces.drawn = st.faces.skipped = st.faces.pixels = st.faces.clipped = st.faces.clipped_away = 0;
     st.lines.edges = st.lines.silhouettes = st.lines.creases = st.lines.borders = st.lines.skipped = 0;
-    st.lines.pixels = 0;
+    st.lines.pixels = st.lines.clipped = st.lines.clipped_away = 0;
     if (!lod || !lod->pm || !t) return MC_ERR_ARG;
     if (style == MC_FRONT_LINES && sdepth) {
         mc_sdepth sd;

@@ -72,15 +72,18 @@ static inline mc_front_mesh_result mc_front_mesh_check(mc_pmesh_lod *lod, uint8_
 }
 
 /* printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r)); longs for the reason frames.h gives.
- * drawn: faces that covered a pixel; skipped: faces and lines left out at the near plane or the guard
- * band; line-pixels: pixels of the drawn lines before the depth test. */
+ * drawn: faces that covered a pixel; clipped: faces and lines with a corner at the near plane or the
+ * guard band, cut there (mesh_render.h, mesh_lines.h), those of which nothing was left included;
+ * line-pixels: pixels of the drawn lines before the depth test. */
 #define MC_FRONT_MESH_LINE                                                                                   \
-    "mesh frame %u style %s level %lu of %lu faces %lu of %lu size %ux%u rc %d drawn %lu skipped %lu "      \
+    "mesh frame %u style %s level %lu of %lu faces %lu of %lu size %ux%u rc %d drawn %lu clipped %lu "      \
     "line-pixels %lu fnv1a %08lx\n"
 #define MC_FRONT_MESH_ARGS(i, pm, t, r)                                                                      \
     (i), mc_front_mesh_style_name((r).style), (unsigned long)(r).level, (unsigned long)(pm)->vertices,        \
         (unsigned long)(r).faces, (unsigned long)(pm)->faces, (unsigned)(t)->width, (unsigned)(t)->height,  \
-        (r).rc, (unsigned long)(r).st.faces.drawn, (unsigned long)((r).st.faces.skipped + (r).st.lines.skipped), \
+        (r).rc, (unsigned long)(r).st.faces.drawn,                                                           \
+        (unsigned long)((r).st.faces.clipped + (r).st.faces.clipped_away + (r).st.lines.clipped +              \
+                        (r).st.lines.clipped_away),                                                          \
         (unsigned long)(r).st.lines.pixels, (unsigned long)(r).hash
 
 #endif

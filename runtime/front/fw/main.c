@@ -6,8 +6,10 @@
  * view MC_FRONT_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
  * semihosting argument after the program name (default "frame.ppm"); then the measured stack
  * high-water mark and the free RAM it may grow into, and "done". When the bake has a mesh part
- * (modelc --as both), the mesh frames of ../common/mesh_frames.h come after the point frames, one line
- * each, again exactly as the host viewer's --checksums prints them. With the word "bench" after the
+ * (modelc --as both) and the firmware is built for it (make firmware FW_MESH=1: MC_FW_MESH=1), the
+ * mesh frames of ../common/mesh_frames.h come after the point frames, one line each, again exactly as
+ * the host viewer's --checksums prints them. Without MC_FW_MESH no mesh code is linked: a points-only
+ * firmware's flash is what its budget.json counts. With the word "bench" after the
  * file name, also a line "cost frame I clear N render N finish N" per point frame and "cost mesh frame
  * I lod N draw N ..." per mesh frame: the instructions of each stage counted through SysTick,
  * meaningful under qemu-system-arm -icount shift=0 (counter.h); for the mesh frames with lines, also
@@ -52,6 +54,11 @@ static void read_cmdline(void)
     }
 }
 
+#ifndef MC_FW_MESH
+#define MC_FW_MESH 0
+#endif
+
+#if MC_FW_MESH
 static uint32_t marked(unsigned from, unsigned to)
 {
     return mc_fw_counter_insns(mc_fw_marks[from], mc_fw_marks[to]);
@@ -89,11 +96,12 @@ static int mesh_frames(const mc_pmesh *pm, const mc_target *t)
                i, mc_front_mesh_style_name(r.style), (unsigned long)lod_insns, (unsigned long)draw,
                (unsigned long)shaded, (unsigned long)r.faces, (unsigned long)r.st.faces.drawn,
                (unsigned long)r.st.faces.pixels, (unsigned long)r.st.lines.edges,
-               (unsigned long)(r.st.lines.silhouettes + r.st.lines.creases + r.st.lines.borders - r.st.lines.skipped),
+               (unsigned long)(r.st.lines.silhouettes + r.st.lines.creases + r.st.lines.borders - r.st.lines.clipped_away),
                (unsigned long)r.st.lines.pixels);
     }
     return status;
 }
+#endif
 
 int main(void)
 {
@@ -134,8 +142,10 @@ int main(void)
             }
         }
     }
+#if MC_FW_MESH
     if (model->pmesh && mc_app_model.pmesh_anc && mc_app_model.pmesh_facing && mesh_frames(model->pmesh, &t))
         status = 1;
+#endif
     printf("stack used %lu of %lu bytes free for it\n", (unsigned long)mc_fw_stack_used(),
            (unsigned long)mc_fw_stack_room());
     printf("done\n");

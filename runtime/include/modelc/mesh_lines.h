@@ -12,8 +12,22 @@
  * counter-clockwise on the screen (twice the signed area of their 1/16-pixel coordinates, y down,
  * below 0): exactly the faces mc_raster_triangle draws with MC_RASTER_CULL_BACK, so silhouettes run
  * where drawn faces meet culled ones. A face with a corner flagged by the projection (MC_XFORM_NEAR,
- * MC_XFORM_FAR_OUT) is not front-facing, and an edge with such an endpoint is not drawn (counted as
- * skipped): lines and faces are clipped against the near plane in a later step.
+ * MC_XFORM_FAR_OUT) is front-facing when the eye lies in front of its plane in view space
+ * (mesh_render.h mc_mesh_face_front, xform.h mc_xform_front, exact): the facing mc_mesh_render culls
+ * it by, so silhouettes run between a drawn face and a clipped face turned away, and between two
+ * clipped faces, as between unclipped ones. mc_mesh_front, mc_mesh_facing and mc_mesh_lines all
+ * take facing so.
+ *
+ * Clipping: an edge with a flagged end is drawn as the segment between its ends' view-space points
+ * clipped against the near plane and the band (xform.h mc_xform_clip_segment: the cuts are, bit for
+ * bit, the vertices its faces' clipped polygons have on it), the cut ends projected as
+ * mc_xform_vertex projects a point, within xform.h's accuracy of the exact cuts. Its pixels are
+ * mc_line's Bresenham line between the pixels holding the cut ends (the clipped segment's own line,
+ * not the unclipped line cut), with their depths; the ends lie inside the band, so within
+ * MC_LINE_COORD_MAX. stats: clipped, those edges drawn so; clipped_away, those of which nothing is
+ * left (wholly behind the near plane or beyond one side of the band). An edge with both ends
+ * unflagged is drawn whole, whatever its faces' third corners, as in a frame with no flag. No edge
+ * is skipped: stats->skipped is always 0.
  * Crease test: on the normals' 15 leading bits, against the cosine in Q14, in 64-bit integers: an
  * edge within a hundredth of a degree of the crease angle may go either way; an edge of a face with
  * no area is not a crease.
@@ -24,16 +38,19 @@
  * show on an empty background). The offset of an edge is 2 units (the rounding of line and face
  * depths) plus one pixel's worth of the steeper depth slope of its faces (max |dz/dx|, |dz/dy|, as
  * OpenGL's polygon offset), at most MC_LINE_DEPTH_MAX: a line is not hidden by the faces it bounds,
- * and is hidden by any other face more than that offset in front of it.
+ * and is hidden by any other face more than that offset in front of it. A face with a flagged corner
+ * gives the slope of the largest triangle of its clipped polygon's fan (a plane has one slope on the
+ * screen), nothing when nothing of it is left.
  *
  * Colours: palette entries after the MC_MESH_SHADES greys (the generator writes them): paper
  * (white), silhouettes black, creases grey, borders dark blue.
  *
  * Work: mc_mesh_lines finds every face's facing (from the vertex cache, or three projections), each
  * edge's neighbour (pmesh.h) and, for drawn edges, the line's pixels; the crease test of every edge
- * only when the level changed. Memory: the caller's, MC_MESH_LINES_BYTES(faces); no heap, bounded
- * stack, no floating point.
- * Freestanding.
+ * only when the level changed. A face with a flagged corner costs its plane test, and a clipping of
+ * its polygon for each drawn edge beside it (the slope); an edge with a flagged end, its clipping.
+ * Memory: the caller's, MC_MESH_LINES_BYTES(faces); no heap, no floating point; bounded stack (the
+ * clipping's buffers, about 300 bytes, only below a face with a flagged corner). Freestanding.
  */
 #ifndef MODELC_MESH_LINES_H
 #define MODELC_MESH_LINES_H
@@ -61,11 +78,13 @@ enum { MC_EDGE_PLAIN = 0, MC_EDGE_SILHOUETTE = 1, MC_EDGE_CREASE = 2, MC_EDGE_BO
 
 typedef struct mc_lines_stats {
     uint32_t edges;         /* edges of the level */
-    uint32_t silhouettes;   /* found, drawn or skipped */
+    uint32_t silhouettes;   /* found, drawn or clipped away */
     uint32_t creases;
     uint32_t borders;
-    uint32_t skipped;       /* lines of a chosen kind with an endpoint flagged by the projection */
+    uint32_t skipped;       /* always 0: every line is drawn, clipped where it needs it (the count callers print) */
     uint32_t pixels;        /* pixels of the drawn lines on the target, before the depth test */
+    uint32_t clipped;        /* lines of a chosen kind with a flagged end, drawn clipped */
+    uint32_t clipped_away;   /* lines of a chosen kind with a flagged end of which clipping left nothing */
 } mc_lines_stats;
 
 /* Whether face f (0 .. lod->faces-1) of the level is front-facing seen through x. */
@@ -77,6 +96,12 @@ void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
 /* The kind of the edge of half-edge h (a present face's) at the level, whose opposite is o
  * (mc_pmesh_lod_opposite), given facing bits from mc_mesh_facing. */
 unsigned mc_mesh_edge_kind(const mc_pmesh_lod *lod, const uint8_t *facing, uint32_t h, uint32_t o);
+
+/* The ends of half-edge h (a present face's, from its corner k to corner k+1) as mc_mesh_lines
+ * draws its line, through x: both corners projected by mc_xform_vertex when neither is flagged
+ * (returns 0), else the segment clipped (mc_xform_clip_segment: returns 1, or 2 with ends untouched
+ * when nothing is left). mesh_qi.h draws its clipped lines from these too. */
+int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t h, mc_raster_vertex ends[2]);
 
 /* Whether two faces with corners a and b (unit-cube Q16) meet at more than the crease angle whose
  * cosine is crease_cos (Q14). */
@@ -94,9 +119,10 @@ int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, 
                   const mc_xvertex *cache, mc_lines_stats *stats);
 
 /* The same lines with hidden lines removed over a sparse depth buffer (sdepth.h) instead of the
- * target's z-buffer, and no faces drawn: each line's pixels are offered to sd (mc_line_sdepth, the
- * same pixels and offset depths as mc_line's test), the nearest kept at a pixel, then the faces
- * mc_mesh_render would draw (the same culling) empty the entries they hide
+ * target's z-buffer, and no faces drawn: each line's pixels (its ends clipped as mc_mesh_lines
+ * clips them) are offered to sd (mc_line_sdepth, the same pixels and offset depths as mc_line's
+ * test), the nearest kept at a pixel, then the faces mc_mesh_render would draw (the same culling; a
+ * face with a flagged corner as the triangles of its clipped fan) empty the entries they hide
  * (mc_raster_triangle_hide). So an entry survives exactly where mc_mesh_lines would draw its line's
  * pixel over those faces; where lines cross, the nearer one is kept (mc_mesh_lines: the later one
  * not hidden by the earlier). The work is the edges' plus, per face, its corners and box; only the

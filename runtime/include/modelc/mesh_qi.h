@@ -7,11 +7,15 @@
  * xform.h). A face is the triangle of its three projected corners in (x, y, z): its depth is affine
  * over its projected triangle for both projections (xform.h: the perspective depth is affine in
  * 1/distance, which is affine across the image of a plane). A face with a corner flagged
- * MC_XFORM_NEAR or MC_XFORM_FAR_OUT hides nothing (counted in stats.skipped_faces), nor does a face
- * of zero projected area. A line is an edge of a kind chosen by flags, taken as mc_mesh_lines takes
- * it: from corner k to corner k+1 of its first face f (half-edge h = MC_HALF_EDGE(f, k)), skipped
- * and counted when f has a flagged corner. On it, P(t) = A + t (B - A) and z(t) = zA + t (zB - zA),
- * 0 <= t <= 1, in the same integer coordinates (the depth along a projected segment is affine too).
+ * MC_XFORM_NEAR or MC_XFORM_FAR_OUT hides nothing (counted in stats.skipped_faces: it has no
+ * projected triangle to test against), nor does a face of zero projected area; its facing bit is
+ * still mc_mesh_facing's (its plane's, mesh_lines.h), so kinds are mc_mesh_lines'. A line is an edge
+ * of a kind chosen by flags, taken as mc_mesh_lines takes it: from corner k to corner k+1 of its
+ * first face f (half-edge h = MC_HALF_EDGE(f, k)), A and B its ends as mc_mesh_edge_ends gives them:
+ * the projected corners, or, when one is flagged, the ends of the segment clipped against the near
+ * plane and the guard band (xform.h; counted in stats.clipped, or in stats.clipped_away when nothing
+ * is left, and then not drawn). On it, P(t) = A + t (B - A) and z(t) = zA + t (zB - zA), 0 <= t <= 1,
+ * in the same integer coordinates (the depth along a projected segment is affine too).
  *
  * Covers in front. A face F covers the line at t on side S (S = L or R: left or right of B - A on
  * the screen) when
@@ -45,9 +49,9 @@
  * whose faces (those that can hide) do not lie one on each side of it on the screen: a silhouette
  * (a front and a back face), a border, an edge beside a face that hides nothing. There QI_S changes
  * by the contour's faces on the far side minus those on the near side. Per frame:
- *   1. the faces once: facing bits (mc_mesh_facing's) and back-facing bits;
+ *   1. the faces once: facing bits (mc_mesh_facing's) and the bits of the faces that can hide;
  *   2. the edges once: kinds (mc_mesh_edge_kind), the contours (projected corners, faces on each
- *      side) and the lines with a pixel on the target;
+ *      side) and the lines with a pixel on the target (ends clipped where one is flagged);
  *   3. two screen grids: the contours by bounding box (cells of 8 pixels or more, at most about two
  *      cells per contour) and the lines' ends (cells of 2 pixels or more, at most about sixteen per
  *      line), made coarser until they fit in the work buffer;
@@ -66,11 +70,13 @@
  * faces, with no contour in front to show it) are the one case left wrong: the ends agree.
  * All of it is integer: 64-bit products (every value is bounded: |x|, |y| <= 2^21 in the band), sums
  * checked below 2^63, fractions compared through 128-bit products made of 32-bit halves; no division
- * wider than 32 bits, no floating point, no recursion, no memory function calls. Stack: about 1200
- * bytes on a Cortex-M4 (gcc -O2, the deepest path through mc_mesh_edge_kind), not counting the hook.
+ * wider than 32 bits (the projection's and the clipper's are xform_vertex.c's), no floating point, no
+ * recursion, no memory function calls. Stack: about 1200 bytes on a Cortex-M4 (gcc -O2, the
+ * deepest paths through mc_mesh_edge_kind and mc_mesh_edge_ends), not counting the hook.
  * Freestanding.
  *
- * Work: the faces twice (their corners projected, or read from the vertex cache); the edges once; per
+ * Work: the faces twice (their corners projected, or read from the vertex cache; a face with a
+ * flagged corner also its plane test, a line with a flagged end its clipping); the edges once; per
  * line the contours in its cells and, for the ray tests, the faces whose bounding-box cells hold its
  * ends; per line pixel one comparison of fractions. Memory: the caller's, with no heap:
  *   facing  MC_MESH_FACING_BYTES(pm->faces) (mesh_lines.h), set to the frame's facing bits;
@@ -143,8 +149,10 @@ typedef struct mc_qi_hook {
 
 typedef struct mc_qi_stats {
     uint32_t edges, silhouettes, creases, borders;   /* as mc_lines_stats */
-    uint32_t skipped;         /* lines of a chosen kind whose first face has a flagged corner */
+    uint32_t skipped;         /* always 0, as mc_lines_stats' (every line is drawn, clipped where it needs it) */
     uint32_t skipped_faces;   /* faces with a flagged corner (they hide nothing) */
+    uint32_t clipped;         /* lines of a chosen kind with a flagged end, drawn clipped (as mc_lines_stats) */
+    uint32_t clipped_away;    /* lines of a chosen kind with a flagged end of which clipping left nothing */
     uint32_t lines;           /* lines with a pixel on the target */
     uint32_t contours;        /* contours collected */
     uint32_t pixels;          /* pixels of those lines on the target: visible + hidden */
