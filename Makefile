@@ -201,10 +201,11 @@ bench-accuracy: $(MODELC) models
 # 10^7 random views (tests/stress/stress.c), on two processes with their own seeds, plus the F=8/24
 # and ASan + UBSan runs of tests/stress/suite.sh
 STRESS_VIEWS ?= 10000000
-# and the freestanding builds of the runtime at every optimisation level (make test: -O0 -O2 -Os)
+# and the freestanding builds of the runtime at every optimisation level, the leaf switch at each (make
+# test: -O0 -O2 -Os, the switch at -O2)
 stress: $(MODELC) $(BUILD)/models/bunny00.off
 	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 STRESS_SAN_VIEWS=10000 tests/stress/suite.sh; s=$$?; \
-	  UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh && exit $$s
+	  UNIT_SWITCH_ALL=1 UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh && exit $$s
 
 clean:
 	rm -rf $(BUILD)

@@ -41,14 +41,14 @@ inline constexpr ModuleCode kModules[] = {
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
-    {"pmesh", 1124, 1124, "progressive-mesh level of detail and neighbours (pmesh.c)"},
+    {"pmesh", 996, 996, "progressive-mesh level of detail and neighbours (pmesh.c)"},
     {"xform_vertex", 3896, 3896, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
     {"raster", 6120, 6120, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2580, 2580, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 648, 648, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
-    {"mesh_render", 2328, 2328, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 3924, 3924, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
-    {"silhouette", 924, 924, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
+    {"mesh_render", 2420, 2420, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
+    {"mesh_lines", 4636, 4636, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;

@@ -35,7 +35,7 @@ int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_
 }
 
 /* Twice the signed screen area of a projected face, in (1/16 pixel)^2; below 0: front-facing. */
-static int64_t area2(const mc_raster_vertex v[3])
+MC_ALWAYS_INLINE int64_t area2(const mc_raster_vertex v[3])
 {
     return (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (int64_t)(v[2].x - v[0].x) * (v[1].y - v[0].y);
 }
@@ -55,7 +55,7 @@ void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
         if (mc_mesh_front(lod, x, f)) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
 }
 
-static int front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }
+MC_ALWAYS_INLINE int front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }
 
 static void face_positions(const mc_pmesh_lod *lod, uint32_t f, int32_t p[3][3])
 {
@@ -93,8 +93,8 @@ static uint64_t slope_offset(const mc_raster_vertex v[3])
 
 /* The corners of face f as projected for this frame: from the cache when there is one (its entries
  * for present vertices are this frame's, mesh_lines.h), else projected now. Returns their flags. */
-static uint32_t corners(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint32_t f,
-                        mc_raster_vertex v[3])
+MC_ALWAYS_INLINE uint32_t corners(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint32_t f,
+                                  mc_raster_vertex v[3])
 {
     if (!cache) {
         int32_t p[3][3];
@@ -180,7 +180,7 @@ static void set_crease(uint8_t *cr, uint32_t h)
     cr[f >> 1] |= (uint8_t)((1u << MC_HALF_EDGE_INDEX(h)) << ((f & 1u) * 4u));
 }
 
-static int is_crease(const uint8_t *cr, uint32_t h)
+MC_ALWAYS_INLINE int is_crease(const uint8_t *cr, uint32_t h)
 {
     const uint32_t f = MC_HALF_FACE(h);
     return (cr[f >> 1] >> ((f & 1u) * 4u + MC_HALF_EDGE_INDEX(h))) & 1u;
@@ -219,7 +219,7 @@ static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xver
 }
 
 /* The kind of half-edge h of face f, whose opposite is o, from the facing and crease bits. */
-static unsigned kind_of(const uint8_t *facing, const uint8_t *cr, uint32_t f, uint32_t h, uint32_t o)
+MC_ALWAYS_INLINE unsigned kind_of(const uint8_t *facing, const uint8_t *cr, uint32_t f, uint32_t h, uint32_t o)
 {
     return o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
            : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE

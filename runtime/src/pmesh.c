@@ -69,14 +69,6 @@ uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces)
     return lod->level;
 }
 
-void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3])
-{
-    const mc_pmesh *pm = lod->pm;
-    const unsigned ib = pm->index_bytes;
-    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, f);
-    for (unsigned k = 0; k < 3; k++) corner[k] = mc_pmesh_lod_vertex(lod, mc_le_index(r + k * ib, ib));
-}
-
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
 {
     const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, v);
@@ -90,10 +82,9 @@ static uint32_t half_at(const mc_pmesh *pm, const mc_chunk *list, unsigned per, 
     return hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
 }
 
-uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_t h)
+uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o)
 {
     const mc_pmesh *pm = lod->pm;
-    uint32_t o = half_at(pm, pm->opposite, 3u, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h));
     /* bounded by F steps, so arrays not made by the generator cannot hang it */
     for (uint32_t steps = 0; o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) >= lod->faces; steps++) {
         const uint32_t j = MC_HALF_EDGE_INDEX(o);

@@ -105,13 +105,45 @@ static inline uint32_t mc_pmesh_lod_vertex(const mc_pmesh_lod *lod, uint32_t v)
     return lod->pm->index_bytes == 2 ? ((const uint16_t *)lod->anc)[v] : ((const uint32_t *)lod->anc)[v];
 }
 
-/* The corners of face f (0 .. lod->faces-1) at the current level. */
-void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3]);
+/* The corners of face f (0 .. lod->faces-1) at the current level. Inline, and with the index width
+ * tested once, not per byte: every drawing pass calls it for every face of the level. */
+MC_ALWAYS_INLINE void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uint32_t corner[3])
+{
+    const mc_pmesh *pm = lod->pm;
+    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * pm->index_bytes, f);
+    if (pm->index_bytes == 2) {
+        const uint16_t *anc = (const uint16_t *)lod->anc;
+        corner[0] = anc[mc_le16(r)], corner[1] = anc[mc_le16(r + 2)], corner[2] = anc[mc_le16(r + 4)];
+    } else {
+        const uint32_t *anc = (const uint32_t *)lod->anc;
+        corner[0] = anc[mc_le32(r)], corner[1] = anc[mc_le32(r + 4)], corner[2] = anc[mc_le32(r + 8)];
+    }
+}
+
+/* mc_pmesh_lod_opposite's walk across removed faces from o, the stored opposite of a half-edge, whose
+ * face is not present (out of line: most edges of a level need none). */
+uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o);
 
 /* The half-edge across half-edge h (MC_HALF_EDGE(f, k), f < lod->faces) at the current level, or
  * MC_NO_HALF_EDGE where edge k of face f is a border there. Work: the faces removed across that edge
- * between the current level and the full mesh, at most; usually none or one. */
-uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_t h);
+ * between the current level and the full mesh, at most; usually none or one. Inline: the stored
+ * opposite, when its face is present. */
+MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_t h)
+{
+    const mc_pmesh *pm = lod->pm;
+    const unsigned hb = pm->half_bytes;
+    const uint8_t *r =
+        mc_chunk_record(pm->opposite, pm->record_shift, 3u * hb, MC_HALF_FACE(h)) + MC_HALF_EDGE_INDEX(h) * hb;
+    uint32_t o;
+    if (hb == 2) {
+        o = mc_le16(r);
+        if (o == 0xFFFFu) return MC_NO_HALF_EDGE;
+    } else {
+        o = mc_le32(r);
+    }
+    if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < lod->faces) return o;
+    return mc_pmesh_lod_opposite_walk(lod, o);
+}
 
 /* Edge i (0 .. E-1) of the edge order: a half-edge of the full mesh (its face may be missing at the
  * current level). */
