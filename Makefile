@@ -202,10 +202,12 @@ bench-accuracy: $(MODELC) models
 # and ASan + UBSan runs of tests/stress/suite.sh
 STRESS_VIEWS ?= 10000000
 # and the freestanding builds of the runtime at every optimisation level, the leaf switch at each (make
-# test: -O0 -O2 -Os, the switch at -O2)
+# test: -O0 -O2 -Os, the switch at -O2), and the unit tests under the sanitizers at every MC_FRAC_BITS
+# the plain run tests (make test: the default)
 stress: $(MODELC) $(BUILD)/models/bunny00.off
 	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 STRESS_SAN_VIEWS=10000 tests/stress/suite.sh; s=$$?; \
-	  UNIT_SWITCH_ALL=1 UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh && exit $$s
+	  UNIT_SWITCH_ALL=1 UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh || s=1; \
+	  SANITIZE=1 UNIT_SAN_FORMATS="15 8 24" tests/unit/suite.sh || s=1; exit $$s
 
 clean:
 	rm -rf $(BUILD)

@@ -49,7 +49,7 @@ else
 fi
 rt=$out/src/runtime
 rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c | sha256sum | cut -c1-12)
-lines_sha=$(cat "$rt"/src/{mesh_lines,line}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
+lines_sha=$(cat "$rt"/src/{mesh_lines,line,sdepth,raster}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
 flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
 : >"$out/rows.txt"
@@ -214,11 +214,13 @@ if lines_rows:
     print("\n## Line drawings: mc_front_mesh_frame (lines) against Mesa llvmpipe's depth pre-pass + GL_LINES\n")
     print(f"The same bakes, binaries and view, the line-drawing style: silhouettes, creases and borders with hidden lines "
           "removed. modelc: `mesh_frames --style lines`, per frame `mc_front_mesh_frame(..., MC_FRONT_LINES, ...)` "
-          "(runtime/front/common/mesh_frame.c: `mc_clear`, the faces drawn in paper for hidden-line removal by "
-          f"`mc_mesh_render` with `MC_MESH_DRAW_PAPER`, back faces culled when the part is closed ({closed}), then `mc_mesh_lines` "
-          "finds every face's facing and every edge's kind and draws the silhouettes, creases and borders with a per-edge "
-          "depth offset, then the empty pixels made paper), the vertex cache on, mc_mesh_lines' memory "
-          "(`MC_MESH_LINES_BYTES(faces)`) static; an untimed frame first computes the level's crease bits, which "
+          "(runtime/front/common/mesh_frame.c with the sparse depth buffer: the target made paper, then "
+          "`mc_mesh_lines_sparse` finds every face's facing and every edge's kind, offers the silhouettes', creases' and "
+          "borders' pixels, less a per-edge depth offset, to the buffer (`mc_line_sdepth`), then passes the faces, back "
+          f"faces culled when the part is closed ({closed}), each emptying the line pixels it hides "
+          "(`mc_raster_triangle_hide`: only a face whose box holds a line pixel is set up), the vertex cache on, "
+          "mc_mesh_lines' memory (`MC_MESH_LINES_BYTES(faces)`) and the buffer's bits static; an untimed frame first "
+          "computes the level's crease bits, which "
           "mc_mesh_lines keeps while the level is unchanged. Mesa \"the GPU way\": `osmesa_mesh --style lines`: for each "
           "frame of the turn, the edges modelc draws in it are listed before the timing from the runtime, exactly as "
           "mc_mesh_lines enumerates them (`mc_mesh_facing` for the frame's view, each face's edges with the neighbour "
@@ -232,7 +234,7 @@ if lines_rows:
           "line pixels: the pixels of modelc's lines before the depth test (`mc_lines_stats.pixels`, mean). Rounds, medians "
           "and ratio as above (ratio: median over rounds of Mesa's wall ms / modelc's; CPU ratio likewise with both "
           "sides' process CPU time). Instructions: callgrind, `mc_front_mesh_frame` only (with everything it calls: "
-          f"clear, faces, lines, paper fill), a turn of {cg_frames} frames after the untimed one. mesh_lines.c, line.c, "
+          f"paper, lines, faces), a turn of {cg_frames} frames after the untimed one. mesh_lines.c, line.c, sdepth.c, raster.c, "
           f"mesh_frame.c: sha256 {lines_sha}.\n")
     print("| mesh | lines per frame | silhouettes / creases / borders | line pixels | modelc ms | modelc CPU ms | "
           "Mesa wall ms | Mesa CPU ms | ratio | CPU ratio | edge list ms | modelc Ir per frame |")
@@ -293,7 +295,7 @@ if lines_rows:
     print()
     print("Frontal drawings (yaw 0), the pixels holding a line: " + "; ".join(cmp_lines) + ". They differ by the "
           "rasterization rules, not by the edges (the same list): modelc's `mc_line` draws the Bresenham line between the pixels holding the projected endpoints (their 1/16-pixel positions "
-          "truncated), both ends included, and hides a line pixel only where a face is nearer by more than a per-edge "
+          "truncated), both ends included, and hides a line pixel only where a face is nearer than it by more than a per-edge "
           "offset (2 depth units plus one pixel of the steeper depth slope of the edge's two faces); llvmpipe draws the "
           "diamond-exit line between the exact endpoints (the last pixel left out) against faces pushed back by "
           "`glPolygonOffset(1, 1)`. Where a line runs one pixel apart the two masks differ by twice its length; where a "

@@ -8,7 +8,8 @@
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
-# SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit).
+# SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit), with
+# MC_FRAC_BITS at its default only (UNIT_SAN_FORMATS="15 8 24" for all three).
 # UNIT_SWITCH_ALL=1: the renderer's leaf switch at every level of the freestanding builds (by default
 # at -O2 only; make stress sets it).
 # UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds, "-O0 -O2 -Os" by default (no
@@ -129,9 +130,13 @@ build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
     run_cmocka "$pfx" "$prog"
 }
 
-# fixed point and views at the default and both extreme MC_FRAC_BITS
-# (F=15 is config.h's default: that program shares the archive of the programs below)
-for f in 15 8 24; do
+# fixed point and views at the default and both extreme MC_FRAC_BITS (F=15 is config.h's default:
+# that program shares the archive of the programs below). Under the sanitizers the default only: the
+# other formats change the numbers, not how memory is used, and each is a runtime archive to
+# compile with them (the plain run checks all three).
+formats="15 8 24"
+[ "${SANITIZE:-0}" = 1 ] && formats=${UNIT_SAN_FORMATS:-15}
+for f in $formats; do
     fb=()
     [ "$f" = 15 ] || fb=(-DMC_FRAC_BITS=$f)
     build_and_run "unit: fixed F=$f: " "test_fixed-f$f" "${fb[@]}"
@@ -152,7 +157,7 @@ build_and_run "unit: sdepth: " test_sdepth
 # compile there; tests/render/ and the sanitized viewer check the switch under them.
 leaves=()
 [ "${SANITIZE:-0}" = 1 ] && leaves=(-DMC_LEAF_SWITCH=0)
-for f in 15 8 24; do
+for f in $formats; do
     build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f -DMC_SPLAT_DEFAULT_MODE=1 "${leaves[@]}" "$hook"
 done
 
