@@ -1,6 +1,9 @@
 /* View clamping, mc_octree_render's argument checks and contract on hand-made and random scenes, and the
  * one-pixel hole filler (modelc/xform.h, octree_render.h, finish.h).
  *
+ * Long because the scene builder, the guard-cell targets and the plot hook are shared by every check
+ * of the renderer's contract; split up, each part would carry its own copy of them.
+ *
  * The runtime is compiled into this test with MC_PLOT_HOOK pointing at mc_test_plot_hook (see
  * tests/unit/suite.sh), so every point the renderer reports as on screen is checked to really lie on
  * the target before it is written. Targets are surrounded by guard cells that must survive every
