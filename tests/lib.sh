@@ -17,6 +17,24 @@ rt_objs() {
     [ "${1:-}" != host ] || mkvar HOST_OBJ
 }
 
+# runtime_snapshot DIR [REV]: runtime/include, src, front/host and front/common copied under
+# DIR/runtime, from git revision REV when one is given, else from the working tree, so that every
+# binary of a benchmark run is built from the same sources; prints where they came from
+runtime_snapshot() {
+    local dir=$1 rev=${2:-}
+    rm -rf "$dir"
+    mkdir -p "$dir/runtime/front"
+    if [ -n "$rev" ]; then
+        git archive "$rev" runtime/include runtime/src runtime/front/host runtime/front/common | tar -x -C "$dir" ||
+            return 1
+        echo "git revision $rev ($(git rev-parse --short "$rev"))"
+    else
+        cp -r runtime/include runtime/src "$dir/runtime/" && cp -r runtime/front/host runtime/front/common "$dir/runtime/front/" ||
+            return 1
+        echo "the working tree"
+    fi
+}
+
 # ASan + UBSan, halting at the first report: the flags every sanitized test build uses, and the
 # runtime options that make a report end the program.
 SAN_FLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
@@ -38,8 +56,10 @@ temp_dir() {
 # model_file NAME: the path of catalogue model NAME's source file under build/models/, extracted
 # (make models) when missing; prints nothing and fails when it cannot be had
 model_file() {
-    local f
-    f=build/models/$(basename "$(mkvar "$1.src")")
+    local f src
+    src=$(mkvar "$1.src")
+    [ -n "$src" ] || return 1   # not a catalogue model
+    f=build/models/$(basename "$src")
     [ -f "$f" ] || make -s "$f" >/dev/null 2>&1 || return 1
     echo "$f"
 }

@@ -263,35 +263,52 @@ static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xverte
     return 1;
 }
 
-int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
-                  const mc_xvertex *cache, mc_lines_stats *stats)
+/* Both ways' edge pass: the level's crease and facing bits in mem, then every edge of a kind in
+ * flags drawn as its line, into t with mc_line's depth test (sd null) or offered to sd (t null);
+ * counts into st. A constant sink makes one function of it for each way. */
+MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *mem,
+                                 unsigned flags, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st)
 {
-    mc_lines_stats st;   /* field by field: an aggregate initialiser becomes a memset call at -O0 */
-    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = st.clipped = st.clipped_away = 0;
-    if (!lod || !lod->pm || !view || !t || !t->color || !t->depth || !mem) return MC_ERR_ARG;
-    if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
-    mc_xform x;
-    mc_xform_init(&x, view, t->width, t->height);
     uint8_t *facing = facing_of(mem);
     const uint8_t *cr = creases_of(mem, lod->pm->faces);
     update_creases(lod, mem);
-    set_facing(lod, &x, cache, facing);
+    set_facing(lod, x, cache, facing);
+    mc_line_style style;
+    style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
     for (uint32_t f = 0; f < lod->faces; f++)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
             if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
             const unsigned kind = kind_of(facing, cr, f, h, o);
-            st.edges++;
-            st.silhouettes += kind == MC_EDGE_SILHOUETTE;
-            st.creases += kind == MC_EDGE_CREASE;
-            st.borders += kind == MC_EDGE_BORDER;
+            st->edges++;
+            st->silhouettes += kind == MC_EDGE_SILHOUETTE;
+            st->creases += kind == MC_EDGE_CREASE;
+            st->borders += kind == MC_EDGE_BORDER;
             if (!(kind & flags)) continue;
             mc_line_vertex la, lb;
-            mc_line_style style;
-            if (!edge_line(lod, &x, cache, h, o, &st, &la, &lb, &style.depth_offset)) continue;
-            style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
-            st.pixels += mc_line(t, la, lb, (uint8_t)kind_color(kind), &style);
+            if (!edge_line(lod, x, cache, h, o, st, &la, &lb, &style.depth_offset)) continue;
+            st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style.depth_offset)
+                             : mc_line(t, la, lb, (uint8_t)kind_color(kind), &style);
         }
+}
+
+/* mc_lines_stats all zero (field by field: an aggregate initialiser becomes a memset call at -O0) */
+static void stats_zero(mc_lines_stats *st)
+{
+    st->edges = st->silhouettes = st->creases = st->borders = st->skipped = st->pixels = st->clipped = 0;
+    st->clipped_away = 0;
+}
+
+int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
+                  const mc_xvertex *cache, mc_lines_stats *stats)
+{
+    mc_lines_stats st;
+    stats_zero(&st);
+    if (!lod || !lod->pm || !view || !t || !t->color || !t->depth || !mem) return MC_ERR_ARG;
+    if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
+    mc_xform x;
+    mc_xform_init(&x, view, t->width, t->height);
+    draw_edges(lod, &x, cache, mem, flags, t, 0, &st);
     if (stats) *stats = st;
     return MC_OK;
 }
@@ -315,32 +332,15 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
                          mc_xvertex *cache, mc_lines_stats *stats)
 {
     mc_lines_stats st;
-    st.edges = st.silhouettes = st.creases = st.borders = st.skipped = st.pixels = st.clipped = st.clipped_away = 0;
+    stats_zero(&st);
     if (!lod || !lod->pm || !view || !sd || !mem) return MC_ERR_ARG;
     if (sd->width > MC_TARGET_MAX || sd->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
     mc_xform_init(&x, view, sd->width, sd->height);
     if (cache) mc_mesh_project(lod, &x, cache);
-    uint8_t *facing = facing_of(mem);
-    const uint8_t *cr = creases_of(mem, lod->pm->faces);
-    update_creases(lod, mem);
-    set_facing(lod, &x, cache, facing);
     /* the lines first: their pixels become the buffer's entries, the nearest kept */
-    for (uint32_t f = 0; f < lod->faces; f++)
-        for (uint32_t k = 0; k < 3; k++) {
-            const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
-            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
-            const unsigned kind = kind_of(facing, cr, f, h, o);
-            st.edges++;
-            st.silhouettes += kind == MC_EDGE_SILHOUETTE;
-            st.creases += kind == MC_EDGE_CREASE;
-            st.borders += kind == MC_EDGE_BORDER;
-            if (!(kind & flags)) continue;
-            mc_line_vertex la, lb;
-            uint16_t off;
-            if (!edge_line(lod, &x, cache, h, o, &st, &la, &lb, &off)) continue;
-            st.pixels += mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), off);
-        }
+    draw_edges(lod, &x, cache, mem, flags, 0, sd, &st);
+    const uint8_t *facing = facing_of(mem);
     /* then the faces mc_mesh_render would draw empty the entries they hide (a face with a flagged
      * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
      * corners and its box */

@@ -16,6 +16,7 @@
 #   LOD_STRIP_PERCENTS ("1 2 5 20 100")
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/lib.sh   # runtime_snapshot, model_file
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${LOD_MODELS:-bunny00 fandisk} percents=${LOD_PERCENTS:-1 2 5 10 20 50 100} views=${LOD_VIEWS:-12}
@@ -33,24 +34,14 @@ plist=$(echo $percents | tr ' ' ',')
 slist=$(echo $strip_percents | tr ' ' ',')
 
 # the runtime, copied once so that every binary is built from the same sources
-rm -rf "$out/src"
-mkdir -p "$out/src/runtime/front"
-cp -r runtime/include runtime/src "$out/src/runtime/"
-cp -r runtime/front/host runtime/front/common "$out/src/runtime/front/"
+runtime_snapshot "$out/src" >/dev/null || { echo "lod_error.sh: cannot copy the runtime" >&2; exit 1; }
 rt=$out/src/runtime
 rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
 flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
 : >"$out/rows.txt"
 for m in $models; do
-    file=$(make -s --no-print-directory -f - print <<EOF 2>/dev/null || true
-include models/catalogue.mk
-print: ; @echo \$(notdir \$($m.src))
-EOF
-)
-    [ -n "$file" ] || { echo "lod_error.sh: $m is not in models/catalogue.mk" >&2; exit 1; }
-    src=build/models/$file
-    [ -f "$src" ] || make -s "$src"
+    src=$(model_file "$m") || { echo "lod_error.sh: $m: no such catalogue model, or it cannot be extracted" >&2; exit 1; }
     rm -rf "${out:?}/$m"
     run "$modelc" "$src" -o "$out" --name "$m" --depth 5 --as both -q
     run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -o $out/$m-lod tests/bench/lod_error.c \

@@ -19,6 +19,7 @@
 #   e.g. HEAD, for when the working tree's runtime does not match build/bin/modelc's output)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/lib.sh   # runtime_snapshot, model_file
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${MESH_MODELS:-bunny00 fandisk lion_head} rounds=${MESH_ROUNDS:-7} frames=${MESH_FRAMES:-100}
@@ -36,33 +37,39 @@ run() { cmds+=("$*"); "$@"; }
 run_glob() { cmds+=("$1"); eval "$1"; }
 
 # the runtime, copied once so that every binary is built from the same sources
-rm -rf "$out/src"
-mkdir -p "$out/src"
-if [ -n "$rev" ]; then
-    git archive "$rev" runtime/include runtime/src runtime/front/host runtime/front/common | tar -x -C "$out/src"
-    runtime_from="git revision $rev ($(git rev-parse --short "$rev"))"
-else
-    mkdir -p "$out/src/runtime/front"
-    cp -r runtime/include runtime/src "$out/src/runtime/"
-    cp -r runtime/front/host runtime/front/common "$out/src/runtime/front/"
-    runtime_from="the working tree"
-fi
+runtime_from=$(runtime_snapshot "$out/src" "$rev") || { echo "mesh.sh: cannot copy the runtime" >&2; exit 1; }
 rt=$out/src/runtime
 rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c | sha256sum | cut -c1-12)
 lines_sha=$(cat "$rt"/src/{mesh_lines,line,sdepth,raster}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
 flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
+# timed_rounds M STEM [ARGS...]: rounds of the timed turn, modelc's and Mesa's alternately and the
+# order swapped every round, both with ARGS; their outputs in STEM.rR.modelc.txt and STEM.rR.mesa.txt,
+# and a line a round in STEM.times: modelc's and Mesa's median wall ms, then Mesa's and modelc's CPU ms
+timed_rounds() {
+    local m=$1 stem=$2 r side a b c d
+    shift 2
+    : >"$stem.times"
+    for r in $(seq 1 "$rounds"); do
+        for side in $( [ $((r % 2)) = 1 ] && echo "modelc mesa" || echo "mesa modelc"); do
+            if [ "$side" = modelc ]; then
+                "$out/$m-frames" "$@" --time "$frames" --size "$size" >"$stem.r$r.modelc.txt"
+            else
+                env LP_NUM_THREADS=0 "$out/$m-osmesa" "$@" --time "$frames" --size "$size" >"$stem.r$r.mesa.txt"
+            fi
+        done
+        a=$(sed -n 's/^ms per frame (median) //p' "$stem.r$r.modelc.txt")
+        b=$(sed -n 's/^ms per frame (median) //p' "$stem.r$r.mesa.txt")
+        c=$(sed -n 's/^cpu ms per frame (median) //p' "$stem.r$r.mesa.txt")
+        d=$(sed -n 's/^cpu ms per frame (median) //p' "$stem.r$r.modelc.txt")
+        echo "$a $b $c $d" >>"$stem.times"
+    done
+}
+
 : >"$out/rows.txt"
 for m in $models; do
-    # the catalogue's file name (lion_head is lion-head.off)
-    file=$(make -s --no-print-directory -f - print <<EOF 2>/dev/null || true
-include models/catalogue.mk
-print: ; @echo \$(notdir \$($m.src))
-EOF
-)
-    [ -n "$file" ] || { echo "mesh.sh: $m is not in models/catalogue.mk" >&2; exit 1; }
-    src=build/models/$file
-    [ -f "$src" ] || make -s "$src"
+    # the catalogue's file (lion_head is lion-head.off)
+    src=$(model_file "$m") || { echo "mesh.sh: $m: no such catalogue model, or it cannot be extracted" >&2; exit 1; }
     rm -rf "${out:?}/$m"
     run "$modelc" "$src" -o "$out" --name "$m" --depth 5 --as both -q
     run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -o $out/$m-frames \
@@ -77,22 +84,7 @@ tests/bench/mesh_frames.c $rt/src/*.c $rt/front/common/mesh_frame.c $out/$m/*.c"
         --mask "$out/$m.mesa.pgm" >"$out/$m.mesa.img.txt"
     run valgrind --tool=callgrind --toggle-collect=mc_mesh_render --callgrind-out-file="$out/$m.cg" \
         "$out/$m-frames" --frames "$cg_frames" --size "$size" >"$out/$m.cg.txt" 2>"$out/$m.cg.log"
-    : >"$out/$m.times"
-    for r in $(seq 1 "$rounds"); do
-        # alternately, and the order swapped every round
-        for side in $( [ $((r % 2)) = 1 ] && echo "modelc mesa" || echo "mesa modelc"); do
-            if [ "$side" = modelc ]; then
-                "$out/$m-frames" --time "$frames" --size "$size" >"$out/$m.r$r.modelc.txt"
-            else
-                env LP_NUM_THREADS=0 "$out/$m-osmesa" --time "$frames" --size "$size" >"$out/$m.r$r.mesa.txt"
-            fi
-        done
-        a=$(sed -n 's/^ms per frame (median) //p' "$out/$m.r$r.modelc.txt")
-        b=$(sed -n 's/^ms per frame (median) //p' "$out/$m.r$r.mesa.txt")
-        c=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.r$r.mesa.txt")
-        d=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.r$r.modelc.txt")
-        echo "$a $b $c $d" >>"$out/$m.times"
-    done
+    timed_rounds "$m" "$out/$m"
     echo "$m" >>"$out/rows.txt"
 done
 cmds+=("$out/NAME-frames --time $frames --size $size; env LP_NUM_THREADS=0 $out/NAME-osmesa --time $frames --size $size   # per round, alternately, $rounds rounds")
@@ -107,22 +99,7 @@ for m in $lines_models; do
         --mask "$out/$m.lines.mesa.pgm" >"$out/$m.lines.mesa.img.txt"
     run valgrind --tool=callgrind --toggle-collect=mc_front_mesh_frame --callgrind-out-file="$out/$m.lines.cg" \
         "$out/$m-frames" --style lines --frames "$cg_frames" --size "$size" >"$out/$m.lines.cg.txt" 2>"$out/$m.lines.cg.log"
-    : >"$out/$m.lines.times"
-    for r in $(seq 1 "$rounds"); do
-        for side in $( [ $((r % 2)) = 1 ] && echo "modelc mesa" || echo "mesa modelc"); do
-            if [ "$side" = modelc ]; then
-                "$out/$m-frames" --style lines --time "$frames" --size "$size" >"$out/$m.lines.r$r.modelc.txt"
-            else
-                env LP_NUM_THREADS=0 "$out/$m-osmesa" --style lines --time "$frames" --size "$size" \
-                    >"$out/$m.lines.r$r.mesa.txt"
-            fi
-        done
-        a=$(sed -n 's/^ms per frame (median) //p' "$out/$m.lines.r$r.modelc.txt")
-        b=$(sed -n 's/^ms per frame (median) //p' "$out/$m.lines.r$r.mesa.txt")
-        c=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.lines.r$r.mesa.txt")
-        d=$(sed -n 's/^cpu ms per frame (median) //p' "$out/$m.lines.r$r.modelc.txt")
-        echo "$a $b $c $d" >>"$out/$m.lines.times"
-    done
+    timed_rounds "$m" "$out/$m.lines" --style lines
     echo "$m" >>"$out/lines_rows.txt"
 done
 cmds+=("$out/NAME-frames --style lines --time $frames --size $size; env LP_NUM_THREADS=0 $out/NAME-osmesa --style lines --time $frames --size $size   # per round, alternately, $rounds rounds")

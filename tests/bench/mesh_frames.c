@@ -57,6 +57,7 @@
 #include "modelc/target.h"
 #include "mesh_frame.h"   /* runtime/front/common: mc_front_mesh_frame */
 #include "timing.h"       /* runtime/front/host: clocks, medians */
+#include "turn.h"         /* tests/bench: the views of the turn */
 
 #define MAX_SIDE 1024
 
@@ -76,19 +77,6 @@ static int is_line_color(uint8_t c)
 {
     return c == MC_LINES_SILHOUETTE_COLOR || c == MC_LINES_CREASE_COLOR || c == MC_LINES_BORDER_COLOR;
 }
-
-static mc_view frame_view(int32_t yaw)
-{
-    mc_view v = mc_view_default();   /* zoom 1, orthographic, as the viewer starts */
-    v.yaw = yaw;
-    v.pitch = 0;
-    v.roll = 0;
-    v.zoom = MC_ZOOM_ONE;
-    v.projection = MC_ORTHOGRAPHIC;
-    return v;
-}
-
-static int32_t turn_yaw(int i, int n) { return (int32_t)((int64_t)MC_ANGLE_FULL * i / n); }
 
 static int write_image(const char *path, const mc_target *t, int mask, int lines)
 {
@@ -118,7 +106,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
     memset(lines_mem, 0, MC_MESH_LINES_BYTES(PM.faces));
     mc_front_mesh_stats st;
     {   /* warm up, outside mc_front_mesh_frame: buffers, and the level's crease bits */
-        const mc_view v = frame_view(0);
+        const mc_view v = bench_turn_view(0);
         const unsigned cull = PM.closed ? MC_MESH_CULL_BACK : 0u;
         mc_clear(t);
         if (mc_mesh_render(lod, &v, cull | MC_MESH_DRAW_PAPER, t, cache, &st.faces) != MC_OK ||
@@ -128,7 +116,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
     if (frames_n) {   /* untimed: what callgrind counts (mc_front_mesh_frame only) */
         double nl = 0;
         for (int i = 0; i < frames_n; i++) {
-            const mc_view v = frame_view(turn_yaw(i, frames_n));
+            const mc_view v = bench_turn_view(bench_turn_yaw(i, frames_n));
             if (mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
             nl += (double)st.lines.silhouettes + st.lines.creases + st.lines.borders;
         }
@@ -141,7 +129,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
         if (!ms || !cpu) return 1;
         double sil = 0, cre = 0, bor = 0, skip = 0, px = 0, fpx = 0;
         for (int i = 0; i < time_n; i++) {
-            const mc_view v = frame_view(turn_yaw(i, time_n));
+            const mc_view v = bench_turn_view(bench_turn_yaw(i, time_n));
             const double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
             const int rc = mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st);
             ms[i] = mc_host_now_ms() - t0;
@@ -167,7 +155,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
         free(cpu);
     }
     if (ppm || mask) {
-        const mc_view v = frame_view((int32_t)yaw);
+        const mc_view v = bench_turn_view((int32_t)yaw);
         if (mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
         long drawn = 0;
         for (uint32_t i = 0; i < (uint32_t)t->width * t->height; i++) drawn += is_line_color(t->color[i]);
@@ -231,7 +219,7 @@ int main(int argc, char **argv)
 
     if (frames_n) {   /* untimed: what callgrind counts (mc_mesh_render only) */
         for (int i = 0; i < frames_n; i++) {
-            const mc_view v = frame_view(turn_yaw(i, frames_n));
+            const mc_view v = bench_turn_view(bench_turn_yaw(i, frames_n));
             mc_clear(&t);
             if (mc_mesh_render(&lod, &v, flags, &t, cache, &st) != MC_OK) return 1;
         }
@@ -242,13 +230,13 @@ int main(int argc, char **argv)
         double *ms = malloc((size_t)time_n * sizeof *ms), *cpu = malloc((size_t)time_n * sizeof *cpu);
         if (!ms || !cpu) return 1;
         {   /* warm up: touch the buffers and the mesh once */
-            const mc_view v = frame_view(0);
+            const mc_view v = bench_turn_view(0);
             mc_clear(&t);
             mc_mesh_render(&lod, &v, flags, &t, cache, &st);
         }
         double pixels = 0, drawn = 0;
         for (int i = 0; i < time_n; i++) {
-            const mc_view v = frame_view(turn_yaw(i, time_n));
+            const mc_view v = bench_turn_view(bench_turn_yaw(i, time_n));
             const double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
             mc_clear(&t);
             const int rc = mc_mesh_render(&lod, &v, flags, &t, cache, &st);
@@ -268,7 +256,7 @@ int main(int argc, char **argv)
         free(cpu);
     }
     if (ppm || mask) {
-        const mc_view v = frame_view((int32_t)yaw);
+        const mc_view v = bench_turn_view((int32_t)yaw);
         mc_clear(&t);
         if (mc_mesh_render(&lod, &v, flags, &t, cache, &st) != MC_OK) return 1;
         long covered = 0;

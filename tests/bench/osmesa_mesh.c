@@ -69,8 +69,7 @@
 #include "modelc/mesh_render.h"   /* mc_mesh_shade, mc_mesh_face */
 #include "modelc/pmesh.h"
 #include "timing.h"               /* runtime/front/host: clocks, medians */
-
-#define ANGLE_FULL 4096
+#include "turn.h"                 /* tests/bench: the views of the turn mesh_frames draws */
 
 extern const mc_pmesh PM;
 
@@ -99,22 +98,10 @@ static void draw_frame(int32_t yaw_units, int li)
     /* R = Rz(roll) * Rx(pitch) * Ry(yaw); roll = pitch = 0 here */
     glRotated(0.0, 0, 0, 1);
     glRotated(0.0, 1, 0, 0);
-    glRotated(yaw_units * 360.0 / ANGLE_FULL, 0, 1, 0);
+    glRotated(yaw_units * 360.0 / MC_ANGLE_FULL, 0, 1, 0);
     glDrawArrays(GL_TRIANGLES, 0, nvertices);
     if (lines_mode) glDrawArrays(GL_LINES, line_first[li], line_count[li]);
     glFinish();
-}
-
-/* The view mesh_frames draws frame yaw with (its frame_view). */
-static mc_view frame_view(int32_t yaw)
-{
-    mc_view v = mc_view_default();
-    v.yaw = yaw;
-    v.pitch = 0;
-    v.roll = 0;
-    v.zoom = MC_ZOOM_ONE;
-    v.projection = MC_ORTHOGRAPHIC;
-    return v;
 }
 
 typedef struct vlist {
@@ -143,7 +130,7 @@ static vertex unit_vertex(const int32_t p[3], const uint8_t *rgb, uint8_t a)
  * returns how many, or -1. *skipped: edges of a drawn kind left out for a flagged corner. */
 static long list_lines(const mc_pmesh_lod *lod, int32_t yaw, uint8_t *facing, vlist *l, long *skipped)
 {
-    const mc_view view = frame_view(yaw);
+    const mc_view view = bench_turn_view(yaw);
     mc_xform x;
     mc_xform_init(&x, &view, (uint32_t)w, (uint32_t)h);
     mc_mesh_facing(lod, &x, facing);
@@ -245,7 +232,7 @@ int main(int argc, char **argv)
         double *lms = malloc(((size_t)frames + 1) * sizeof *lms);
         if (!facing || !line_first || !line_count || !lms) return 1;
         for (int i = 0; i <= frames; i++) {
-            const int32_t y = i < frames ? (int32_t)((int64_t)ANGLE_FULL * i / frames) : (int32_t)yaw;
+            const int32_t y = i < frames ? bench_turn_yaw(i, frames) : (int32_t)yaw;
             line_first[i] = (GLint)all.n;
             const double t0 = mc_host_now_ms();
             const long n = list_lines(&lod, y, facing, &all, &lines_skipped);
@@ -333,7 +320,7 @@ int main(int argc, char **argv)
         double *ms = malloc((size_t)frames * sizeof *ms), *cpu = malloc((size_t)frames * sizeof *cpu);
         if (!ms || !cpu) return 1;
         for (int i = 0; i < frames; i++) {
-            const int32_t y = (int32_t)((int64_t)ANGLE_FULL * i / frames);
+            const int32_t y = bench_turn_yaw(i, frames);
             const double t0 = mc_host_now_ms(), c0 = mc_host_clock_ms(CLOCK_PROCESS_CPUTIME_ID);
             draw_frame(y, i);
             ms[i] = mc_host_now_ms() - t0;

@@ -81,7 +81,7 @@ run_cmocka() {
 # runtime_archive WITH_RENDERER FLAGS...: prints the archive's path; the compiler's messages go to
 # ARCHIVE.log
 runtime_archive() {
-    local renderer=$1 key dir f srcs=()
+    local renderer=$1 key dir f ok=1
     shift
     key=$(echo "$CC_UNIT $flags $renderer $*" | md5sum | cut -c1-12)
     dir=$out/rt-$key
@@ -92,14 +92,14 @@ runtime_archive() {
     if [ ! -f "$dir/libmodelc.a" ]; then
         rm -rf "$dir"
         mkdir -p "$dir"
+        : >"$dir.log"
         for f in runtime/src/*.c; do
-            [ "$renderer" = 1 ] || [ "$(basename "$f")" != octree_render.c ] && srcs+=("$f")
+            [ "$renderer" = 1 ] || [ "$(basename "$f")" != octree_render.c ] || continue
+            # shellcheck disable=SC2086
+            $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "$@" -c -o "$dir/$(basename "$f" .c).o" \
+                "$f" >>"$dir.log" 2>&1 || ok=0
         done
-        # shellcheck disable=SC2086
-        if printf '%s\n' "${srcs[@]}" | xargs -P "$(nproc 2>/dev/null || echo 2)" -I{} sh -c \
-            'f=$1; shift; exec "$@" -c -o "'"$dir"'/$(basename "$f" .c).o" "$f"' sh {} \
-            $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "$@" >"$dir.log" 2>&1 &&
-            ar rcs "$dir/libmodelc.a.tmp" "$dir"/*.o 2>>"$dir.log"; then
+        if [ "$ok" = 1 ] && ar rcs "$dir/libmodelc.a.tmp" "$dir"/*.o 2>>"$dir.log"; then
             mv "$dir/libmodelc.a.tmp" "$dir/libmodelc.a"
         fi
     fi
