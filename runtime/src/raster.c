@@ -177,14 +177,23 @@ static uint64_t round_shl(int64_t n, unsigned k, uint32_t d)
 /* Sets up the plane and returns its value at pixel (i, j), a covered centre, with FRAC fraction
  * bits, plus 1/2 for rounding: the exact value rounded to nearest, in [zmin, zmax] (so |s| < 2^62:
  * s / area is z - z0 there, |z - z0| < 2^16). */
+/* The corners' depths, clamped to ZMAX as the plane takes them, and their least and greatest in g:
+ * the plane's value at a covered centre lies between those two. */
+MC_ALWAYS_INLINE void depth_range(tri *g, uint32_t z[3])
+{
+    const mc_raster_vertex *v = g->v;
+    for (int k = 0; k < 3; k++) z[k] = v[k].z > ZMAX ? ZMAX : v[k].z;
+    const uint32_t zmin = z[0] < z[1] ? z[0] : z[1], zmax = z[0] > z[1] ? z[0] : z[1];
+    g->zmin = z[2] < zmin ? z[2] : zmin;
+    g->zmax = z[2] > zmax ? z[2] : zmax;
+}
+
 static uint64_t plane_first(tri *g, int32_t i, int32_t j)
 {
     const mc_raster_vertex *v = g->v;
-    const uint32_t z0 = v[0].z > ZMAX ? ZMAX : v[0].z, z1 = v[1].z > ZMAX ? ZMAX : v[1].z;
-    const uint32_t z2 = v[2].z > ZMAX ? ZMAX : v[2].z;
-    uint32_t zmin = z0 < z1 ? z0 : z1, zmax = z0 > z1 ? z0 : z1;
-    g->zmin = z2 < zmin ? z2 : zmin;
-    g->zmax = z2 > zmax ? z2 : zmax;
+    uint32_t z[3];
+    depth_range(g, z);
+    const uint32_t z0 = z[0], z1 = z[1], z2 = z[2];
     const int64_t dx1 = v[1].x - v[0].x, dy1 = v[1].y - v[0].y, dx2 = v[2].x - v[0].x, dy2 = v[2].y - v[0].y;
     const int64_t dz1 = (int64_t)z1 - z0, dz2 = (int64_t)z2 - z0;
     int64_t pa = dz1 * dy2 - dz2 * dy1, pb = dx1 * dz2 - dx2 * dz1;
@@ -265,6 +274,55 @@ MC_ALWAYS_INLINE void span(const tri *g, uint8_t *crow, uint16_t *drow, uint32_t
     }
 }
 
+/* The small path's plane over a sparse depth buffer, set up only when a pixel needs it: the anchor
+ * is the triangle's first covered centre (fi, fj) in row order, as for a drawn triangle, so a value
+ * is the same sum mc_raster_triangle forms there. */
+typedef struct lazy_plane {
+    int32_t fi, fj;              /* fj < 0: no centre covered yet */
+    uint64_t base, gx, gy;
+    uint8_t have_base, have_gx, have_gy;
+} lazy_plane;
+
+/* The plane's value (plus 1/2, FRAC fraction bits) at covered centre (x, j) */
+static uint64_t lazy_value(tri *g, lazy_plane *p, int32_t x, int32_t j)
+{
+    if (!p->have_base) p->base = plane_first(g, p->fi, p->fj), p->have_base = 1;
+    uint64_t acc = p->base;
+    if (j != p->fj) {
+        if (!p->have_gy) p->gy = plane_step(g, g->pb), p->have_gy = 1;
+        acc += (uint64_t)(int64_t)(j - p->fj) * p->gy;
+    }
+    if (x != p->fi) {
+        if (!p->have_gx) p->gx = plane_step(g, g->pa), p->have_gx = 1;
+        acc += (uint64_t)(int64_t)(x - p->fi) * p->gx;
+    }
+    return acc;
+}
+
+/* The face pass's small path (mc_raster_triangle_hide) over covered centres lo .. hi of row j: as
+ * hide_span, but a pixel's entry is compared with the corners' depth range first, and the plane is
+ * set up only for an entry inside that range (an entry nearer than every corner stays, one not
+ * nearer than any is emptied); pixels not in use cost one bit test. Returns how many it emptied. */
+MC_ALWAYS_INLINE uint32_t hide_lazy(tri *g, mc_sdepth *s, lazy_plane *p, int32_t j, int32_t lo, int32_t hi)
+{
+    const uint16_t *const drow = s->depth + (uint32_t)j * s->width;
+    uint32_t removed = 0;
+    for (int32_t x = lo; x <= hi; x++) {
+        if (!mc_sdepth_in_use(s, (uint32_t)x, (uint32_t)j)) continue;
+        const uint32_t e = drow[x];
+        if (g->zmin > e) continue;
+        if (g->zmax > e) {
+            uint32_t d = (uint32_t)(lazy_value(g, p, x, j) >> FRAC);
+            if (d < g->zmin) d = g->zmin;
+            if (d > g->zmax) d = g->zmax;
+            if (d > e) continue;
+        }
+        mc_sdepth_remove(s, (uint32_t)x, (uint32_t)j);
+        removed++;
+    }
+    return removed;
+}
+
 /* One edge's bound on the columns of the current row: bound = q exactly, q + r / d its fraction. */
 typedef struct edge {
     int64_t q;
@@ -293,9 +351,18 @@ MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, mc_sdepth *sd, tri *g, 
     int32_t e2 = dx2 * (py - y2) - dy2 * (px - x2) - (int32_t)(~(uint32_t)(dy2 * 8192 - dx2) >> 31);
     const uint32_t width = t->width;
     const uint32_t at = (uint32_t)j0 * width;
+    lazy_plane lp;
+    if (sd) {
+        uint32_t z[3];
+        depth_range(g, z);
+        lp.fj = -1, lp.have_base = lp.have_gx = lp.have_gy = 0;
+    }
     if (i0 == i1 && j0 == j1) {   /* one centre: most triangles of a dense mesh */
         if ((e0 | e1 | e2) < 0) return 0;
-        if (sd) return hide_span(g, sd, (uint32_t)j0, (uint32_t)i0, (uint32_t)i0, plane_first(g, i0, j0), 0);
+        if (sd) {
+            lp.fi = i0, lp.fj = j0;
+            return hide_lazy(g, sd, &lp, j0, i0, i0);
+        }
         span(g, t->color + at, t->depth + at, (uint32_t)i0, (uint32_t)i0, plane_first(g, i0, j0), 0, color);
         return 1;
     }
@@ -319,23 +386,24 @@ MC_ALWAYS_INLINE uint32_t draw_small(const mc_target *t, mc_sdepth *sd, tri *g, 
                 r0 += cx0, r1 += cx1, r2 += cx2;
             } while (i <= i1 && (r0 | r1 | r2) >= 0);
             const int32_t hi = i - 1;
-            uint64_t acc;
-            if (fj < 0) {
-                acc = base = plane_first(g, lo, j);
-                fi = lo;
-                fj = j;
-            } else {
-                acc = base;
-                if (j != fj) {
-                    if (!have_gy) gy = plane_step(g, g->pb), have_gy = 1;
-                    acc += (uint64_t)(int64_t)(j - fj) * gy;
-                }
-            }
-            if ((lo != fi || hi != lo) && !have_gx) gx = plane_step(g, g->pa), have_gx = 1;
-            acc += (uint64_t)(int64_t)(lo - fi) * gx;
             if (sd) {
-                count += hide_span(g, sd, (uint32_t)j, (uint32_t)lo, (uint32_t)hi, acc, gx);
+                if (lp.fj < 0) lp.fi = lo, lp.fj = j;
+                count += hide_lazy(g, sd, &lp, j, lo, hi);
             } else {
+                uint64_t acc;
+                if (fj < 0) {
+                    acc = base = plane_first(g, lo, j);
+                    fi = lo;
+                    fj = j;
+                } else {
+                    acc = base;
+                    if (j != fj) {
+                        if (!have_gy) gy = plane_step(g, g->pb), have_gy = 1;
+                        acc += (uint64_t)(int64_t)(j - fj) * gy;
+                    }
+                }
+                if ((lo != fi || hi != lo) && !have_gx) gx = plane_step(g, g->pa), have_gx = 1;
+                acc += (uint64_t)(int64_t)(lo - fi) * gx;
                 span(g, crow, drow, (uint32_t)lo, (uint32_t)hi, acc, gx, color);
                 count += (uint32_t)(hi - lo) + 1u;
             }
