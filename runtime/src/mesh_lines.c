@@ -55,7 +55,7 @@ void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
         if (mc_mesh_front(lod, x, f)) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
 }
 
-MC_ALWAYS_INLINE int front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }
+MC_ALWAYS_INLINE uint32_t front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }
 
 static void face_positions(const mc_pmesh_lod *lod, uint32_t f, int32_t p[3][3])
 {
@@ -180,11 +180,8 @@ static void set_crease(uint8_t *cr, uint32_t h)
     cr[f >> 1] |= (uint8_t)((1u << MC_HALF_EDGE_INDEX(h)) << ((f & 1u) * 4u));
 }
 
-MC_ALWAYS_INLINE int is_crease(const uint8_t *cr, uint32_t h)
-{
-    const uint32_t f = MC_HALF_FACE(h);
-    return (cr[f >> 1] >> ((f & 1u) * 4u + MC_HALF_EDGE_INDEX(h))) & 1u;
-}
+/* Face f's crease bits: bit k set when its edge k is a crease. */
+MC_ALWAYS_INLINE uint32_t creases(const uint8_t *cr, uint32_t f) { return (cr[f >> 1] >> ((f & 1u) * 4u)) & 7u; }
 
 /* The crease bits of the level (a function of the level alone: recomputed only when it changed). */
 static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
@@ -208,23 +205,53 @@ static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
     *crease_tag(mem) = lod->level + 1u;
 }
 
-/* Sets the level's facing bits (mc_mesh_facing's; the corners from the cache when there is one). */
-static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing)
+/* The facing bits of faces f0 .. f0 + n - 1, whose corner records start at r, from the cache; *acc
+ * holds the bits of the byte being filled, stored as each byte is complete. ib is the part's index
+ * width (a constant where called, so that one loop is made for each width). */
+MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing,
+                                 uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, uint32_t *acc)
 {
-    for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
-    for (uint32_t f = 0; f < lod->faces; f++) {
-        mc_raster_vertex v[3];
-        if (corners(lod, x, cache, f, v) ? face_front(lod, x, f) : area2(v) < 0) facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
+    const uint16_t *anc16 = (const uint16_t *)lod->anc;
+    const uint32_t *anc32 = (const uint32_t *)lod->anc;
+    uint32_t bits = *acc;
+    for (uint32_t i = 0; i < n; i++, r += 3u * ib) {
+        const uint32_t f = f0 + i;
+        const mc_xvertex *a, *b, *c;
+        if (ib == 2) a = &cache[anc16[mc_le16(r)]], b = &cache[anc16[mc_le16(r + 2)]], c = &cache[anc16[mc_le16(r + 4)]];
+        else a = &cache[anc32[mc_le32(r)]], b = &cache[anc32[mc_le32(r + 4)]], c = &cache[anc32[mc_le32(r + 8)]];
+        uint32_t fr;
+        if (a->flags | b->flags | c->flags) fr = (uint32_t)face_front(lod, x, f);
+        else fr = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
+        bits |= fr << (f & 7u);
+        if ((f & 7u) == 7u) facing[f >> 3] = (uint8_t)bits, bits = 0;
     }
+    *acc = bits;
 }
 
-/* The kind of half-edge h of face f, whose opposite is o, from the facing and crease bits. */
-MC_ALWAYS_INLINE unsigned kind_of(const uint8_t *facing, const uint8_t *cr, uint32_t f, uint32_t h, uint32_t o)
+/* Sets the level's facing bits (mc_mesh_facing's; the corners from the cache when there is one, read
+ * in order, a run of records a chunk). */
+static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing)
 {
-    return o == MC_NO_HALF_EDGE                            ? MC_EDGE_BORDER
-           : front(facing, f) != front(facing, MC_HALF_FACE(o)) ? MC_EDGE_SILHOUETTE
-           : is_crease(cr, h)                                  ? MC_EDGE_CREASE
-                                                               : MC_EDGE_PLAIN;
+    const mc_pmesh *pm = lod->pm;
+    if (!cache) {
+        for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(lod->faces); i++) facing[i] = 0;
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            mc_raster_vertex v[3];
+            if (corners(lod, x, 0, f, v) ? face_front(lod, x, f) : area2(v) < 0)
+                facing[f >> 3] |= (uint8_t)(1u << (f & 7u));
+        }
+        return;
+    }
+    const unsigned shift = pm->record_shift;
+    const uint32_t chunk = UINT32_C(1) << shift;
+    uint32_t acc = 0;
+    for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
+        const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
+        const uint8_t *r = pm->corners[f0 >> shift].data;
+        if (pm->index_bytes == 2) facing_run(lod, x, cache, facing, f0, n, r, 2, &acc);
+        else facing_run(lod, x, cache, facing, f0, n, r, 4, &acc);
+    }
+    if (lod->faces & 7u) facing[lod->faces >> 3] = (uint8_t)acc;
 }
 
 static unsigned kind_color(unsigned kind)
@@ -275,21 +302,40 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
     set_facing(lod, x, cache, facing);
     mc_line_style style;
     style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
-    for (uint32_t f = 0; f < lod->faces; f++)
-        for (uint32_t k = 0; k < 3; k++) {
-            const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
-            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
-            const unsigned kind = kind_of(facing, cr, f, h, o);
-            st->edges++;
-            st->silhouettes += kind == MC_EDGE_SILHOUETTE;
-            st->creases += kind == MC_EDGE_CREASE;
-            st->borders += kind == MC_EDGE_BORDER;
-            if (!(kind & flags)) continue;
-            mc_line_vertex la, lb;
-            if (!edge_line(lod, x, cache, h, o, st, &la, &lb, &style.depth_offset)) continue;
-            st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style.depth_offset)
-                             : mc_line(t, la, lb, (uint8_t)kind_color(kind), &style);
+    const mc_pmesh *pm = lod->pm;
+    const unsigned shift = pm->record_shift, hb = pm->half_bytes;
+    const uint32_t chunk = UINT32_C(1) << shift;
+    /* the stored opposites read in order, a run of records a chunk */
+    for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
+        const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
+        const uint8_t *r = pm->opposite[f0 >> shift].data;
+        for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
+            const uint32_t fr = front(facing, f), fc = creases(cr, f);
+            for (uint32_t k = 0; k < 3; k++) {
+                uint32_t o;
+                if (hb == 2) o = mc_le16(r + 2u * k), o = o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
+                else o = mc_le32(r + 4u * k);
+                o = mc_pmesh_lod_across(lod, o);
+                unsigned kind;
+                if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
+                else if (MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
+                else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
+                            : (fc >> k) & 1u                     ? MC_EDGE_CREASE
+                                                                 : MC_EDGE_PLAIN;
+                const uint32_t h = MC_HALF_EDGE(f, k);
+                st->edges++;
+                if (!kind) continue;
+                st->silhouettes += kind == MC_EDGE_SILHOUETTE;
+                st->creases += kind == MC_EDGE_CREASE;
+                st->borders += kind == MC_EDGE_BORDER;
+                if (!(kind & flags)) continue;
+                mc_line_vertex la, lb;
+                if (!edge_line(lod, x, cache, h, o, st, &la, &lb, &style.depth_offset)) continue;
+                st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style.depth_offset)
+                                 : mc_line(t, la, lb, (uint8_t)kind_color(kind), &style);
+            }
         }
+    }
 }
 
 /* mc_lines_stats all zero (field by field: an aggregate initialiser becomes a memset call at -O0) */
@@ -328,6 +374,40 @@ static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const 
     }
 }
 
+/* Empties the entries of sd that face v (no corner flagged) hides, culled when cull; a face whose
+ * box holds no pixel centre or no entry is rejected here, inline. */
+MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_raster_vertex v[3], int cull)
+{
+    mc_raster_box b;
+    if (mc_raster_centres(v, sd->width, sd->height, &b) &&
+        mc_sdepth_any(sd, (uint32_t)b.i0, (uint32_t)b.i1, (uint32_t)b.j0, (uint32_t)b.j1))
+        mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
+}
+
+/* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
+ * cache (ib: the index width, a constant where called). */
+MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
+                               const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib)
+{
+    const uint16_t *anc16 = (const uint16_t *)lod->anc;
+    const uint32_t *anc32 = (const uint32_t *)lod->anc;
+    for (uint32_t f = f0; f < f0 + n; f++, r += 3u * ib) {
+        if (cull && !front(facing, f)) continue;
+        const mc_xvertex *a, *b, *c;
+        if (ib == 2) a = &cache[anc16[mc_le16(r)]], b = &cache[anc16[mc_le16(r + 2)]], c = &cache[anc16[mc_le16(r + 4)]];
+        else a = &cache[anc32[mc_le32(r)]], b = &cache[anc32[mc_le32(r + 4)]], c = &cache[anc32[mc_le32(r + 8)]];
+        if (a->flags | b->flags | c->flags) {
+            hide_clipped(sd, lod, x, f);
+            continue;
+        }
+        mc_raster_vertex v[3];
+        v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
+        v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
+        v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
+        hide_face(sd, v, cull);
+    }
+}
+
 int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
                          mc_xvertex *cache, mc_lines_stats *stats)
 {
@@ -345,12 +425,24 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
      * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
      * corners and its box */
     if (!(flags & MC_LINES_NO_HIDING)) {
-        const int cull = lod->pm->closed;
-        for (uint32_t f = 0; f < lod->faces; f++) {
-            if (cull && !front(facing, f)) continue;
-            mc_raster_vertex v[3];
-            if (corners(lod, &x, cache, f, v)) hide_clipped(sd, lod, &x, f);
-            else mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
+        const mc_pmesh *pm = lod->pm;
+        const int cull = pm->closed;
+        if (!cache) {
+            for (uint32_t f = 0; f < lod->faces; f++) {
+                if (cull && !front(facing, f)) continue;
+                mc_raster_vertex v[3];
+                if (corners(lod, &x, 0, f, v)) hide_clipped(sd, lod, &x, f);
+                else hide_face(sd, v, cull);
+            }
+        } else {
+            const unsigned shift = pm->record_shift;
+            const uint32_t chunk = UINT32_C(1) << shift;
+            for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
+                const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
+                const uint8_t *r = pm->corners[f0 >> shift].data;
+                if (pm->index_bytes == 2) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2);
+                else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4);
+            }
         }
     }
     if (stats) *stats = st;

@@ -136,19 +136,32 @@ static void clipped_face(const mc_pmesh *pm, const mc_xform *x, const uint32_t c
     st->pixels += covered;
 }
 
-/* Projects every vertex present at the level into cache[v]. */
+/* Projects the vertices v0 .. v0 + n - 1 present at the level (their own ancestors) into cache,
+ * their position records starting at r (ib: the index width, a constant where called). */
+MC_ALWAYS_INLINE void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache, uint32_t v0,
+                                  uint32_t n, const uint8_t *r, unsigned ib)
+{
+    const uint16_t *anc16 = (const uint16_t *)lod->anc;
+    const uint32_t *anc32 = (const uint32_t *)lod->anc;
+    for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
+        if ((ib == 2 ? anc16[v] : anc32[v]) != v) continue;
+        int32_t p[3];
+        p[0] = (int32_t)mc_le16(r) - 32768, p[1] = (int32_t)mc_le16(r + 2) - 32768, p[2] = (int32_t)mc_le16(r + 4) - 32768;
+        mc_xform_vertex(x, p, &cache[v]);
+    }
+}
+
+/* Projects every vertex present at the level into cache[v], the positions read in order. */
 static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
 {
     const mc_pmesh *pm = lod->pm;
-    const uint16_t *anc16 = (const uint16_t *)lod->anc;   /* mc_pmesh_lod_vertex, hoisted */
-    const uint32_t *anc32 = (const uint32_t *)lod->anc;
-    const int wide = pm->index_bytes != 2;
-    const uint32_t n = pm->vertices;
-    for (uint32_t v = 0; v < n; v++) {
-        if ((wide ? anc32[v] : anc16[v]) != v) continue;
-        int32_t p[3];
-        position(pm, v, p);
-        mc_xform_vertex(x, p, &cache[v]);
+    const unsigned shift = pm->record_shift;
+    const uint32_t chunk = UINT32_C(1) << shift;
+    for (uint32_t v0 = 0; v0 < pm->vertices; v0 += chunk) {
+        const uint32_t n = pm->vertices - v0 < chunk ? pm->vertices - v0 : chunk;
+        const uint8_t *r = pm->positions[v0 >> shift].data;
+        if (pm->index_bytes == 2) project_run(lod, x, cache, v0, n, r, 2);
+        else project_run(lod, x, cache, v0, n, r, 4);
     }
 }
 

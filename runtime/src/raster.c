@@ -121,11 +121,7 @@ static int64_t round_div(int64_t n, uint64_t d)
     return q + (r >= d - r);
 }
 
-/* floor(v / 16) for |v| < 2^26, without shifting a negative number (implementation-defined in C99) */
-MC_ALWAYS_INLINE int32_t floor16(int32_t v)
-{
-    return (int32_t)((uint32_t)(v + ((int32_t)1 << 26)) >> 4) - ((int32_t)1 << 22);
-}
+#define floor16 mc_raster_floor16
 
 /* the int64_t whose two's complement is u (a cast would be implementation-defined above INT64_MAX) */
 MC_ALWAYS_INLINE int64_t to_signed(uint64_t u)
@@ -516,28 +512,16 @@ NOINLINE static uint32_t draw_rows_hide(const mc_target *t, mc_sdepth *sd, tri *
 MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_raster_vertex v[3], uint8_t color,
                                    unsigned flags)
 {
+    /* (the row path relies on the box's rows: it leaves horizontal edges to them) */
+    mc_raster_box box;
+    if (!mc_raster_centres(v, t->width, t->height, &box)) return 0;
+    const int32_t i0 = box.i0, i1 = box.i1, j0 = box.j0, j1 = box.j1;
+    if (sd && !mc_sdepth_any(sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1)) return 0;
     const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
     const int32_t xmin = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
     const int32_t xmax = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
     const int32_t ymin = y0 < y1 ? (y0 < y2 ? y0 : y2) : (y1 < y2 ? y1 : y2);
     const int32_t ymax = y0 > y1 ? (y0 > y2 ? y0 : y2) : (y1 > y2 ? y1 : y2);
-    if (xmin < -MC_RASTER_COORD_LIMIT || xmax > MC_RASTER_COORD_LIMIT || ymin < -MC_RASTER_COORD_LIMIT ||
-        ymax > MC_RASTER_COORD_LIMIT)
-        return 0;
-    /* The centres (16 i + 8, 16 j + 8) that can be covered lie in the bounding box, and not on its
-     * right or bottom side: a centre there lies on a vertical right edge or a horizontal bottom edge,
-     * or on the rightmost or lowest corner, which has a right edge through it (in the orientation
-     * below, going down to it or down from it). So xmin <= 16 i + 8 < xmax and
-     * ymin <= 16 j + 8 < ymax, on the target. The row path relies on the rows: it leaves horizontal
-     * edges to them. */
-    int32_t j0 = floor16(ymin + 7), j1 = floor16(ymax - 9);
-    int32_t i0 = floor16(xmin + 7), i1 = floor16(xmax - 9);
-    if (j0 < 0) j0 = 0;
-    if (i0 < 0) i0 = 0;
-    if (j1 > (int32_t)t->height - 1) j1 = (int32_t)t->height - 1;
-    if (i1 > (int32_t)t->width - 1) i1 = (int32_t)t->width - 1;
-    if (j0 > j1 || i0 > i1) return 0;   /* also an empty target */
-    if (sd && !mc_sdepth_any(sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1)) return 0;
 
     /* twice the signed area; below 2^46 in magnitude: a triangle fills at most half its 2^23-sided box */
     const int64_t area = (int64_t)(x1 - x0) * (y2 - y0) - (int64_t)(x2 - x0) * (y1 - y0);

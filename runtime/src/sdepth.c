@@ -45,23 +45,6 @@ uint32_t mc_sdepth_count(const mc_sdepth *s)
     return n;
 }
 
-int mc_sdepth_any(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1)
-{
-    const uint32_t b0 = i0 >> 5, b1 = i1 >> 5;
-    const uint32_t first = 0xFFFFFFFFu >> (i0 & 31u), last = 0xFFFFFFFFu << (31u - (i1 & 31u));
-    for (uint32_t j = j0; j <= j1; j++) {
-        const uint32_t *u = s->used + j * s->blocks;
-        if (b0 == b1) {
-            if (u[b0] & first & last) return 1;
-            continue;
-        }
-        if ((u[b0] & first) || (u[b1] & last)) return 1;
-        for (uint32_t b = b0 + 1; b < b1; b++)
-            if (u[b]) return 1;
-    }
-    return 0;
-}
-
 void mc_sdepth_remove(mc_sdepth *s, uint32_t x, uint32_t y)
 {
     const uint32_t w = y * s->blocks + (x >> 5), i = y * s->width + x;

@@ -124,6 +124,15 @@ MC_ALWAYS_INLINE void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uin
  * face is not present (out of line: most edges of a level need none). */
 uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o);
 
+/* The half-edge across a half-edge of a present face at the current level, from o, the opposite the
+ * arrays store for it (MC_NO_HALF_EDGE for a border): o itself when its face is present, else the
+ * walk. For passes that read the stored opposites in order. */
+MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_across(const mc_pmesh_lod *lod, uint32_t o)
+{
+    if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < lod->faces) return o;
+    return mc_pmesh_lod_opposite_walk(lod, o);
+}
+
 /* The half-edge across half-edge h (MC_HALF_EDGE(f, k), f < lod->faces) at the current level, or
  * MC_NO_HALF_EDGE where edge k of face f is a border there. Work: the faces removed across that edge
  * between the current level and the full mesh, at most; usually none or one. Inline: the stored
@@ -141,8 +150,7 @@ MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_
     } else {
         o = mc_le32(r);
     }
-    if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < lod->faces) return o;
-    return mc_pmesh_lod_opposite_walk(lod, o);
+    return mc_pmesh_lod_across(lod, o);
 }
 
 /* Edge i (0 .. E-1) of the edge order: a half-edge of the full mesh (its face may be missing at the

@@ -55,6 +55,45 @@ typedef struct mc_raster_vertex {
     uint32_t z;     /* 0 .. MC_DEPTH_EMPTY - 2 */
 } mc_raster_vertex;
 
+/* floor(v / 16) for |v| < 2^26, without shifting a negative number (implementation-defined in C99) */
+MC_ALWAYS_INLINE int32_t mc_raster_floor16(int32_t v)
+{
+    return (int32_t)((uint32_t)(v + ((int32_t)1 << 26)) >> 4) - ((int32_t)1 << 22);
+}
+
+/* Pixels i0 .. i1 across, j0 .. j1 down: the pixels whose centres a triangle may cover. */
+typedef struct mc_raster_box {
+    int32_t i0, i1, j0, j1;
+} mc_raster_box;
+
+/* The box of the pixels of a width x height frame whose centres triangle v may cover (every pixel it
+ * covers lies in it); 0 when there is none, or when a corner lies beyond MC_RASTER_COORD_LIMIT (the
+ * triangle then draws nothing). The rasterizer's own first test, so that a pass over many faces can
+ * reject most of them inline. The centres (16 i + 8, 16 j + 8) that can be covered lie in the
+ * corners' bounding box, and not on its right or bottom side: a centre there lies on a vertical
+ * right edge or a horizontal bottom edge, or on the rightmost or lowest corner, which has a right
+ * edge through it. So xmin <= 16 i + 8 < xmax and ymin <= 16 j + 8 < ymax, on the frame. */
+MC_ALWAYS_INLINE int mc_raster_centres(const mc_raster_vertex v[3], uint32_t width, uint32_t height, mc_raster_box *b)
+{
+    const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
+    const int32_t ymin = y0 < y1 ? (y0 < y2 ? y0 : y2) : (y1 < y2 ? y1 : y2);
+    const int32_t ymax = y0 > y1 ? (y0 > y2 ? y0 : y2) : (y1 > y2 ? y1 : y2);
+    if (ymin < -MC_RASTER_COORD_LIMIT || ymax > MC_RASTER_COORD_LIMIT) return 0;
+    int32_t j0 = mc_raster_floor16(ymin + 7), j1 = mc_raster_floor16(ymax - 9);
+    if (j0 < 0) j0 = 0;
+    if (j1 > (int32_t)height - 1) j1 = (int32_t)height - 1;
+    if (j0 > j1) return 0;   /* most faces of a dense mesh: no centre between their rows */
+    const int32_t xmin = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
+    const int32_t xmax = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
+    if (xmin < -MC_RASTER_COORD_LIMIT || xmax > MC_RASTER_COORD_LIMIT) return 0;
+    int32_t i0 = mc_raster_floor16(xmin + 7), i1 = mc_raster_floor16(xmax - 9);
+    if (i0 < 0) i0 = 0;
+    if (i1 > (int32_t)width - 1) i1 = (int32_t)width - 1;
+    if (i0 > i1) return 0;   /* also an empty frame */
+    b->i0 = i0, b->i1 = i1, b->j0 = j0, b->j1 = j1;
+    return 1;
+}
+
 /* Draws v[0], v[1], v[2] in `color` with the depth test and returns the number of target pixels the
  * triangle covers (before the depth test; 0 when culled, degenerate or out of range). */
 uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags);

@@ -57,8 +57,24 @@ void mc_sdepth_clear(mc_sdepth *s);
 /* Pixels in use. */
 uint32_t mc_sdepth_count(const mc_sdepth *s);
 
-/* Whether any pixel of columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1, j0 <= j1) is in use. */
-int mc_sdepth_any(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1);
+/* Whether any pixel of columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1, j0 <= j1) is in
+ * use. Inline: a face pass asks it of every face whose box holds a pixel centre. */
+MC_ALWAYS_INLINE int mc_sdepth_any(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1)
+{
+    const uint32_t b0 = i0 >> 5, b1 = i1 >> 5;
+    const uint32_t first = 0xFFFFFFFFu >> (i0 & 31u), last = 0xFFFFFFFFu << (31u - (i1 & 31u));
+    const uint32_t *u = s->used + j0 * s->blocks;
+    for (uint32_t j = j0; j <= j1; j++, u += s->blocks) {
+        if (b0 == b1) {
+            if (u[b0] & first & last) return 1;
+            continue;
+        }
+        if ((u[b0] & first) || (u[b1] & last)) return 1;
+        for (uint32_t b = b0 + 1; b < b1; b++)
+            if (u[b]) return 1;
+    }
+    return 0;
+}
 
 /* Whether pixel (x, y) (on the frame) is in use. */
 MC_ALWAYS_INLINE int mc_sdepth_in_use(const mc_sdepth *s, uint32_t x, uint32_t y)
