@@ -1,0 +1,88 @@
+/* Image edges: see modelc/imgedge.h.
+ *
+ * One pass over the rows: row y's gradient gives its candidates (their code and thinning sector kept
+ * in out, packed) and its magnitudes (a ring of three rows in scratch); row y - 1 is then thinned
+ * against rows y - 2, y - 1 and y. */
+#include "modelc/imgedge.h"
+
+/* tan of the orientation bins' boundaries (11.25, 33.75, 56.25, 78.75 degrees) and of the thinning
+ * sectors' (22.5, 67.5 degrees), Q16, rounded to nearest */
+#define TAN_11 13036u
+#define TAN_33 43790u
+#define TAN_56 98082u
+#define TAN_78 329472u
+#define TAN_22 27146u
+#define TAN_67 158218u
+
+/* The packed work value of a candidate: code (1 + bin) in the low nibble, sector in bits 4-5. */
+static uint8_t classify(int32_t gx, int32_t gy)
+{
+    /* fold the angle into (-90, 90] degrees: gx > 0, or gx = 0 and gy > 0 */
+    if (gx < 0 || (gx == 0 && gy < 0)) gx = -gx, gy = -gy;
+    const uint32_t a = (uint32_t)(gy < 0 ? -gy : gy) << 16, b = (uint32_t)gx;   /* a < 2^26, b <= 1020 */
+    /* k: how many boundaries |angle| passes, 0 (0 degrees) .. 4 (90 degrees) */
+    const unsigned k = (a > b * TAN_11) + (a > b * TAN_33) + (a > b * TAN_56) + (a > b * TAN_78);
+    const unsigned bin = gy >= 0 ? k : (MC_IMGEDGE_DIRS - k) & (MC_IMGEDGE_DIRS - 1u);
+    /* sector: 0 (0 degrees), 1 (45), 2 (90), 3 (135: gy < 0 folded, up-right and down-left) */
+    const unsigned s = (a > b * TAN_22) + (a > b * TAN_67);
+    const unsigned sector = gy >= 0 ? s : (4u - s) & 3u;
+    return (uint8_t)((1u + bin) | sector << 4);
+}
+
+/* Thins row y (1 .. h-2) of out: its candidates' magnitudes mid against up (row y - 1) and down
+ * (row y + 1). Returns the edge pixels kept. */
+static uint32_t thin_row(uint8_t *o, const uint32_t *up, const uint32_t *mid, const uint32_t *down, uint16_t w)
+{
+    uint32_t kept = 0;
+    for (uint32_t x = 1; x + 1 < w; x++) {
+        const uint8_t c = o[x];
+        if (!c) continue;
+        const uint32_t m = mid[x];
+        uint32_t behind, ahead;   /* against and along the gradient's direction, y down */
+        switch (c >> 4) {
+        case 0: behind = mid[x - 1], ahead = mid[x + 1]; break;    /* 0 degrees: +x */
+        case 1: behind = up[x - 1], ahead = down[x + 1]; break;    /* 45: +x +y */
+        case 2: behind = up[x], ahead = down[x]; break;            /* 90: +y */
+        default: behind = up[x + 1], ahead = down[x - 1]; break;   /* 135: -x +y */
+        }
+        if (m > behind && m >= ahead) {
+            o[x] = (uint8_t)(c & 15u);
+            kept++;
+        } else {
+            o[x] = 0;
+        }
+    }
+    return kept;
+}
+
+uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h, uint16_t threshold, uint8_t *out,
+                    uint32_t *scratch)
+{
+    for (uint32_t i = 0; i < (uint32_t)w * h; i++) out[i] = 0;
+    if (w < 3 || h < 3) return 0;
+    if (threshold < 1) threshold = 1;
+    if (threshold > MC_IMGEDGE_THRESHOLD_MAX) threshold = MC_IMGEDGE_THRESHOLD_MAX;
+    const uint32_t t2 = (uint32_t)threshold * threshold;
+    uint32_t *ring[3] = {scratch, scratch + w, scratch + 2u * w};
+    for (uint32_t x = 0; x < w; x++) ring[0][x] = 0;   /* row 0: border, no gradient */
+    uint32_t kept = 0;
+    for (uint32_t y = 1; y + 1 < h; y++) {
+        const uint8_t *a = img + (y - 1) * stride, *b = a + stride, *c = b + stride;
+        uint32_t *m = ring[y % 3];
+        uint8_t *o = out + y * w;
+        m[0] = m[w - 1u] = 0;
+        for (uint32_t x = 1; x + 1 < w; x++) {
+            const int32_t gx = (int32_t)a[x + 1] + 2 * b[x + 1] + c[x + 1] - a[x - 1] - 2 * b[x - 1] - c[x - 1];
+            const int32_t gy = (int32_t)c[x - 1] + 2 * c[x] + c[x + 1] - a[x - 1] - 2 * a[x] - a[x + 1];
+            const uint32_t g = (uint32_t)(gx * gx + gy * gy);
+            m[x] = g;
+            if (g >= t2) o[x] = classify(gx, gy);
+        }
+        if (y >= 2) kept += thin_row(out + (y - 1) * w, ring[(y - 2) % 3], ring[(y - 1) % 3], m, w);
+    }
+    /* the last inner row against the border row below it (no gradient) */
+    uint32_t *below = ring[(h - 1u) % 3];
+    for (uint32_t x = 0; x < w; x++) below[x] = 0;
+    kept += thin_row(out + (h - 2u) * w, ring[(h - 3u) % 3], ring[(h - 2u) % 3], below, w);
+    return kept;
+}
