@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
 # Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, the
 # progressive mesh's level of detail (pmesh), clipped lines (line), the sparse depth buffer and its
-# line and face passes (sdepth), image edges against their double-precision reference (imgedge),
-# filled triangles against their
-# double-precision reference (raster), vertex projection (xform), clipping at the near plane and the
-# guard band (clip), view clamping,
+# line and face passes (sdepth), and against their double-precision references image edges
+# (imgedge), the pinhole camera and pose (camera), filled triangles (raster), vertex projection
+# (xform) and clipping at the near plane and the guard band (clip); view clamping,
 # mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
@@ -153,6 +152,7 @@ build_and_run "unit: xform: " test_xform runtime/ref/xform_ref.c
 build_and_run "unit: clip: " test_clip runtime/ref/xform_ref.c
 build_and_run "unit: sdepth: " test_sdepth
 build_and_run "unit: imgedge: " test_imgedge runtime/ref/imgedge_ref.c
+build_and_run "unit: camera: " test_camera runtime/ref/camera_ref.c
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to
