@@ -4,29 +4,47 @@
  * in out, packed) and its magnitudes (a ring of three rows in scratch); row y - 1 is then thinned
  * against rows y - 2, y - 1 and y. */
 #include "modelc/imgedge.h"
+#include "modelc/bits.h"   /* MC_ALWAYS_INLINE */
 
 /* tan of the orientation bins' boundaries (11.25, 33.75, 56.25, 78.75 degrees) and of the thinning
  * sectors' (22.5, 67.5 degrees), Q16, rounded to nearest */
-#define TAN_11 13036u
-#define TAN_33 43790u
-#define TAN_56 98082u
-#define TAN_78 329472u
-#define TAN_22 27146u
-#define TAN_67 158218u
+#define TAN_11 UINT64_C(13036)
+#define TAN_33 UINT64_C(43790)
+#define TAN_56 UINT64_C(98082)
+#define TAN_78 UINT64_C(329472)
+#define TAN_22 UINT64_C(27146)
+#define TAN_67 UINT64_C(158218)
 
-/* The packed work value of a candidate: code (1 + bin) in the low nibble, sector in bits 4-5. */
-static uint8_t classify(int32_t gx, int32_t gy)
+/* The fold of (gx, gy) into angles (-90, 90] degrees (gx > 0, or gx = 0 and gy > 0): a = |gy| 2^16
+ * and b = gx, the tangent's numerator and denominator, with the sign of gy */
+MC_ALWAYS_INLINE void fold(int32_t gx, int32_t gy, uint64_t *a, uint64_t *b, int *neg)
 {
-    /* fold the angle into (-90, 90] degrees: gx > 0, or gx = 0 and gy > 0 */
     if (gx < 0 || (gx == 0 && gy < 0)) gx = -gx, gy = -gy;
-    const uint32_t a = (uint32_t)(gy < 0 ? -gy : gy) << 16, b = (uint32_t)gx;   /* a < 2^26, b <= 1020 */
+    *a = (uint64_t)(gy < 0 ? 0u - (uint32_t)gy : (uint32_t)gy) << 16;
+    *b = (uint32_t)gx;
+    *neg = gy < 0;
+}
+
+unsigned mc_imgedge_bin(int32_t gx, int32_t gy)
+{
+    uint64_t a, b;
+    int neg;
+    fold(gx, gy, &a, &b, &neg);
     /* k: how many boundaries |angle| passes, 0 (0 degrees) .. 4 (90 degrees) */
     const unsigned k = (a > b * TAN_11) + (a > b * TAN_33) + (a > b * TAN_56) + (a > b * TAN_78);
-    const unsigned bin = gy >= 0 ? k : (MC_IMGEDGE_DIRS - k) & (MC_IMGEDGE_DIRS - 1u);
-    /* sector: 0 (0 degrees), 1 (45), 2 (90), 3 (135: gy < 0 folded, up-right and down-left) */
+    return neg ? (MC_IMGEDGE_DIRS - k) & (MC_IMGEDGE_DIRS - 1u) : k;
+}
+
+/* The packed work value of a candidate: code (1 + bin) in the low nibble, thinning sector in bits
+ * 4-5: 0 (0 degrees), 1 (45), 2 (90), 3 (135: up-right and down-left) */
+static uint8_t classify(int32_t gx, int32_t gy)
+{
+    uint64_t a, b;
+    int neg;
+    fold(gx, gy, &a, &b, &neg);
     const unsigned s = (a > b * TAN_22) + (a > b * TAN_67);
-    const unsigned sector = gy >= 0 ? s : (4u - s) & 3u;
-    return (uint8_t)((1u + bin) | sector << 4);
+    const unsigned sector = neg ? (4u - s) & 3u : s;
+    return (uint8_t)((1u + mc_imgedge_bin(gx, gy)) | sector << 4);
 }
 
 /* Thins row y (1 .. h-2) of out: its candidates' magnitudes mid against up (row y - 1) and down

@@ -7,6 +7,7 @@
  *     the two diagonals bins 2 and 6, each one pixel thick;
  *   - a flat frame and frames under 3 pixels wide or high have no edges (and out is cleared);
  *     thresholds below 1 act as 1, above the largest magnitude leave nothing;
+ *   - mc_imgedge_bin of directions of every length up to the int32 limit against atan2;
  *   - mc_imgedge_dirs_match against the distance around the half circle, every pair and tolerance.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
  */
@@ -157,6 +158,30 @@ static void test_flat_and_small(void **state)
     assert_int_equal(mc_imgedge(img, 64, 64, 64, 60000, out, scratch), 0);
 }
 
+/* mc_imgedge_bin of directions of any length against atan2, away from the boundaries */
+static void test_bin(void **state)
+{
+    (void)state;
+    mc_rng r;
+    mc_rng_seed(&r, 0xb1, 3);
+    unsigned near = 0;
+    for (int i = 0; i < 1000000; i++) {
+        const int shift = (int)below(&r, 31);
+        int32_t gx = (int32_t)(mc_rng_next(&r) >> shift), gy = (int32_t)(mc_rng_next(&r) >> shift);
+        if (below(&r, 2)) gx = -gx;
+        if (below(&r, 2)) gy = -gy;
+        if (i < 8) gx = (i & 1) ? INT32_MAX : -INT32_MAX, gy = (i & 2) ? INT32_MAX : 0;
+        if (!gx && !gy) continue;
+        double a = fmod(atan2(gy, gx) * 180.0 / PI + 360.0, 180.0);
+        double gap = fmod(a - 11.25, 22.5);
+        if (gap < 0) gap += 22.5;
+        if (gap < 1e-3 || 22.5 - gap < 1e-3) { near++; continue; }
+        const unsigned want = (unsigned)floor((a + 11.25) / 22.5) % 8;
+        if (mc_imgedge_bin(gx, gy) != want) fail_msg("(%d, %d): bin %u, angle %.6f: %u", gx, gy, mc_imgedge_bin(gx, gy), a, want);
+    }
+    assert_true(near < 1000);
+}
+
 static void test_dirs_match(void **state)
 {
     (void)state;
@@ -175,6 +200,7 @@ int main(void)
         cmocka_unit_test(test_against_reference),
         cmocka_unit_test(test_steps),
         cmocka_unit_test(test_flat_and_small),
+        cmocka_unit_test(test_bin),
         cmocka_unit_test(test_dirs_match),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -11,6 +11,11 @@
  *     triangles far beyond the frame, both orientations, culled or not) over random entries against
  *     mc_raster_triangle drawn into an empty target: an entry is emptied exactly where the triangle
  *     covers its pixel at a depth not greater than the entry's, and the count returned is those.
+ * Each of these runs its second half with matched bits kept (mc_sdepth_keep_matched): entries
+ * inserted matched or not (mc_sdepth_insert_matched, mc_sdepth_insert), lines matched against random
+ * edge images (mc_line_sdepth_matched: an entry matched where the image's code lies within the
+ * tolerance of the line's bin), every pixel's matched bit that of its kept entry, cleared with it,
+ * and mc_sdepth_count_matched equal to the model's count.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
  */
 #include <setjmp.h>
@@ -22,6 +27,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include <modelc/imgedge.h>
 #include <modelc/line.h>
 #include <modelc/raster.h>
 #include <modelc/rng.h>
@@ -39,6 +45,8 @@ typedef struct frame {
     uint8_t *in;
     uint16_t *md;
     uint8_t *mcol;
+    uint32_t *mbits;   /* the matched words, when kept */
+    uint8_t *mm;       /* the model's matched bits */
     /* a plain target of the same size, for mc_line and mc_raster_triangle to draw the expected */
     mc_target t;
 } frame;
@@ -61,11 +69,21 @@ static void frame_new(frame *f, unsigned w, unsigned h)
     assert_int_equal(mc_sdepth_init(&f->s, (uint16_t)w, (uint16_t)h, f->bits, f->depth, f->color, EMPTY_D, EMPTY_C),
                      MC_OK);
     for (unsigned i = 0; i < w * h; i++) f->md[i] = EMPTY_D, f->mcol[i] = EMPTY_C;
+    f->mm = calloc(w * h, 1);
+    f->mbits = malloc(4u * MC_SDEPTH_MATCHED_WORDS(w, h));
+    memset(f->mbits, 0xA5, 4u * MC_SDEPTH_MATCHED_WORDS(w, h));
+}
+
+/* keeps matched bits from now on (the entries in use unmatched) */
+static void frame_keep_matched(frame *f)
+{
+    mc_sdepth_keep_matched(&f->s, f->mbits);
+    memset(f->mm, 0, (size_t)f->s.width * f->s.height);
 }
 
 static void frame_free(frame *f)
 {
-    free(f->bits), free(f->depth), free(f->color), free(f->in), free(f->md), free(f->mcol);
+    free(f->bits), free(f->depth), free(f->color), free(f->in), free(f->md), free(f->mcol), free(f->mm), free(f->mbits);
     free(f->t.color), free(f->t.depth);
 }
 
@@ -73,7 +91,7 @@ static void frame_free(frame *f)
 static void frame_check(const frame *f)
 {
     const mc_sdepth *s = &f->s;
-    uint32_t n = 0;
+    uint32_t n = 0, nm = 0;
     for (unsigned y = 0; y < s->height; y++) {
         for (unsigned x = 0; x < s->width; x++) {
             const unsigned i = y * s->width + x;
@@ -81,6 +99,11 @@ static void frame_check(const frame *f)
                 fail_msg("pixel (%u, %u): in use %d depth %u colour %u, model %d %u %u", x, y, mc_sdepth_in_use(s, x, y),
                          s->depth[i], s->color[i], f->in[i], f->md[i], f->mcol[i]);
             n += f->in[i];
+            if (s->matched) {
+                const int m = (s->matched[y * s->blocks + x / 32u] >> (31u - x % 32u)) & 1u;
+                if (m != f->mm[i]) fail_msg("pixel (%u, %u): matched %d, model %d", x, y, m, f->mm[i]);
+                nm += f->mm[i];
+            }
         }
         for (unsigned b = 0; b < s->blocks; b++) {
             const uint32_t word = s->used[y * s->blocks + b];
@@ -93,19 +116,22 @@ static void frame_check(const frame *f)
             assert_int_equal((s->rows[y * s->row_words + b / 32u] >> (31u - b % 32u)) & 1u, 0);
     }
     assert_int_equal(mc_sdepth_count(s), n);
+    assert_int_equal(mc_sdepth_count_matched(s), nm);
 }
 
-static void model_insert(frame *f, unsigned x, unsigned y, uint16_t z, uint8_t c)
+static void model_insert_matched(frame *f, unsigned x, unsigned y, uint16_t z, uint8_t c, int m)
 {
     const unsigned i = y * f->s.width + x;
     if (f->in[i] && z >= f->md[i]) return;
-    f->in[i] = 1, f->md[i] = z, f->mcol[i] = c;
+    f->in[i] = 1, f->md[i] = z, f->mcol[i] = c, f->mm[i] = (uint8_t)(m != 0);
 }
+
+static void model_insert(frame *f, unsigned x, unsigned y, uint16_t z, uint8_t c) { model_insert_matched(f, x, y, z, c, 0); }
 
 static void model_remove(frame *f, unsigned x, unsigned y)
 {
     const unsigned i = y * f->s.width + x;
-    f->in[i] = 0, f->md[i] = EMPTY_D, f->mcol[i] = EMPTY_C;
+    f->in[i] = 0, f->md[i] = EMPTY_D, f->mcol[i] = EMPTY_C, f->mm[i] = 0;
 }
 
 /* mc_sdepth_clear, and the model emptied likewise */
@@ -123,6 +149,7 @@ static void ops_on(unsigned w, unsigned h, int rounds, uint64_t seed)
     frame_new(&f, w, h);
     frame_check(&f);
     for (int round = 0; round < rounds; round++) {
+        if (round == rounds / 2) frame_keep_matched(&f);   /* the second half keeps matched bits */
         const unsigned ops = mc_rng_below(&r, 4u * w * h / 3u + 2u);
         for (unsigned k = 0; k < ops; k++) {
             const unsigned x = mc_rng_below(&r, w), y = mc_rng_below(&r, h);
@@ -135,8 +162,14 @@ static void ops_on(unsigned w, unsigned h, int rounds, uint64_t seed)
                 const uint8_t c = (uint8_t)mc_rng_below(&r, 256);
                 const unsigned i = y * w + x;
                 const int want = !f.in[i] || z < f.md[i];
-                assert_int_equal(mc_sdepth_insert(&f.s, x, y, z, c), want);
-                model_insert(&f, x, y, z, c);
+                if (f.s.matched && mc_rng_below(&r, 4)) {
+                    const uint32_t m = mc_rng_below(&r, 2) ? mc_rng_next(&r) : 0;
+                    assert_int_equal(mc_sdepth_insert_matched(&f.s, x, y, z, c, m), want);
+                    model_insert_matched(&f, x, y, z, c, m != 0);
+                } else {
+                    assert_int_equal(mc_sdepth_insert(&f.s, x, y, z, c), want);
+                    model_insert(&f, x, y, z, c);
+                }
             }
         }
         frame_check(&f);
@@ -213,8 +246,12 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
     mc_rng_seed(&r, seed, 7);
     frame f;
     frame_new(&f, w, h);
-    uint8_t *tc = f.t.color;
+    uint8_t *tc = f.t.color, *edges = malloc(w * h);
     uint16_t *td = f.t.depth;
+    assert_non_null(edges);
+    /* without matched bits kept, the matching walk draws nothing */
+    mc_line_vertex a0 = {0, 0, 0}, b0 = {(int32_t)w - 1, (int32_t)h - 1, 0};
+    assert_int_equal(mc_line_sdepth_matched(&f.s, a0, b0, 1, 0, edges, 0, 0), 0);
     for (int n = 0; n < count; n++) {
         mc_line_vertex a, b;
         a.x = rnd_coord(&r, w), a.y = rnd_coord(&r, h), b.x = rnd_coord(&r, w), b.y = rnd_coord(&r, h);
@@ -227,19 +264,29 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
         for (unsigned i = 0; i < w * h; i++) tc[i] = 255, td[i] = MC_DEPTH_EMPTY;
         mc_line_style st = {0, MC_LINE_NO_DEPTH_TEST | MC_LINE_WRITE_DEPTH};
         const uint32_t want = mc_line(&f.t, a, b, c, &st);
-        const uint32_t got = mc_line_sdepth(&f.s, a, b, c, off);
+        /* the second half keeps matched bits; most of its lines are matched against an edge image
+         * of random codes (0: none, else 1 + bin) at a random bin and tolerance */
+        if (n == count / 2) frame_keep_matched(&f);
+        const int matching = f.s.matched && mc_rng_below(&r, 4);
+        const unsigned bin = mc_rng_below(&r, MC_IMGEDGE_DIRS), tol = mc_rng_below(&r, 3);
+        if (matching)
+            for (unsigned i = 0; i < w * h; i++) edges[i] = (uint8_t)(mc_rng_below(&r, 2) ? 0 : 1 + mc_rng_below(&r, 8));
+        const uint32_t got = matching ? mc_line_sdepth_matched(&f.s, a, b, c, off, edges, bin, tol)
+                                      : mc_line_sdepth(&f.s, a, b, c, off);
         if (got != want) fail_msg("line (%d,%d)-(%d,%d) on %ux%u: %u pixels, mc_line %u", a.x, a.y, b.x, b.y, w, h, got, want);
         uint32_t drawn = 0;
         for (unsigned i = 0; i < w * h; i++)
             if (tc[i] != 255) {
                 drawn++;
                 const uint16_t zt = (uint16_t)(td[i] > off ? td[i] - off : 0);
-                model_insert(&f, i % w, i / w, zt, c);
+                const int m = matching && edges[i] && mc_imgedge_dirs_match(edges[i] - 1u, bin, tol);
+                model_insert_matched(&f, i % w, i / w, zt, c, m);
             }
         assert_int_equal(drawn, want);
         if (n % 16 == 15 || n == count - 1) frame_check(&f);
         if (mc_rng_below(&r, 10) == 0) frame_clear(&f);
     }
+    free(edges);
     frame_free(&f);
 }
 
@@ -274,12 +321,19 @@ static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
         /* now and then a fresh start (entries nearer than any face pile up), then a sprinkle of
          * entries, sometimes dense, sometimes none in most blocks */
         if (n % 8 == 0) frame_clear(&f);
+        if (n == count / 2) frame_keep_matched(&f);   /* the second half keeps matched bits */
         const unsigned fill = mc_rng_below(&r, 3) == 0 ? w * h / 2u : mc_rng_below(&r, w * h / 16u + 2u);
         for (unsigned k = 0; k < fill; k++) {
             const unsigned x = mc_rng_below(&r, w), y = mc_rng_below(&r, h);
             const uint16_t z = (uint16_t)(mc_rng_below(&r, 2) ? 100 + mc_rng_below(&r, 400) : mc_rng_below(&r, EMPTY_D));
-            mc_sdepth_insert(&f.s, x, y, z, 1);
-            model_insert(&f, x, y, z, 1);
+            if (f.s.matched) {
+                const uint32_t m = mc_rng_below(&r, 2);
+                mc_sdepth_insert_matched(&f.s, x, y, z, 1, m);
+                model_insert_matched(&f, x, y, z, 1, (int)m);
+            } else {
+                mc_sdepth_insert(&f.s, x, y, z, 1);
+                model_insert(&f, x, y, z, 1);
+            }
         }
         mc_raster_vertex v[3];
         random_triangle(&r, w, h, v);

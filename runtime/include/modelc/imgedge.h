@@ -22,7 +22,7 @@
  *              one stays);
  *   output     out[y * w + x] = 1 + bin for an edge pixel, else 0 (border pixels: 0).
  * Bins and sectors are decided by comparing |gy| 2^16 with gx times the boundaries' tangents rounded
- * to Q16, in 32-bit integers: the bin of the exact angle, except for a gradient within 2^-16 rad of a
+ * to Q16, in 64-bit integers: the bin of the exact angle, except for a gradient within 2^-16 rad of a
  * boundary (the constants' rounding), where it may be the neighbouring one. Returns the number of edge
  * pixels.
  *
@@ -44,6 +44,11 @@
  * Frames narrower or lower than 3 pixels have none. threshold is clamped to 1 .. THRESHOLD_MAX. */
 uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h, uint16_t threshold, uint8_t *out,
                     uint32_t *scratch);
+
+/* The orientation bin (0 .. MC_IMGEDGE_DIRS - 1) of a direction (gx, gy), not (0, 0), any int32
+ * components except INT32_MIN, y down: mc_imgedge's bins, by the same Q16 tangents. A tracker takes
+ * a model line's own bin from its normal on the screen. */
+unsigned mc_imgedge_bin(int32_t gx, int32_t gy);
 
 /* Whether two orientation bins (0 .. MC_IMGEDGE_DIRS - 1) lie within tolerance bins of each other,
  * around the half circle (bins 0 and 7 are neighbours). */

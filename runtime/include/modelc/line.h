@@ -71,4 +71,11 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
  * drawn first. Returns the line's pixels on the frame. */
 uint32_t mc_line_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset);
 
+/* mc_line_sdepth for a tracker, into a buffer that keeps matched bits (nothing, 0, otherwise): each
+ * pixel's entry matched when edges (imgedge.h mc_imgedge's codes for the same frame) holds an edge
+ * there whose orientation bin lies within tolerance bins of bin, the line's own (mc_imgedge_bin of
+ * its normal). */
+uint32_t mc_line_sdepth_matched(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color,
+                                uint16_t depth_offset, const uint8_t *edges, unsigned bin, unsigned tolerance);
+
 #endif

@@ -11,6 +11,9 @@
  * with nothing in them are skipped. The depths and colours are the caller's dense arrays (width *
  * height, row-major: a target's buffers, target.h), so an entry costs no more than a pixel of the
  * target; the bit vectors are 4 (blocks + row_words) bytes a row (1,024 bytes for 240 rows of 320).
+ * A tracker keeps one more bit vector (mc_sdepth_keep_matched): per block, which of its entries
+ * matched the camera's edge image when inserted (mc_sdepth_insert_matched), so that the visible and
+ * the matched pixels of a pose are two population counts once the faces have removed the hidden ones.
  *
  * Promise: a pixel not in use holds empty_depth and empty_color; a pixel in use holds the depth and
  * colour of the entry kept there. mc_sdepth_init makes every pixel empty (a full pass over the
@@ -18,7 +21,9 @@
  * blocks and rows, not to the area). mc_sdepth_insert keeps, of the entries given for a pixel, the
  * first one of the least depth (a later entry replaces the kept one only when strictly nearer).
  * Removal (mc_sdepth_remove, and the face pass of raster.h, mc_raster_triangle_hide) empties a pixel
- * and clears its bits. No heap, no floating point, no division. Freestanding.
+ * and clears its bits. With matched bits kept, a pixel's matched bit is that of its kept entry (0 for
+ * an entry inserted without one, and for a pixel not in use). No heap, no floating point, no
+ * division. Freestanding.
  */
 #ifndef MODELC_SDEPTH_H
 #define MODELC_SDEPTH_H
@@ -32,12 +37,15 @@
 #define MC_SDEPTH_ROW_WORDS(w) ((MC_SDEPTH_BLOCKS(w) + 31u) / 32u)
 /* Words of bit vectors for a w x h buffer: what mc_sdepth_init takes. */
 #define MC_SDEPTH_WORDS(w, h) ((uint32_t)(h) * (MC_SDEPTH_BLOCKS(w) + MC_SDEPTH_ROW_WORDS(w)))
+/* Words of matched bits for a w x h buffer: what mc_sdepth_keep_matched takes. */
+#define MC_SDEPTH_MATCHED_WORDS(w, h) ((uint32_t)(h) * MC_SDEPTH_BLOCKS(w))
 
 typedef struct mc_sdepth {
     uint16_t *depth;        /* width * height, the caller's */
     uint8_t *color;         /* width * height, the caller's, or null: no colours kept */
     uint32_t *used;         /* height * blocks in-use words */
     uint32_t *rows;         /* height * row_words block words */
+    uint32_t *matched;      /* height * blocks matched words, or null: none kept */
     uint16_t width, height;
     uint16_t blocks, row_words;
     uint16_t empty_depth;   /* what a pixel not in use holds */
@@ -51,11 +59,18 @@ typedef struct mc_sdepth {
 int mc_sdepth_init(mc_sdepth *s, uint16_t width, uint16_t height, uint32_t *bits, uint16_t *depth, uint8_t *color,
                    uint16_t empty_depth, uint8_t empty_color);
 
+/* Keeps matched bits from now on in the caller's words (MC_SDEPTH_MATCHED_WORDS), every one 0 at
+ * first (so the entries already in use count as unmatched); null stops keeping them. */
+void mc_sdepth_keep_matched(mc_sdepth *s, uint32_t *matched);
+
 /* Empties the pixels in use, and only those. */
 void mc_sdepth_clear(mc_sdepth *s);
 
 /* Pixels in use. */
 uint32_t mc_sdepth_count(const mc_sdepth *s);
+
+/* Pixels in use whose entry matched (0 when no matched bits are kept). */
+uint32_t mc_sdepth_count_matched(const mc_sdepth *s);
 
 /* Whether any pixel of columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1, j0 <= j1) is in
  * use. Inline: a face pass asks it of every face whose box holds a pixel centre. */
@@ -82,9 +97,8 @@ MC_ALWAYS_INLINE int mc_sdepth_in_use(const mc_sdepth *s, uint32_t x, uint32_t y
     return (s->used[y * s->blocks + (x >> 5)] >> (31u - (x & 31u))) & 1u;
 }
 
-/* Offers pixel (x, y) (on the frame) an entry of depth z (below empty_depth to be told apart) and
- * colour c: stored when the pixel is empty or holds a farther entry. Returns whether it was stored. */
-MC_ALWAYS_INLINE int mc_sdepth_insert(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c)
+/* mc_sdepth_insert, and with track (a constant where called) the entry's matched bit m as well. */
+MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c, uint32_t m, int track)
 {
     const uint32_t i = y * s->width + x, w = y * s->blocks + (x >> 5), bit = 0x80000000u >> (x & 31u);
     if (s->used[w] & bit) {
@@ -95,7 +109,23 @@ MC_ALWAYS_INLINE int mc_sdepth_insert(mc_sdepth *s, uint32_t x, uint32_t y, uint
     }
     s->depth[i] = z;
     if (s->color) s->color[i] = c;
+    if (track) s->matched[w] = m ? s->matched[w] | bit : s->matched[w] & ~bit;
     return 1;
+}
+
+/* Offers pixel (x, y) (on the frame) an entry of depth z (below empty_depth to be told apart) and
+ * colour c: stored when the pixel is empty or holds a farther entry (unmatched, where matched bits
+ * are kept). Returns whether it was stored. */
+MC_ALWAYS_INLINE int mc_sdepth_insert(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c)
+{
+    return s->matched ? mc_sdepth_put(s, x, y, z, c, 0, 1) : mc_sdepth_put(s, x, y, z, c, 0, 0);
+}
+
+/* mc_sdepth_insert of an entry that matched the edge image (m not 0) or not (m 0), for a buffer that
+ * keeps matched bits (s->matched not null): a stored entry's bit replaces the pixel's. */
+MC_ALWAYS_INLINE int mc_sdepth_insert_matched(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c, uint32_t m)
+{
+    return mc_sdepth_put(s, x, y, z, c, m, 1);
 }
 
 /* Empties pixel (x, y) (on the frame; in use or not). */
