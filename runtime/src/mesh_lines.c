@@ -77,20 +77,6 @@ unsigned mc_mesh_edge_kind(const mc_pmesh_lod *lod, const uint8_t *facing, uint3
                                                                                               : MC_EDGE_PLAIN;
 }
 
-/* One pixel's worth of the face's steepest depth slope, in depth units (0 for a face seen edge-on,
- * which covers no pixel to hide a line with). */
-static uint64_t slope_offset(const mc_raster_vertex v[3])
-{
-    const int64_t a = area2(v);
-    if (a == 0) return 0;
-    const int64_t z1 = (int64_t)v[1].z - v[0].z, z2 = (int64_t)v[2].z - v[0].z;
-    /* dz/dx, dz/dy per 1/16 pixel: numerators below 2^16 * 2^22 each */
-    const uint64_t gx = mag(z1 * (v[2].y - v[0].y) - z2 * (v[1].y - v[0].y));
-    const uint64_t gy = mag((int64_t)(v[1].x - v[0].x) * z2 - (int64_t)(v[2].x - v[0].x) * z1);
-    const uint64_t g = gx > gy ? gx : gy;
-    return (g << MC_XFORM_SUBPIXEL_BITS) / mag(a) + 1u;
-}
-
 /* The corners of face f as projected for this frame: from the cache when there is one (its entries
  * for present vertices are this frame's, mesh_lines.h), else projected now. Returns their flags. */
 MC_ALWAYS_INLINE uint32_t corners(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint32_t f,
@@ -124,7 +110,7 @@ static int face_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
 #define NOINLINE
 #endif
 
-/* slope_offset of face f, a face with a flagged corner: of the largest triangle of its clipped
+/* mc_raster_slope of face f, a face with a flagged corner: of the largest triangle of its clipped
  * polygon's fan (0 when nothing is left), as the face's plane has one slope on the screen wherever
  * it is cut. (Apart, and the clipping's buffers with it: only such a face needs them on the stack.) */
 static NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
@@ -145,13 +131,13 @@ static NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *
     if (best == 0) return 0;
     const mc_xvertex *c[3] = {&poly[0], &poly[at], &poly[at + 1]};
     for (int k = 0; k < 3; k++) tri[k].x = c[k]->x, tri[k].y = c[k]->y, tri[k].z = c[k]->z;
-    return slope_offset(tri);
+    return mc_raster_slope(tri);
 }
 
 /* The depth offset slope of face f whose corners' flags are `flags` and projections v. */
 static uint64_t face_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, uint32_t flags, const mc_raster_vertex v[3])
 {
-    return flags ? clipped_slope(lod, x, f) : slope_offset(v);
+    return flags ? clipped_slope(lod, x, f) : mc_raster_slope(v);
 }
 
 /* Apart (noinline), as clipped_slope: only an edge with a flagged corner on its face needs it. */

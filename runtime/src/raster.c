@@ -140,6 +140,7 @@ typedef struct tri {
     uint32_t zmin, zmax;
     uint64_t area;               /* |sarea| */
     int64_t pa, pb;
+    uint32_t offset;             /* the face pass's: the face hides an entry of depth e where e - offset >= its own */
 } tri;
 
 /* floor(m 2^k / d) and the remainder, for 0 < d < 2^31: long division by digits of as many bits as
@@ -241,10 +242,11 @@ MC_ALWAYS_INLINE uint32_t hide_span(const tri *g, mc_sdepth *s, uint32_t j, uint
         while (m) {
             const uint32_t c = mc_clz32(m), x = 32u * b + c;
             m &= ~(0x80000000u >> c);
+            if (drow[x] < g->offset) continue;
             uint32_t d = (uint32_t)((acc + (uint64_t)(x - first) * gx) >> FRAC);
             if (d < zmin) d = zmin;
             if (d > zmax) d = zmax;
-            if (d <= drow[x]) {
+            if (d <= drow[x] - g->offset) {
                 mc_sdepth_remove(s, x, j);
                 removed++;
             }
@@ -305,7 +307,8 @@ MC_ALWAYS_INLINE uint32_t hide_lazy(tri *g, mc_sdepth *s, lazy_plane *p, int32_t
     uint32_t removed = 0;
     for (int32_t x = lo; x <= hi; x++) {
         if (!mc_sdepth_in_use(s, (uint32_t)x, (uint32_t)j)) continue;
-        const uint32_t e = drow[x];
+        if (drow[x] < g->offset) continue;
+        const uint32_t e = drow[x] - g->offset;
         if (g->zmin > e) continue;
         if (g->zmax > e) {
             uint32_t d = (uint32_t)(lazy_value(g, p, x, j) >> FRAC);
@@ -510,7 +513,7 @@ NOINLINE static uint32_t draw_rows_hide(const mc_target *t, mc_sdepth *sd, tri *
 /* The triangle either drawn into t (sd null) or hiding the entries of sd (t then describes sd's
  * frame). A constant sd makes two functions of it. */
 MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_raster_vertex v[3], uint8_t color,
-                                   unsigned flags)
+                                   unsigned flags, uint32_t offset)
 {
     /* (the row path relies on the box's rows: it leaves horizontal edges to them) */
     mc_raster_box box;
@@ -529,6 +532,7 @@ MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_r
     tri g;
     g.v = v;
     g.sarea = area;
+    g.offset = offset;
     g.x[0] = x0, g.y[0] = y0;
     if (area > 0) {   /* a back face: edge functions positive inside as given */
         if (flags & MC_RASTER_CULL_BACK) return 0;
@@ -543,15 +547,34 @@ MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_r
 
 uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags)
 {
-    return triangle(t, 0, v, color, flags);
+    return triangle(t, 0, v, color, flags, 0);
 }
 
 uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags)
+{
+    return mc_raster_triangle_hide_offset(s, v, flags, 0);
+}
+
+uint32_t mc_raster_triangle_hide_offset(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset)
 {
     mc_target t;   /* the frame's size, for the clipping the two share */
     /* the row pointers the drawing path steps are never read here; without colours they step
      * through the depth array's bytes, so that they always point into an array */
     t.color = s->color ? s->color : (uint8_t *)(void *)s->depth;
     t.depth = s->depth, t.width = s->width, t.height = s->height;
-    return triangle(&t, s, v, 0, flags);
+    return triangle(&t, s, v, 0, flags, offset);
+}
+
+uint64_t mc_raster_slope(const mc_raster_vertex v[3])
+{
+    const int64_t a = (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (int64_t)(v[2].x - v[0].x) * (v[1].y - v[0].y);
+    if (a == 0) return 0;
+    const int64_t z1 = (int64_t)v[1].z - v[0].z, z2 = (int64_t)v[2].z - v[0].z;
+    /* dz/dx, dz/dy per 1/16 pixel: numerators below 2^16 2^23 each, |a| below 2^47 */
+    const int64_t nx = z1 * (v[2].y - v[0].y) - z2 * (v[1].y - v[0].y);
+    const int64_t ny = (int64_t)(v[1].x - v[0].x) * z2 - (int64_t)(v[2].x - v[0].x) * z1;
+    const uint64_t gx = nx < 0 ? 0u - (uint64_t)nx : (uint64_t)nx, gy = ny < 0 ? 0u - (uint64_t)ny : (uint64_t)ny;
+    const uint64_t g = gx > gy ? gx : gy, da = a < 0 ? 0u - (uint64_t)a : (uint64_t)a;
+    uint64_t rem;
+    return udiv64(g << MC_RASTER_SUBPIXEL_BITS, da, &rem) + 1u;
 }

@@ -14,6 +14,7 @@
  *     off the target: the bounding-box tests that reject a triangle before any setup;
  *   - back-face culling by the sign rule; the depth test (strictly nearer wins, equal keeps);
  *   - coordinates at +-2^22 accepted, one beyond rejected; degenerate triangles draw nothing;
+ *   - mc_raster_slope (a pixel's worth of the steepest depth slope) against the gradient in doubles;
  *   - every target sits in a larger array whose margins must stay untouched (checked after
  *     every draw).
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
@@ -503,6 +504,37 @@ static void test_depth_test(void **state)
     gt_free(&s);
 }
 
+/* mc_raster_slope against the plane's gradient in doubles: floor(max(|dz/dx|, |dz/dy|)) + 1 per
+ * pixel, 0 for no area (exact but for a quotient within 1e-9 of an integer, not counted) */
+static void test_slope(void **state)
+{
+    (void)state;
+    mc_rng r;
+    mc_rng_seed(&r, 0x5107e, 4);
+    for (int i = 0; i < 300000; i++) {
+        mc_raster_vertex v[3];
+        const int32_t spread = i % 3 == 0 ? 40 : i % 3 == 1 ? 4000 : 1 << 21;
+        for (int k = 0; k < 3; k++) {
+            v[k].x = (int32_t)mc_rng_below(&r, 2u * (uint32_t)spread + 1u) - spread;
+            v[k].y = (int32_t)mc_rng_below(&r, 2u * (uint32_t)spread + 1u) - spread;
+            v[k].z = mc_rng_below(&r, MC_DEPTH_EMPTY - 1u);
+        }
+        if (i % 50 == 0) v[2].x = v[0].x + 2 * (v[1].x - v[0].x), v[2].y = v[0].y + 2 * (v[1].y - v[0].y);   /* no area */
+        const double a = (double)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (double)(v[2].x - v[0].x) * (v[1].y - v[0].y);
+        const uint64_t got = mc_raster_slope(v);
+        if (a == 0) {
+            assert_int_equal(got, 0);
+            continue;
+        }
+        const double z1 = (double)v[1].z - v[0].z, z2 = (double)v[2].z - v[0].z;
+        const double gx = fabs(z1 * (v[2].y - v[0].y) - z2 * (v[1].y - v[0].y)) * 16 / fabs(a);
+        const double gy = fabs((double)(v[1].x - v[0].x) * z2 - (double)(v[2].x - v[0].x) * z1) * 16 / fabs(a);
+        const double g = gx > gy ? gx : gy;
+        if (fabs(g - floor(g + 0.5)) < 1e-9 * (g + 1)) continue;
+        if ((double)got != floor(g) + 1) fail_msg("triangle %d: slope %llu, reference %.6f", i, (unsigned long long)got, g);
+    }
+}
+
 static void test_limits(void **state)
 {
     (void)state;
@@ -552,6 +584,7 @@ static void test_limits(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_slope),
         cmocka_unit_test(test_random_1x1),
         cmocka_unit_test(test_random_7x5),
         cmocka_unit_test(test_random_33x17),

@@ -7,10 +7,11 @@
  *   - mc_line_sdepth: random lines, on and off the frame, against mc_line drawn with no depth test
  *     into a target: the same pixels and count, each entry the line's depth there less the offset
  *     (saturating at 0), nearest kept where lines cross;
- *   - mc_raster_triangle_hide: random triangles (the rasterizer's own generator ranges: specks to
- *     triangles far beyond the frame, both orientations, culled or not) over random entries against
- *     mc_raster_triangle drawn into an empty target: an entry is emptied exactly where the triangle
- *     covers its pixel at a depth not greater than the entry's, and the count returned is those.
+ *   - mc_raster_triangle_hide and _offset: random triangles (the rasterizer's own generator ranges:
+ *     specks to triangles far beyond the frame, both orientations, culled or not, a third pushed back
+ *     by a random offset) over random entries against mc_raster_triangle drawn into an empty target:
+ *     an entry is emptied exactly where the triangle covers its pixel at a depth not greater than the
+ *     entry's less the offset, and the count returned is those.
  * Each of these runs its second half with matched bits kept (mc_sdepth_keep_matched): entries
  * inserted matched or not (mc_sdepth_insert_matched, mc_sdepth_insert), lines matched against random
  * edge images (mc_line_sdepth_matched: an entry matched where the image's code lies within the
@@ -340,13 +341,16 @@ static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
         const unsigned flags = mc_rng_below(&r, 2) ? MC_RASTER_CULL_BACK : 0;
         for (unsigned i = 0; i < w * h; i++) tc[i] = 0, td[i] = MC_DEPTH_EMPTY;
         mc_raster_triangle(&f.t, v, 1, flags);
+        /* a third of the faces pushed back by an offset (polygon offset) */
+        const uint32_t off = mc_rng_below(&r, 3) ? 0 : mc_rng_below(&r, 2) ? mc_rng_below(&r, 40) : mc_rng_below(&r, 70000);
         uint32_t want = 0;
         for (unsigned i = 0; i < w * h; i++)
-            if (tc[i] && f.in[i] && td[i] <= f.md[i]) {
+            if (tc[i] && f.in[i] && f.md[i] >= off && td[i] <= f.md[i] - off) {
                 model_remove(&f, i % w, i / w);
                 want++;
             }
-        const uint32_t got = mc_raster_triangle_hide(&f.s, v, flags);
+        const uint32_t got = off || mc_rng_below(&r, 2) ? mc_raster_triangle_hide_offset(&f.s, v, flags, off)
+                                                        : mc_raster_triangle_hide(&f.s, v, flags);
         if (got != want)
             fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) on %ux%u: %u emptied, want %u", v[0].x, v[0].y, v[0].z,
                      v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, w, h, got, want);

@@ -105,4 +105,13 @@ uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uin
  * box holds none costs its box. Returns the pixels emptied. */
 uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags);
 
+/* mc_raster_triangle_hide with the face pushed back by offset depth units (OpenGL's polygon offset):
+ * an entry of depth e is emptied where the triangle's depth there is at most e - offset (an entry
+ * nearer than offset is never emptied). For edges that lie on the faces that hide others. */
+uint32_t mc_raster_triangle_hide_offset(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset);
+
+/* One pixel's worth of the triangle's steepest depth slope: floor(max(|dz/dx|, |dz/dy|)) + 1 depth
+ * units per pixel (so at least 1), or 0 for a triangle of no area, which covers no pixel. */
+uint64_t mc_raster_slope(const mc_raster_vertex v[3]);
+
 #endif
