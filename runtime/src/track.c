@@ -1,0 +1,104 @@
+/* Edge-based tracking: see modelc/track.h. */
+#include "modelc/track.h"
+#include "modelc/imgedge.h"
+#include "modelc/line.h"
+#include "modelc/raster.h"
+
+/* Camera point of vertex v under pose. */
+static void camera_point(const mc_edges *m, const mc_pose *pose, uint32_t v, int32_t c[3])
+{
+    int32_t p[3];
+    mc_edges_position(m, v, p);
+    mc_pose_apply(pose, p, c);
+}
+
+/* The line from ends e (unflagged, 1/16 pixel) into the buffer; returns its pixels, or 0 with
+ * *drawn 0 when it has no orientation. */
+static uint32_t draw_line(const mc_track_view *view, const mc_xvertex e[2], uint32_t *drawn)
+{
+    const int32_t dx = e[1].x - e[0].x, dy = e[1].y - e[0].y;
+    *drawn = 0;
+    if (!dx && !dy) return 0;
+    const unsigned bin = mc_imgedge_bin(-dy, dx);   /* the normal: the image gradient across the edge */
+    mc_line_vertex a, b;
+    /* 1/16 pixel to the pixel that holds the point (pixel i spans [i, i + 1)) */
+    a.x = e[0].x >> MC_XFORM_SUBPIXEL_BITS, a.y = e[0].y >> MC_XFORM_SUBPIXEL_BITS, a.z = e[0].z;
+    b.x = e[1].x >> MC_XFORM_SUBPIXEL_BITS, b.y = e[1].y >> MC_XFORM_SUBPIXEL_BITS, b.z = e[1].z;
+    *drawn = 1;
+    return mc_line_sdepth_matched(view->sd, a, b, (uint8_t)(1u + bin), 0, view->edges, bin, view->tolerance);
+}
+
+/* One unflagged triangle's face pass, culled from behind when cull. */
+static void hide(mc_sdepth *sd, const mc_raster_vertex v[3], int cull)
+{
+    mc_raster_box b;
+    if (!mc_raster_centres(v, sd->width, sd->height, &b) ||
+        !mc_sdepth_any(sd, (uint32_t)b.i0, (uint32_t)b.i1, (uint32_t)b.j0, (uint32_t)b.j1))
+        return;
+    const uint64_t off = mc_raster_slope(v) + 2u;
+    mc_raster_triangle_hide_offset(sd, v, cull ? MC_RASTER_CULL_BACK : 0u, off > 0xFFFFu ? 0xFFFFu : (uint32_t)off);
+}
+
+static void as_raster(const mc_xvertex *x, mc_raster_vertex *r) { r->x = x->x, r->y = x->y, r->z = x->z; }
+
+int mc_track_score_pose(const mc_track_view *view, const mc_pose *pose, mc_track_score *score)
+{
+    if (!view || !pose || !score || !view->model || !view->cam || !view->sd || !view->edges || !view->cache)
+        return MC_ERR_ARG;
+    const mc_edges *m = view->model;
+    const mc_camera *cam = view->cam;
+    mc_sdepth *sd = view->sd;
+    if (!sd->matched || sd->width != cam->width || sd->height != cam->height) return MC_ERR_ARG;
+    mc_xvertex *cache = view->cache;
+    score->visible = score->matched = score->pixels = score->lines = 0;
+    mc_sdepth_clear(sd);
+    for (uint32_t v = 0; v < m->vertices; v++) {
+        int32_t c[3];
+        camera_point(m, pose, v, c);
+        mc_camera_project(cam, c, &cache[v]);
+    }
+    /* the lines first: their pixels become the buffer's entries */
+    for (uint32_t i = 0; i < m->lines; i++) {
+        uint32_t ends[2], drawn;
+        mc_edges_line(m, i, ends);
+        mc_xvertex e[2];
+        e[0] = cache[ends[0]], e[1] = cache[ends[1]];
+        const uint32_t flags = e[0].flags | e[1].flags;
+        if (flags & MC_XFORM_FAR_OUT) continue;
+        if (flags & MC_XFORM_NEAR) {
+            int32_t a[3], b[3];
+            camera_point(m, pose, ends[0], a);
+            camera_point(m, pose, ends[1], b);
+            if (!mc_camera_clip_segment(cam, a, b, e) || ((e[0].flags | e[1].flags) & MC_XFORM_FAR_OUT)) continue;
+        }
+        score->pixels += draw_line(view, e, &drawn);
+        score->lines += drawn;
+    }
+    /* then the faces empty the entries they hide */
+    for (uint32_t i = 0; i < m->faces; i++) {
+        uint32_t f[3];
+        mc_edges_face(m, i, f);
+        const uint32_t flags = cache[f[0]].flags | cache[f[1]].flags | cache[f[2]].flags;
+        if (flags & MC_XFORM_FAR_OUT) continue;
+        mc_raster_vertex v[3];
+        if (!(flags & MC_XFORM_NEAR)) {
+            for (int k = 0; k < 3; k++) as_raster(&cache[f[k]], &v[k]);
+            hide(sd, v, m->closed);
+            continue;
+        }
+        int32_t c[3][3];
+        mc_xvertex poly[4];
+        for (int k = 0; k < 3; k++) camera_point(m, pose, f[k], c[k]);
+        const unsigned n = mc_camera_clip_triangle(cam, (const int32_t(*)[3])c, poly);
+        uint32_t pf = 0;
+        for (unsigned k = 0; k < n; k++) pf |= poly[k].flags;
+        if (pf & MC_XFORM_FAR_OUT) continue;
+        for (unsigned k = 1; k + 1 < n; k++) {
+            as_raster(&poly[0], &v[0]), as_raster(&poly[k], &v[1]), as_raster(&poly[k + 1], &v[2]);
+            hide(sd, v, m->closed);
+        }
+    }
+    score->visible = mc_sdepth_count(sd);
+    score->matched = mc_sdepth_count_matched(sd);
+    return MC_OK;
+}
