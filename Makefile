@@ -10,6 +10,7 @@
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
 #   make bench-mesh              filled triangles and line drawings against Mesa llvmpipe on one thread
 #   make bench-silhouette        silhouette search: recall against work, against the exact scan
+#   make bench-track             the tracker's particle filter: time and error on a synthetic cube sequence
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
@@ -181,6 +182,12 @@ bench-mesh: $(MODELC) models
 .PHONY: bench-silhouette
 bench-silhouette: $(MODELC) models
 	@tests/bench/silhouette.sh
+
+# the tracker's particle filter on a synthetic cube sequence: ms and instructions per frame and per
+# pose, pose errors, as the particle count and frame size vary (a RESULTS.md section; make bench runs it too)
+.PHONY: bench-track
+bench-track:
+	@tests/bench/track.sh
 
 # the automatic level of detail holding frame-time targets (a RESULTS.md section; make bench runs it too)
 .PHONY: bench-lod-auto

@@ -36,7 +36,7 @@ static uint64_t isqrt64(uint64_t v)
 /* n / d rounded to nearest, halves away from zero, d > 0 */
 static int64_t div_round(int64_t n, int64_t d) { return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d); }
 
-int mc_pose_set(mc_pose *pose, const int32_t q[4], const int32_t t[3])
+int mc_quat_unit(const int32_t q[4], int32_t out[4])
 {
     /* the quaternion scaled by a power of two until its largest component lies in [2^29, 2^30), then
      * made unit length in Q30: 2^58 <= n^2 < 2^62, so the integer square root is good to 2^-29 */
@@ -58,8 +58,15 @@ int mc_pose_set(mc_pose *pose, const int32_t q[4], const int32_t t[3])
     }
     int64_t n = (int64_t)isqrt64(n2);
     if (n2 - (uint64_t)(n * n) > (uint64_t)n) n++;   /* to nearest: n^2 + n is the midpoint's floor */
-    for (int i = 0; i < 4; i++) v[i] = div_round(v[i] * ((int64_t)1 << 30), n);
-    const int64_t w = v[0], x = v[1], y = v[2], z = v[3];
+    for (int i = 0; i < 4; i++) out[i] = (int32_t)div_round(v[i] * ((int64_t)1 << 30), n);
+    return MC_OK;
+}
+
+int mc_pose_set(mc_pose *pose, const int32_t q[4], const int32_t t[3])
+{
+    int32_t u[4];
+    if (mc_quat_unit(q, u) != MC_OK) return MC_ERR_ARG;
+    const int64_t w = u[0], x = u[1], y = u[2], z = u[3];
     /* R = I + 2 [.]: each product of two Q30 components is below 2^61; sums of two, halved into Q30 */
 #define Q30(e) ((int32_t)div_round((e), (int64_t)1 << 29))
     pose->r[0][0] = (int32_t)((int64_t)1 << 30) - Q30(y * y + z * z);

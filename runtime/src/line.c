@@ -6,7 +6,6 @@
  * reaches 2D (2M <= 2D, so never more). The depth is the same walk with 2|dz| for 2M.
  */
 #include "modelc/line.h"
-#include "modelc/imgedge.h"   /* mc_imgedge_dirs_match */
 
 /* MC_LINE_STEP_HOOK(): called once per iteration of every loop here; tests count with it that the
  * work follows the pixels on the target. Empty by default. */
@@ -179,7 +178,7 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
 /* The walk into a sparse depth buffer; with edges (a constant where called: null or not) each
  * entry's matched bit from the edge image. */
 MC_ALWAYS_INLINE uint32_t sdepth_walk(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color,
-                                      uint16_t depth_offset, const uint8_t *edges, unsigned bin, unsigned tolerance)
+                                      uint16_t depth_offset, const uint8_t *masks, uint8_t want)
 {
     walk k;
     if (!walk_init(s->width, s->height, a, b, &k)) return 0;
@@ -188,9 +187,8 @@ MC_ALWAYS_INLINE uint32_t sdepth_walk(mc_sdepth *s, mc_line_vertex a, mc_line_ve
     for (uint32_t n = k.count;;) {
         MC_LINE_STEP_HOOK();
         const uint32_t zt = (uint32_t)z > depth_offset ? (uint32_t)z - depth_offset : 0;
-        if (edges) {
-            const unsigned e = edges[y * s->width + x];
-            mc_sdepth_insert_matched(s, x, y, (uint16_t)zt, color, e && mc_imgedge_dirs_match(e - 1u, bin, tolerance));
+        if (masks) {
+            mc_sdepth_insert_matched(s, x, y, (uint16_t)zt, color, masks[y * s->width + x] & want);
         } else {
             mc_sdepth_insert(s, x, y, (uint16_t)zt, color);
         }
@@ -213,12 +211,12 @@ MC_ALWAYS_INLINE uint32_t sdepth_walk(mc_sdepth *s, mc_line_vertex a, mc_line_ve
 
 uint32_t mc_line_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset)
 {
-    return sdepth_walk(s, a, b, color, depth_offset, 0, 0, 0);
+    return sdepth_walk(s, a, b, color, depth_offset, 0, 0);
 }
 
 uint32_t mc_line_sdepth_matched(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color,
-                                uint16_t depth_offset, const uint8_t *edges, unsigned bin, unsigned tolerance)
+                                uint16_t depth_offset, const uint8_t *masks, uint8_t want)
 {
     if (!s->matched) return 0;
-    return sdepth_walk(s, a, b, color, depth_offset, edges, bin, tolerance);
+    return sdepth_walk(s, a, b, color, depth_offset, masks, want);
 }

@@ -458,6 +458,7 @@ MC_ALWAYS_INLINE uint32_t rows_path(const mc_target *t, mc_sdepth *sd, tri *g, i
      * 2^(16 + FRAC + 1)), since only additions and multiplications lead to it. */
     uint64_t gx = 0, gy = 0, row = 0;
     int have_plane = 0;
+    int32_t fi = 0, fj = -1;   /* the first covered centre (fj < 0: none yet) */
 
     uint32_t count = 0;
     const uint32_t width = t->width;
@@ -475,18 +476,22 @@ MC_ALWAYS_INLINE uint32_t rows_path(const mc_target *t, mc_sdepth *sd, tri *g, i
         }
         if (lo <= hi) {
             const uint32_t first = (uint32_t)lo, last = (uint32_t)hi;
-            if (!have_plane) {
-                row = plane_first(g, (int32_t)first, j);
-                gx = plane_step(g, g->pa);
-                gy = plane_step(g, g->pb);
-                row -= first * gx;
-                have_plane = 1;
-            }
-            if (sd) {
-                count += hide_span(g, sd, (uint32_t)j, first, last, row + first * gx, gx);
-            } else {
-                span(g, crow, drow, first, last, row + first * gx, gx, color);
-                count += last - first + 1u;
+            if (fj < 0) fi = (int32_t)first, fj = j;   /* the plane's anchor, as a drawn triangle's */
+            /* the face pass sets the plane up only for a row with a pixel in use under the span */
+            if (!sd || mc_sdepth_any(sd, first, last, (uint32_t)j, (uint32_t)j)) {
+                if (!have_plane) {
+                    const uint64_t base = plane_first(g, fi, fj);
+                    gx = plane_step(g, g->pa);
+                    gy = plane_step(g, g->pb);
+                    row = base - (uint64_t)(uint32_t)fi * gx + (uint64_t)(int64_t)(j - fj) * gy;
+                    have_plane = 1;
+                }
+                if (sd) {
+                    count += hide_span(g, sd, (uint32_t)j, first, last, row + first * gx, gx);
+                } else {
+                    span(g, crow, drow, first, last, row + first * gx, gx, color);
+                    count += last - first + 1u;
+                }
             }
         }
         row += gy;

@@ -11,6 +11,7 @@ int mc_sdepth_init(mc_sdepth *s, uint16_t width, uint16_t height, uint32_t *bits
     s->blocks = (uint16_t)MC_SDEPTH_BLOCKS(width), s->row_words = (uint16_t)MC_SDEPTH_ROW_WORDS(width);
     s->used = bits, s->rows = bits + (uint32_t)height * s->blocks;
     s->matched = 0;
+    s->in_use = s->in_use_matched = 0;
     s->empty_depth = empty_depth, s->empty_color = empty_color;
     const uint32_t n = (uint32_t)width * height, words = MC_SDEPTH_WORDS(width, height);
     for (uint32_t i = 0; i < words; i++) bits[i] = 0;
@@ -23,6 +24,7 @@ int mc_sdepth_init(mc_sdepth *s, uint16_t width, uint16_t height, uint32_t *bits
 void mc_sdepth_keep_matched(mc_sdepth *s, uint32_t *matched)
 {
     s->matched = matched;
+    s->in_use_matched = 0;
     if (matched)
         for (uint32_t w = 0; w < (uint32_t)s->height * s->blocks; w++) matched[w] = 0;
 }
@@ -45,28 +47,18 @@ void mc_sdepth_clear(mc_sdepth *s)
             rw[k] = 0;
         }
     }
-}
-
-/* The bits set in n words of v */
-static uint32_t popcount_words(const uint32_t *v, uint32_t n)
-{
-    uint32_t c = 0;
-    for (uint32_t w = 0; w < n; w++) c += mc_popcount32(v[w]);
-    return c;
-}
-
-uint32_t mc_sdepth_count(const mc_sdepth *s) { return popcount_words(s->used, (uint32_t)s->height * s->blocks); }
-
-uint32_t mc_sdepth_count_matched(const mc_sdepth *s)
-{
-    return s->matched ? popcount_words(s->matched, (uint32_t)s->height * s->blocks) : 0;
+    s->in_use = s->in_use_matched = 0;
 }
 
 void mc_sdepth_remove(mc_sdepth *s, uint32_t x, uint32_t y)
 {
-    const uint32_t w = y * s->blocks + (x >> 5), i = y * s->width + x;
-    s->used[w] &= ~(0x80000000u >> (x & 31u));
-    if (s->matched) s->matched[w] &= ~(0x80000000u >> (x & 31u));
+    const uint32_t w = y * s->blocks + (x >> 5), i = y * s->width + x, bit = 0x80000000u >> (x & 31u);
+    if (s->used[w] & bit) {
+        s->in_use--;
+        if (s->matched && (s->matched[w] & bit)) s->in_use_matched--;
+    }
+    s->used[w] &= ~bit;
+    if (s->matched) s->matched[w] &= ~bit;
     if (!s->used[w]) s->rows[y * s->row_words + (x >> 10)] &= ~(0x80000000u >> ((x >> 5) & 31u));
     s->depth[i] = s->empty_depth;
     if (s->color) s->color[i] = s->empty_color;

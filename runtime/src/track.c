@@ -25,7 +25,8 @@ static uint32_t draw_line(const mc_track_view *view, const mc_xvertex e[2], uint
     a.x = e[0].x >> MC_XFORM_SUBPIXEL_BITS, a.y = e[0].y >> MC_XFORM_SUBPIXEL_BITS, a.z = e[0].z;
     b.x = e[1].x >> MC_XFORM_SUBPIXEL_BITS, b.y = e[1].y >> MC_XFORM_SUBPIXEL_BITS, b.z = e[1].z;
     *drawn = 1;
-    return mc_line_sdepth_matched(view->sd, a, b, (uint8_t)(1u + bin), 0, view->edges, bin, view->tolerance);
+    return mc_line_sdepth_matched(view->sd, a, b, (uint8_t)(1u + bin), 0, view->masks,
+                                  mc_imgedge_bin_mask(bin, view->tolerance));
 }
 
 /* One unflagged triangle's face pass, culled from behind when cull. */
@@ -43,7 +44,7 @@ static void as_raster(const mc_xvertex *x, mc_raster_vertex *r) { r->x = x->x, r
 
 int mc_track_score_pose(const mc_track_view *view, const mc_pose *pose, mc_track_score *score)
 {
-    if (!view || !pose || !score || !view->model || !view->cam || !view->sd || !view->edges || !view->cache)
+    if (!view || !pose || !score || !view->model || !view->cam || !view->sd || !view->masks || !view->cache)
         return MC_ERR_ARG;
     const mc_edges *m = view->model;
     const mc_camera *cam = view->cam;

@@ -230,6 +230,8 @@ step "filled triangles and line drawings against Mesa's llvmpipe: section append
 tests/bench/mesh.sh tests/bench/RESULTS.md >"$RES/mesh.log"
 step "silhouettes, searched against the exact scan: section appended"
 tests/bench/silhouette.sh tests/bench/RESULTS.md >"$RES/silhouette.log"
+step "the tracker's particle filter on a synthetic cube sequence: section appended"
+tests/bench/track.sh tests/bench/RESULTS.md >"$RES/track.log"
 step "level of detail, run time against error: section appended"
 tests/bench/lod_error.sh tests/bench/RESULTS.md >"$RES/lod_error.log"
 step "the automatic level of detail against frame-time targets: section appended"

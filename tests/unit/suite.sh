@@ -4,7 +4,8 @@
 # line and face passes (sdepth), and against their double-precision references image edges
 # (imgedge), the pinhole camera and pose (camera), filled triangles (raster), vertex projection
 # (xform) and clipping at the near plane and the guard band (clip); the tracker's pose score
-# against a dense z-buffer (track); view clamping,
+# against a dense z-buffer (track) and its particle filter on a synthetic cube sequence (particles);
+# view clamping,
 # mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
@@ -155,6 +156,7 @@ build_and_run "unit: sdepth: " test_sdepth
 build_and_run "unit: imgedge: " test_imgedge runtime/ref/imgedge_ref.c
 build_and_run "unit: camera: " test_camera runtime/ref/camera_ref.c
 build_and_run "unit: track: " test_track
+build_and_run "unit: particles: " test_particles
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to

@@ -8,6 +8,8 @@
  *   - a flat frame and frames under 3 pixels wide or high have no edges (and out is cleared);
  *     thresholds below 1 act as 1, above the largest magnitude leave nothing;
  *   - mc_imgedge_bin of directions of every length up to the int32 limit against atan2;
+ *   - mc_imgedge_masks (codes spread to bin masks over a square of radius 0 .. 3) against a brute-force
+ *     search on random code images 1x1 to 40x30; mc_imgedge_bin_mask against mc_imgedge_dirs_match;
  *   - mc_imgedge_dirs_match against the distance around the half circle, every pair and tolerance.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
  */
@@ -182,6 +184,36 @@ static void test_bin(void **state)
     assert_true(near < 1000);
 }
 
+/* mc_imgedge_masks against a brute-force square of each radius; mc_imgedge_bin_mask against
+ * mc_imgedge_dirs_match */
+static void test_masks(void **state)
+{
+    (void)state;
+    mc_rng r;
+    mc_rng_seed(&r, 0x3a5c, 4);
+    for (int iter = 0; iter < 3000; iter++) {
+        const unsigned w = 1 + below(&r, 40), h = 1 + below(&r, 30), radius = below(&r, 4);
+        uint8_t *codes = malloc(w * h), *m = malloc(w * h), *scratch = malloc(MC_IMGEDGE_MASK_SCRATCH(w, radius));
+        const unsigned density = 1 + below(&r, 20);
+        for (unsigned i = 0; i < w * h; i++) codes[i] = below(&r, density) ? 0 : (uint8_t)(1 + below(&r, 8)), m[i] = codes[i];
+        mc_imgedge_masks(m, (uint16_t)w, (uint16_t)h, radius, scratch);
+        for (unsigned y = 0; y < h; y++)
+            for (unsigned x = 0; x < w; x++) {
+                unsigned want = 0;
+                for (unsigned yy = 0; yy < h; yy++)
+                    for (unsigned xx = 0; xx < w; xx++)
+                        if (codes[yy * w + xx] && abs((int)xx - (int)x) <= (int)radius && abs((int)yy - (int)y) <= (int)radius)
+                            want |= 1u << (codes[yy * w + xx] - 1u);
+                if (m[y * w + x] != want) fail_msg("iter %d (%ux%u radius %u): pixel %u,%u mask %02x, want %02x", iter, w, h, radius, x, y, m[y * w + x], want);
+            }
+        free(codes), free(m), free(scratch);
+    }
+    for (unsigned bin = 0; bin < MC_IMGEDGE_DIRS; bin++)
+        for (unsigned t = 0; t <= MC_IMGEDGE_DIRS; t++)
+            for (unsigned b = 0; b < MC_IMGEDGE_DIRS; b++)
+                assert_int_equal((mc_imgedge_bin_mask(bin, t) >> b) & 1u, mc_imgedge_dirs_match(b, bin, t));
+}
+
 static void test_dirs_match(void **state)
 {
     (void)state;
@@ -201,6 +233,7 @@ int main(void)
         cmocka_unit_test(test_steps),
         cmocka_unit_test(test_flat_and_small),
         cmocka_unit_test(test_bin),
+        cmocka_unit_test(test_masks),
         cmocka_unit_test(test_dirs_match),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -14,8 +14,8 @@
  *     entry's less the offset, and the count returned is those.
  * Each of these runs its second half with matched bits kept (mc_sdepth_keep_matched): entries
  * inserted matched or not (mc_sdepth_insert_matched, mc_sdepth_insert), lines matched against random
- * edge images (mc_line_sdepth_matched: an entry matched where the image's code lies within the
- * tolerance of the line's bin), every pixel's matched bit that of its kept entry, cleared with it,
+ * edge masks (mc_line_sdepth_matched: an entry matched where the mask there shares a bin with the
+ * line's), every pixel's matched bit that of its kept entry, cleared with it,
  * and mc_sdepth_count_matched equal to the model's count.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
  */
@@ -28,7 +28,6 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include <modelc/imgedge.h>
 #include <modelc/line.h>
 #include <modelc/raster.h>
 #include <modelc/rng.h>
@@ -252,7 +251,7 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
     assert_non_null(edges);
     /* without matched bits kept, the matching walk draws nothing */
     mc_line_vertex a0 = {0, 0, 0}, b0 = {(int32_t)w - 1, (int32_t)h - 1, 0};
-    assert_int_equal(mc_line_sdepth_matched(&f.s, a0, b0, 1, 0, edges, 0, 0), 0);
+    assert_int_equal(mc_line_sdepth_matched(&f.s, a0, b0, 1, 0, edges, 0xFF), 0);
     for (int n = 0; n < count; n++) {
         mc_line_vertex a, b;
         a.x = rnd_coord(&r, w), a.y = rnd_coord(&r, h), b.x = rnd_coord(&r, w), b.y = rnd_coord(&r, h);
@@ -269,10 +268,10 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
          * of random codes (0: none, else 1 + bin) at a random bin and tolerance */
         if (n == count / 2) frame_keep_matched(&f);
         const int matching = f.s.matched && mc_rng_below(&r, 4);
-        const unsigned bin = mc_rng_below(&r, MC_IMGEDGE_DIRS), tol = mc_rng_below(&r, 3);
+        const uint8_t want_bins = (uint8_t)mc_rng_below(&r, 256);
         if (matching)
-            for (unsigned i = 0; i < w * h; i++) edges[i] = (uint8_t)(mc_rng_below(&r, 2) ? 0 : 1 + mc_rng_below(&r, 8));
-        const uint32_t got = matching ? mc_line_sdepth_matched(&f.s, a, b, c, off, edges, bin, tol)
+            for (unsigned i = 0; i < w * h; i++) edges[i] = (uint8_t)(mc_rng_below(&r, 2) ? 0 : mc_rng_below(&r, 256));
+        const uint32_t got = matching ? mc_line_sdepth_matched(&f.s, a, b, c, off, edges, want_bins)
                                       : mc_line_sdepth(&f.s, a, b, c, off);
         if (got != want) fail_msg("line (%d,%d)-(%d,%d) on %ux%u: %u pixels, mc_line %u", a.x, a.y, b.x, b.y, w, h, got, want);
         uint32_t drawn = 0;
@@ -280,7 +279,7 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
             if (tc[i] != 255) {
                 drawn++;
                 const uint16_t zt = (uint16_t)(td[i] > off ? td[i] - off : 0);
-                const int m = matching && edges[i] && mc_imgedge_dirs_match(edges[i] - 1u, bin, tol);
+                const int m = matching && (edges[i] & want_bins);
                 model_insert_matched(&f, i % w, i / w, zt, c, m);
             }
         assert_int_equal(drawn, want);

@@ -6,7 +6,7 @@
  *   - the 84 mm cube of ViSP's mbt/cube sequence (closed: back faces culled), its 12 edges plus
  *     shapes drawn on its sides as the paper's cube has, and
  *   - random triangle soups (open: faces drawn both ways) with lines on and off their faces,
- * against edge images of random codes and of the model's own lines, at 320x180 (the paper's) and
+ * against edge masks of random bins and of the model's own lines, at 320x180 (the paper's) and
  * small frames: visible, matched, pixels and lines equal the brute force's exactly. The model's
  * arrays are chunked both in one chunk and in chunks of two records.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
@@ -200,7 +200,7 @@ static mc_track_score brute(frame *f, const model *m, const mc_pose *pose, unsig
             const uint16_t z = f->t.depth[p];
             if (f->in[p] && z >= f->ld[p]) continue;
             f->in[p] = 1, f->ld[p] = z;
-            f->lm[p] = f->edges[p] && mc_imgedge_dirs_match(f->edges[p] - 1u, bin, tol);
+            f->lm[p] = (f->edges[p] & mc_imgedge_bin_mask(bin, tol)) != 0;
         }
     }
     for (uint32_t i = 0; i < m->nf; i++) {
@@ -266,12 +266,13 @@ static void run(unsigned w, unsigned h, int poses, uint64_t seed)
         const unsigned tol = mc_rng_below(&r, 3);
         /* the frame's edges: random codes, or the model's own lines at this pose (then matched) */
         const int own = mc_rng_below(&r, 2);
-        for (unsigned p = 0; p < w * h; p++) f.edges[p] = (uint8_t)(mc_rng_below(&r, 3) ? 0 : 1 + mc_rng_below(&r, 8));
+        for (unsigned p = 0; p < w * h; p++) f.edges[p] = (uint8_t)(mc_rng_below(&r, 3) ? 0 : 1u << mc_rng_below(&r, 8));
         mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, (uint8_t)tol};
         mc_track_score got;
         if (own) {
             assert_int_equal(mc_track_score_pose(&view, &pose, &got), MC_OK);
-            for (unsigned p = 0; p < w * h; p++) f.edges[p] = mc_sdepth_in_use(&f.sd, p % w, p / w) ? f.color[p] : f.edges[p];
+            for (unsigned p = 0; p < w * h; p++)
+                f.edges[p] = mc_sdepth_in_use(&f.sd, p % w, p / w) ? (uint8_t)(1u << (f.color[p] - 1u)) : f.edges[p];
         }
         assert_int_equal(mc_track_score_pose(&view, &pose, &got), MC_OK);
         const mc_track_score want = brute(&f, m, &pose, tol);

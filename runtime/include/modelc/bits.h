@@ -1,7 +1,8 @@
 /* Bit helpers: population count, lowest set bit, leading zeros.
  *
  * Promise: every function gives the same result on every compiler and architecture. Where the
- * compiler has a builtin (GCC, Clang) it is used, else portable C99 does the same work. The
+ * compiler has a builtin (GCC, Clang) it is used (for the population count, only where the target
+ * has the instruction), else portable C99 does the same work. The
  * functions are forced inline (MC_ALWAYS_INLINE), so a hot loop that calls them compiles as if it
  * had written the operation itself. Header only, freestanding.
  *
@@ -46,7 +47,9 @@ static const uint8_t mc_popcount8_table[256] = {
 
 MC_ALWAYS_INLINE unsigned mc_popcount32(uint32_t v)
 {
-#if MC_BITS_BUILTINS
+    /* the builtin only where it is one instruction: elsewhere (x86-64 without -mpopcnt, every
+     * Cortex-M) it is a call into the compiler's library, slower than the arithmetic below */
+#if MC_BITS_BUILTINS && defined(__POPCNT__)
     return (unsigned)__builtin_popcountl((unsigned long)v);
 #else
     v = v - ((v >> 1) & 0x55555555u);

@@ -49,6 +49,10 @@ typedef struct mc_pose {
 int mc_camera_init(mc_camera *c, int32_t px, int32_t py, int32_t u0, int32_t v0, uint16_t width, uint16_t height,
                    int32_t near, int32_t far);
 
+/* q made unit length in Q30 (each component within about 1 unit of the exact one): out may be q.
+ * Returns MC_OK, or MC_ERR_ARG for q = 0. */
+int mc_quat_unit(const int32_t q[4], int32_t out[4]);
+
 /* The pose of rotation q (w, x, y, z; Q30; normalized here, so any non-zero quaternion will do) and
  * translation t (um). Returns MC_OK, or MC_ERR_ARG for q = 0. */
 int mc_pose_set(mc_pose *pose, const int32_t q[4], const int32_t t[3]);

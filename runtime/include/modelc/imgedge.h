@@ -58,4 +58,22 @@ static inline int mc_imgedge_dirs_match(unsigned a, unsigned b, unsigned toleran
     return d <= tolerance || MC_IMGEDGE_DIRS - d <= tolerance;
 }
 
+/* The bins within tolerance of bin, as a mask (bit b for bin b): what a line of that bin matches. */
+static inline uint8_t mc_imgedge_bin_mask(unsigned bin, unsigned tolerance)
+{
+    unsigned m = 0;
+    for (unsigned b = 0; b < MC_IMGEDGE_DIRS; b++) m |= (unsigned)mc_imgedge_dirs_match(b, bin, tolerance) << b;
+    return (uint8_t)m;
+}
+
+/* Bytes of scratch mc_imgedge_masks needs. */
+#define MC_IMGEDGE_MASK_SCRATCH(w, radius) (((uint32_t)(radius) + 1u) * (uint32_t)(w))
+
+/* Turns mc_imgedge's codes into masks, in place: pixel p's mask has bit b set when an edge pixel of
+ * bin b lies within radius pixels of p along both axes (a square of side 2 radius + 1, cut by the
+ * frame), so that a tracker's line pixel matches an image edge up to radius pixels away. Two passes
+ * of bitwise ORs (across, then down) with MC_IMGEDGE_MASK_SCRATCH bytes of scratch; work about
+ * 2 w h (2 radius + 1). radius 0 only turns codes into masks. */
+void mc_imgedge_masks(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch);
+
 #endif

@@ -50,6 +50,8 @@ typedef struct mc_sdepth {
     uint16_t blocks, row_words;
     uint16_t empty_depth;   /* what a pixel not in use holds */
     uint8_t empty_color;
+    uint32_t in_use;        /* pixels in use, kept as they change */
+    uint32_t in_use_matched;   /* of those, matched (0 when no matched bits are kept) */
 } mc_sdepth;
 
 /* Sets s up for a width x height frame over the caller's arrays (bits: MC_SDEPTH_WORDS(width,
@@ -66,11 +68,11 @@ void mc_sdepth_keep_matched(mc_sdepth *s, uint32_t *matched);
 /* Empties the pixels in use, and only those. */
 void mc_sdepth_clear(mc_sdepth *s);
 
-/* Pixels in use. */
-uint32_t mc_sdepth_count(const mc_sdepth *s);
+/* Pixels in use (kept as entries come and go: no work). */
+static inline uint32_t mc_sdepth_count(const mc_sdepth *s) { return s->in_use; }
 
 /* Pixels in use whose entry matched (0 when no matched bits are kept). */
-uint32_t mc_sdepth_count_matched(const mc_sdepth *s);
+static inline uint32_t mc_sdepth_count_matched(const mc_sdepth *s) { return s->in_use_matched; }
 
 /* Whether any pixel of columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1, j0 <= j1) is in
  * use. Inline: a face pass asks it of every face whose box holds a pixel centre. */
@@ -106,10 +108,15 @@ MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_
     } else {
         s->used[w] |= bit;
         s->rows[y * s->row_words + (x >> 10)] |= 0x80000000u >> ((x >> 5) & 31u);
+        s->in_use++;
     }
     s->depth[i] = z;
     if (s->color) s->color[i] = c;
-    if (track) s->matched[w] = m ? s->matched[w] | bit : s->matched[w] & ~bit;
+    if (track) {
+        const uint32_t was = s->matched[w] & bit;
+        s->matched[w] = m ? s->matched[w] | bit : s->matched[w] & ~bit;
+        s->in_use_matched += (uint32_t)(m != 0) - (uint32_t)(was != 0);
+    }
     return 1;
 }
 

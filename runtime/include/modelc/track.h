@@ -11,8 +11,9 @@
  *   - its orientation bin is mc_imgedge_bin of its normal on the screen (from its ends in 1/16
  *     pixel); a line whose ends land on the same 1/16-pixel point has none and is left out;
  *   - its pixels (line.h: the Bresenham line between the pixels holding its ends, with their depths)
- *     go into the buffer with mc_line_sdepth_matched, colour 1 + bin, matched where the frame has an
- *     edge within the view's tolerance of that bin; of several entries at a pixel the nearest stays;
+ *     go into the buffer with mc_line_sdepth_matched, colour 1 + bin, matched where the frame's mask
+ *     has a bin within the view's tolerance of that bin (an image edge of such an orientation within
+ *     the masks' radius); of several entries at a pixel the nearest stays;
  * then each face: left out with a corner beyond the band; cut at the near plane where it must be
  * (mc_camera_clip_triangle, then a fan); each triangle culled when seen from behind if the model is
  * closed, else drawn both ways, pushed back by its one-pixel depth slope plus 2 (mc_raster_slope:
@@ -39,7 +40,7 @@ typedef struct mc_track_view {
     const mc_edges *model;
     const mc_camera *cam;
     mc_sdepth *sd;              /* cam's width x height, keeping matched bits (sdepth.h) */
-    const uint8_t *edges;       /* the frame's edge codes (imgedge.h), width x height */
+    const uint8_t *masks;       /* the frame's edge masks (imgedge.h mc_imgedge_masks), width x height */
     mc_xvertex *cache;          /* model->vertices entries: the projected vertices */
     uint8_t tolerance;          /* orientation bins a match may be off by */
 } mc_track_view;
