@@ -43,11 +43,11 @@ inline constexpr ModuleCode kModules[] = {
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 996, 996, "progressive-mesh level of detail and neighbours (pmesh.c)"},
     {"xform_vertex", 3896, 3896, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
-    {"raster", 6176, 6176, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
-    {"line", 2580, 2580, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
-    {"sdepth", 516, 516, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
+    {"raster", 6992, 6992, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
+    {"line", 2712, 2712, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
+    {"sdepth", 664, 664, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 2540, 2540, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 6616, 6616, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"mesh_lines", 6384, 6384, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 inline constexpr size_t kLibgccDivision = 960;

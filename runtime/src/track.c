@@ -3,6 +3,25 @@
 #include "modelc/imgedge.h"
 #include "modelc/line.h"
 #include "modelc/raster.h"
+#include "line_walk.h"
+
+uint32_t mc_track_line(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset,
+                       const uint8_t *masks, uint8_t want)
+{
+    if (!s->matched) return 0;
+    walk k;
+    if (!walk_init(s->width, s->height, a, b, &k)) return 0;
+    uint32_t r = k.r, zr = k.zr, x = (uint32_t)k.x, y = (uint32_t)k.y;
+    int32_t z = k.z;
+    for (uint32_t n = k.count;;) {
+        MC_LINE_STEP_HOOK();
+        const uint32_t zt = (uint32_t)z > depth_offset ? (uint32_t)z - depth_offset : 0;
+        mc_sdepth_insert_matched(s, x, y, (uint16_t)zt, color, masks[y * s->width + x] & want);
+        if (--n == 0) break;
+        MC_LINE_WALK_STEP(k, x, y, z, r, zr);
+    }
+    return k.count;
+}
 
 /* Camera point of vertex v under pose. */
 static void camera_point(const mc_edges *m, const mc_pose *pose, uint32_t v, int32_t c[3])
@@ -25,8 +44,7 @@ static uint32_t draw_line(const mc_track_view *view, const mc_xvertex e[2], uint
     a.x = e[0].x >> MC_XFORM_SUBPIXEL_BITS, a.y = e[0].y >> MC_XFORM_SUBPIXEL_BITS, a.z = e[0].z;
     b.x = e[1].x >> MC_XFORM_SUBPIXEL_BITS, b.y = e[1].y >> MC_XFORM_SUBPIXEL_BITS, b.z = e[1].z;
     *drawn = 1;
-    return mc_line_sdepth_matched(view->sd, a, b, (uint8_t)(1u + bin), 0, view->masks,
-                                  mc_imgedge_bin_mask(bin, view->tolerance));
+    return mc_track_line(view->sd, a, b, (uint8_t)(1u + bin), 0, view->masks, mc_imgedge_bin_mask(bin, view->tolerance));
 }
 
 /* One unflagged triangle's face pass, culled from behind when cull. */

@@ -14,7 +14,7 @@
  *     entry's less the offset, and the count returned is those.
  * Each of these runs its second half with matched bits kept (mc_sdepth_keep_matched): entries
  * inserted matched or not (mc_sdepth_insert_matched, mc_sdepth_insert), lines matched against random
- * edge masks (mc_line_sdepth_matched: an entry matched where the mask there shares a bin with the
+ * edge masks (mc_track_line: an entry matched where the mask there shares a bin with the
  * line's), every pixel's matched bit that of its kept entry, cleared with it,
  * and mc_sdepth_count_matched equal to the model's count.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
@@ -32,6 +32,7 @@
 #include <modelc/raster.h>
 #include <modelc/rng.h>
 #include <modelc/sdepth.h>
+#include <modelc/track.h>
 
 #define EMPTY_D 0xFFFEu
 #define EMPTY_C 200u
@@ -251,7 +252,7 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
     assert_non_null(edges);
     /* without matched bits kept, the matching walk draws nothing */
     mc_line_vertex a0 = {0, 0, 0}, b0 = {(int32_t)w - 1, (int32_t)h - 1, 0};
-    assert_int_equal(mc_line_sdepth_matched(&f.s, a0, b0, 1, 0, edges, 0xFF), 0);
+    assert_int_equal(mc_track_line(&f.s, a0, b0, 1, 0, edges, 0xFF), 0);
     for (int n = 0; n < count; n++) {
         mc_line_vertex a, b;
         a.x = rnd_coord(&r, w), a.y = rnd_coord(&r, h), b.x = rnd_coord(&r, w), b.y = rnd_coord(&r, h);
@@ -271,7 +272,7 @@ static void lines_on(unsigned w, unsigned h, int count, uint64_t seed)
         const uint8_t want_bins = (uint8_t)mc_rng_below(&r, 256);
         if (matching)
             for (unsigned i = 0; i < w * h; i++) edges[i] = (uint8_t)(mc_rng_below(&r, 2) ? 0 : mc_rng_below(&r, 256));
-        const uint32_t got = matching ? mc_line_sdepth_matched(&f.s, a, b, c, off, edges, want_bins)
+        const uint32_t got = matching ? mc_track_line(&f.s, a, b, c, off, edges, want_bins)
                                       : mc_line_sdepth(&f.s, a, b, c, off);
         if (got != want) fail_msg("line (%d,%d)-(%d,%d) on %ux%u: %u pixels, mc_line %u", a.x, a.y, b.x, b.y, w, h, got, want);
         uint32_t drawn = 0;

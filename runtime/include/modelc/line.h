@@ -71,11 +71,5 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
  * drawn first. Returns the line's pixels on the frame. */
 uint32_t mc_line_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset);
 
-/* mc_line_sdepth for a tracker, into a buffer that keeps matched bits (nothing, 0, otherwise): each
- * pixel's entry matched when masks (imgedge.h mc_imgedge_masks, for the same frame) has a bit of
- * want set there: an image edge near it of an orientation the line accepts (want: mc_imgedge_bin_mask
- * of the line's own bin and a tolerance). */
-uint32_t mc_line_sdepth_matched(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color,
-                                uint16_t depth_offset, const uint8_t *masks, uint8_t want);
 
 #endif

@@ -11,7 +11,7 @@
  *   - its orientation bin is mc_imgedge_bin of its normal on the screen (from its ends in 1/16
  *     pixel); a line whose ends land on the same 1/16-pixel point has none and is left out;
  *   - its pixels (line.h: the Bresenham line between the pixels holding its ends, with their depths)
- *     go into the buffer with mc_line_sdepth_matched, colour 1 + bin, matched where the frame's mask
+ *     go into the buffer with mc_track_line, colour 1 + bin, matched where the frame's mask
  *     has a bin within the view's tolerance of that bin (an image edge of such an orientation within
  *     the masks' radius); of several entries at a pixel the nearest stays;
  * then each face: left out with a corner beyond the band; cut at the near plane where it must be
@@ -33,6 +33,7 @@
 #include <stdint.h>
 #include "camera.h"
 #include "edges.h"
+#include "line.h"
 #include "sdepth.h"
 
 /* What scoring a pose draws with. */
@@ -51,6 +52,14 @@ typedef struct mc_track_score {
     uint32_t pixels;            /* line pixels drawn on the frame, before hiding */
     uint32_t lines;             /* lines drawn */
 } mc_track_score;
+
+/* The tracker's line pass: line.h's mc_line_sdepth into a buffer that keeps matched bits (nothing,
+ * 0, otherwise), each pixel's entry matched when masks (imgedge.h mc_imgedge_masks, for the same
+ * frame) has a bit of want set there: an image edge near it of an orientation the line accepts
+ * (want: mc_imgedge_bin_mask of the line's own bin and a tolerance). Returns the line's pixels on
+ * the frame. */
+uint32_t mc_track_line(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset,
+                       const uint8_t *masks, uint8_t want);
 
 /* Scores pose through view (see the promise). Returns MC_OK, or MC_ERR_ARG (a null argument, a
  * buffer without matched bits or of another size than the camera's image). */
