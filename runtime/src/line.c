@@ -44,16 +44,5 @@ uint32_t mc_line(const mc_target *t, mc_line_vertex a, mc_line_vertex b, uint8_t
 
 uint32_t mc_line_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color, uint16_t depth_offset)
 {
-    walk k;
-    if (!walk_init(s->width, s->height, a, b, &k)) return 0;
-    uint32_t r = k.r, zr = k.zr, x = (uint32_t)k.x, y = (uint32_t)k.y;
-    int32_t z = k.z;
-    for (uint32_t n = k.count;;) {
-        MC_LINE_STEP_HOOK();
-        const uint32_t zt = (uint32_t)z > depth_offset ? (uint32_t)z - depth_offset : 0;
-        mc_sdepth_insert(s, x, y, (uint16_t)zt, color);
-        if (--n == 0) break;
-        MC_LINE_WALK_STEP(k, x, y, z, r, zr);
-    }
-    return k.count;
+    return mc_line_walk_sdepth(s, a, b, color, depth_offset, 0, 0);
 }

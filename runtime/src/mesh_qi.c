@@ -10,6 +10,7 @@
  * such points at most 2^44, a cross product of two differences at most 2^45; depths are below 2^16.
  */
 #include "modelc/mesh_qi.h"
+#include "line_walk.h"   /* div27, step_reaching */
 
 typedef struct qi_line {
     int32_t ax, ay, bx, by;   /* projected corners, 1/16 pixel */
@@ -206,28 +207,7 @@ static void ray(const mc_raster_vertex v[3], int64_t a, int32_t px, int32_t py, 
 
 /* ---- the Bresenham walk, as mc_line (line.c) ----------------------------------------------------- */
 
-/* n / d, remainder into *rem, for n < d * 2^27: line.c's shift and subtract */
-static uint32_t div27(uint64_t n, uint32_t d, uint32_t *rem)
-{
-    uint64_t dd = (uint64_t)d << 26;
-    uint32_t q = 0;
-    for (int b = 0; b < 27; b++) {
-        q <<= 1;
-        if (n >= dd) {
-            n -= dd;
-            q |= 1u;
-        }
-        dd >>= 1;
-    }
-    *rem = (uint32_t)n;
-    return q;
-}
-
-static uint32_t step_reaching(uint32_t k, uint32_t d, uint32_t m)
-{
-    uint32_t rem;
-    return div27((uint64_t)(2u * k - 1u) * d + 2u * m, 2u * m, &rem);
-}
+/* (div27 and step_reaching: line_walk.h's) */
 
 typedef struct qi_walk {
     uint32_t d, first, count;   /* D; the steps on the target */
@@ -237,7 +217,7 @@ typedef struct qi_walk {
 } qi_walk;
 
 /* mc_line's walk of a -> b on t, up to its first step on the target; 0 when none is on it. */
-static int walk_init(qi_walk *w, const mc_target *t, mc_line_vertex a, mc_line_vertex b)
+static int qi_walk_init(qi_walk *w, const mc_target *t, mc_line_vertex a, mc_line_vertex b)
 {
     uint32_t za = a.z < MC_LINE_DEPTH_MAX ? a.z : MC_LINE_DEPTH_MAX;
     uint32_t zb = b.z < MC_LINE_DEPTH_MAX ? b.z : MC_LINE_DEPTH_MAX;
@@ -624,7 +604,7 @@ static void draw_line(qi_frame *fr, const qi_line *ln, uint32_t j, const mc_qi_h
     la.x = floor16(ln->ax), la.y = floor16(ln->ay), la.z = ln->az;
     lb.x = floor16(ln->bx), lb.y = floor16(ln->by), lb.z = ln->bz;
     qi_walk w;
-    if (!walk_init(&w, fr->t, la, lb)) return;
+    if (!qi_walk_init(&w, fr->t, la, lb)) return;
     for (uint32_t i = 0; i < (w.count + 7u) / 8u; i++) fr->bits[i] = 0;
     const int v0 = ln->qi[0] == 0 || ln->qi[1] == 0, v1 = ln->qi[2] == 0 || ln->qi[3] == 0;
     uint32_t m = 0;
@@ -923,7 +903,7 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
             la.x = floor16(a->x), la.y = floor16(a->y), la.z = a->z;
             lb.x = floor16(b->x), lb.y = floor16(b->y), lb.z = b->z;
             qi_walk w;
-            if (!walk_init(&w, t, la, lb)) continue;   /* no pixel on the target */
+            if (!qi_walk_init(&w, t, la, lb)) continue;   /* no pixel on the target */
             if (room && (uint8_t *)(fr.contours + C) <= (uint8_t *)(fr.lines_top - L - 1)) {
                 qi_line *ln = fr.lines_top - 1 - L;
                 ln->ax = a->x, ln->ay = a->y, ln->bx = b->x, ln->by = b->y;

@@ -72,26 +72,25 @@ typedef struct mc_raster_box {
  * reject most of them inline. The centres (16 i + 8, 16 j + 8) that can be covered lie in the
  * corners' bounding box, and not on its right or bottom side: a centre there lies on a vertical
  * right edge or a horizontal bottom edge, or on the rightmost or lowest corner, which has a right
- * edge through it. So xmin <= 16 i + 8 < xmax and ymin <= 16 j + 8 < ymax, on the frame. */
+ * edge through it. So xmin <= 16 i + 8 < xmax and ymin <= 16 j + 8 < ymax, on the frame.
+ * mc_raster_centre_run gives one axis's run of pixels (lo .. hi of side; 0 when empty). */
+MC_ALWAYS_INLINE int mc_raster_centre_run(int32_t c0, int32_t c1, int32_t c2, uint32_t side, int32_t *lo, int32_t *hi)
+{
+    const int32_t cmin = c0 < c1 ? (c0 < c2 ? c0 : c2) : (c1 < c2 ? c1 : c2);
+    const int32_t cmax = c0 > c1 ? (c0 > c2 ? c0 : c2) : (c1 > c2 ? c1 : c2);
+    if (cmin < -MC_RASTER_COORD_LIMIT || cmax > MC_RASTER_COORD_LIMIT) return 0;
+    int32_t a = mc_raster_floor16(cmin + 7), b = mc_raster_floor16(cmax - 9);
+    if (a < 0) a = 0;
+    if (b > (int32_t)side - 1) b = (int32_t)side - 1;
+    *lo = a, *hi = b;
+    return a <= b;   /* also 0 on an empty frame */
+}
+
 MC_ALWAYS_INLINE int mc_raster_centres(const mc_raster_vertex v[3], uint32_t width, uint32_t height, mc_raster_box *b)
 {
-    const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
-    const int32_t ymin = y0 < y1 ? (y0 < y2 ? y0 : y2) : (y1 < y2 ? y1 : y2);
-    const int32_t ymax = y0 > y1 ? (y0 > y2 ? y0 : y2) : (y1 > y2 ? y1 : y2);
-    if (ymin < -MC_RASTER_COORD_LIMIT || ymax > MC_RASTER_COORD_LIMIT) return 0;
-    int32_t j0 = mc_raster_floor16(ymin + 7), j1 = mc_raster_floor16(ymax - 9);
-    if (j0 < 0) j0 = 0;
-    if (j1 > (int32_t)height - 1) j1 = (int32_t)height - 1;
-    if (j0 > j1) return 0;   /* most faces of a dense mesh: no centre between their rows */
-    const int32_t xmin = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
-    const int32_t xmax = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
-    if (xmin < -MC_RASTER_COORD_LIMIT || xmax > MC_RASTER_COORD_LIMIT) return 0;
-    int32_t i0 = mc_raster_floor16(xmin + 7), i1 = mc_raster_floor16(xmax - 9);
-    if (i0 < 0) i0 = 0;
-    if (i1 > (int32_t)width - 1) i1 = (int32_t)width - 1;
-    if (i0 > i1) return 0;   /* also an empty frame */
-    b->i0 = i0, b->i1 = i1, b->j0 = j0, b->j1 = j1;
-    return 1;
+    /* rows first: most faces of a dense mesh have no centre between their rows */
+    return mc_raster_centre_run(v[0].y, v[1].y, v[2].y, height, &b->j0, &b->j1) &&
+           mc_raster_centre_run(v[0].x, v[1].x, v[2].x, width, &b->i0, &b->i1);
 }
 
 /* Draws v[0], v[1], v[2] in `color` with the depth test and returns the number of target pixels the
