@@ -39,6 +39,9 @@ static uint32_t draw_line(const mc_track_view *view, const mc_xvertex e[2], uint
 /* One unflagged triangle's face pass, culled from behind when cull. */
 static void hide(mc_sdepth *sd, const mc_raster_vertex v[3], int cull)
 {
+    /* a back face of a closed model hides nothing a front face does not: dropped before its box (the
+     * rasterizer's own sign rule: back where twice the signed area is above 0) */
+    if (cull && (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (int64_t)(v[2].x - v[0].x) * (v[1].y - v[0].y) > 0) return;
     mc_raster_box b;
     if (!mc_raster_centres(v, sd->width, sd->height, &b) ||
         !mc_sdepth_any(sd, (uint32_t)b.i0, (uint32_t)b.i1, (uint32_t)b.j0, (uint32_t)b.j1))

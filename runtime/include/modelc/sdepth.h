@@ -103,11 +103,12 @@ MC_ALWAYS_INLINE int mc_sdepth_in_use(const mc_sdepth *s, uint32_t x, uint32_t y
 MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c, uint32_t m, int track)
 {
     const uint32_t i = y * s->width + x, w = y * s->blocks + (x >> 5), bit = 0x80000000u >> (x & 31u);
-    if (s->used[w] & bit) {
+    const uint32_t u = s->used[w];
+    if (u & bit) {
         if (z >= s->depth[i]) return 0;
     } else {
-        s->used[w] |= bit;
-        s->rows[y * s->row_words + (x >> 10)] |= 0x80000000u >> ((x >> 5) & 31u);
+        s->used[w] = u | bit;
+        if (!u) s->rows[y * s->row_words + (x >> 10)] |= 0x80000000u >> ((x >> 5) & 31u);   /* the block's first */
         s->in_use++;
     }
     s->depth[i] = z;
