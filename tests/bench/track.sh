@@ -41,7 +41,7 @@ for size in $sizes; do
             ms=$(sort -g "$stem.ms" | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}')
             run valgrind --tool=callgrind --toggle-collect=mc_filter_step --callgrind-out-file="$stem.cg" \
                 "$prog" "${args[@]}" --frames 20 >"$stem.cg.txt" 2>"$stem.cg.log"
-            ir=$(callgrind_annotate "$stem.cg" 2>/dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1; exit}')
+            ir=$(callgrind_annotate "$stem.cg" 2>/dev/null | awk '/PROGRAM TOTALS/ && !done {gsub(",", "", $1); print $1; done = 1}')
             r1=$stem.r1.txt
             printf '| %s | %s | %s | %s | %.3f | %.2f M | %s | %s | %s | %s of 60 | %s of 60 |\n' "$size" "$n" "$fresh" "$dof" "$ms" \
                 "$(echo "$ir / 20 / 1000000" | bc -l)" "$(printf '%.0f' "$(echo "$ir / 20 / ($n + 1)" | bc -l)")" \
