@@ -2,7 +2,7 @@
 # Numerical stress (tests/stress/stress.c says what is checked and derives the error bound): random
 # views of bunny00 baked at depth 6 into build/stress/ (small chunks, so chunk boundaries are crossed
 # often), rendered by a runtime compiled with the plot hook into the test.
-#   STRESS_VIEWS   views of the optimised run (default 30000: the suite took 290 s of CPU at 100000)
+#   STRESS_VIEWS   views of the optimised run (default 20000: the suite took 290 s of CPU at 100000)
 #   STRESS_SAN_VIEWS  views of the run under ASan + UBSan (-fno-sanitize-recover=all; default 3000;
 #                  0 skips it), and of the float build's run under them plus float-cast-overflow
 #   STRESS_JOBS    processes the optimised run is split into, each with its own seed (default 1)
@@ -13,7 +13,7 @@
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
-VIEWS=${STRESS_VIEWS:-30000}
+VIEWS=${STRESS_VIEWS:-20000}
 SAN_VIEWS=${STRESS_SAN_VIEWS:-3000}
 JOBS=${STRESS_JOBS:-1}
 F_VIEWS=${STRESS_F_VIEWS:-$(((VIEWS + 9) / 10))}

@@ -113,10 +113,12 @@ build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
     shift 2
     local prog="$out/$name"
     [ "${name%%-*}" = test_view ] && renderer=1
-    # the flags before any source file (runtime/ref/...) are the program's, and the runtime's
-    local cflags=() extra=() a
+    # the flags are the program's and the runtime archive's; a flag written @FLAG is the program's
+    # only (with its own copy of a runtime source given after it, which then stands in for the
+    # archive's); source files (runtime/ref/...) are compiled into the program
+    local cflags=() pflags=() extra=() a
     for a in "$@"; do
-        case $a in *.c) extra+=("$a") ;; *) cflags+=("$a") ;; esac
+        case $a in *.c) extra+=("$a") ;; @*) pflags+=("${a#@}") ;; *) cflags+=("$a") ;; esac
     done
     lib=$(runtime_archive "$renderer" "${cflags[@]}")
     if [ ! -f "$lib" ]; then
@@ -124,7 +126,7 @@ build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
         return
     fi
     # shellcheck disable=SC2086
-    if ! $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "${cflags[@]}" -o "$prog" \
+    if ! $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "${cflags[@]}" "${pflags[@]}" -o "$prog" \
         "tests/unit/${name%%-*}.c" "${extra[@]}" "$lib" -lcmocka -lm >"$prog.build.log" 2>&1; then
         notok "${pfx}build" "$(head -n 5 "$prog.build.log" | oneline)"
         return
@@ -146,9 +148,10 @@ done
 build_and_run "unit: trig: " test_trig
 build_and_run "unit: bits, rng, chunk: " test_bits
 build_and_run "unit: pmesh: " test_pmesh
-# test_line counts the walk's steps (MC_LINE_STEP_HOOK) to check work follows on-target pixels
+# test_line counts the walk's steps (MC_LINE_STEP_HOOK) to check work follows on-target pixels: its
+# own line.c with the hook, in front of the default archive
 linehook='-DMC_LINE_STEP_HOOK()=do { extern unsigned long mc_test_line_steps; mc_test_line_steps++; } while (0)'
-build_and_run "unit: line: " test_line "$linehook"
+build_and_run "unit: line: " test_line "@$linehook" runtime/src/line.c
 build_and_run "unit: raster: " test_raster runtime/ref/raster_ref.c
 build_and_run "unit: xform: " test_xform runtime/ref/xform_ref.c
 build_and_run "unit: clip: " test_clip runtime/ref/xform_ref.c
@@ -198,11 +201,11 @@ if [ "${SANITIZE:-0}" != 1 ]; then
                 # the renderer's leaf switch at -O2 only (the firmware's level; each of its cases is
                 # the loop form's body for one mask, so the loop shows the helper calls at the
                 # other levels, at a fifth of the compile time), and there for gcc (x86-64, also the
-                # no-floating-point build) and the Cortex-M0 only: the 32-bit x86 and clang's x86-64
-                # builds take the loop (tests/fw/ compiles the switch for Cortex-M3 and M4 as well)
+                # no-floating-point build) and the Cortex-M0 only: clang's x86-64 build takes the loop
+                # (tests/fw/ compiles the switch for Cortex-M3 and M4 as well)
                 leaf=""
                 [ "$(basename "$f")" = octree_render.c ] && [ "${UNIT_SWITCH_ALL:-0}" != 1 ] &&
-                    { [ "$o" != -O2 ] || [ "$tag" = clang ] || [ "$tag" = gcc-m32 ]; } && leaf=-DMC_LEAF_SWITCH=0
+                    { [ "$o" != -O2 ] || [ "$tag" = clang ]; } && leaf=-DMC_LEAF_SWITCH=0
                 # shellcheck disable=SC2086
                 if ! $cc $o $nofloat $leaf $FS_FLAGS -nostdinc -isystem "$inc" -c -o "$dir/$(basename "$f" .c).o" "$f" \
                     >"$dir/$(basename "$f" .c).log" 2>&1; then
@@ -227,9 +230,9 @@ if [ "${SANITIZE:-0}" != 1 ]; then
     }
 
     targets=("gcc|gcc|ld|nm" "clang|clang|ld|nm")
-    # two 32-bit targets where 64-bit arithmetic needs helpers: x86 and a Cortex-M0 (no divide, no
-    # long multiply), when the compilers support them
-    if echo 'int x;' | gcc -m32 -x c -c -o /dev/null - 2>/dev/null; then targets+=("gcc-m32|gcc -m32|ld -m elf_i386|nm"); fi
+    # a 32-bit target where 64-bit arithmetic needs helpers: a Cortex-M0 (no divide, no long
+    # multiply), when clang supports it (tests/fw/ links the runtime for Cortex-M3 and M4 with gcc,
+    # where a helper outside libgcc would fail the link)
     if echo 'int x;' | clang --target=thumbv6m-none-eabi -ffreestanding -x c -c -o /dev/null - 2>/dev/null &&
         command -v ld.lld >/dev/null; then
         targets+=("clang-cortex-m0|clang --target=thumbv6m-none-eabi -mcpu=cortex-m0|ld.lld|llvm-nm")
