@@ -60,6 +60,8 @@ typedef struct walk {
     uint32_t r, m2, d2;
     int32_t z, zstep, zunit;
     uint32_t zr, zrstep;
+    uint32_t d, first;              /* the line's major steps D, and the first on the frame */
+    int from_b;                     /* walked from b (the start: line.h) */
 } walk;
 
 /* Sets up the walk of the line from a to b on a w x h frame (w, h not 0); returns its step count on
@@ -73,7 +75,8 @@ MC_ALWAYS_INLINE uint32_t walk_init(uint32_t w, uint32_t h, mc_line_vertex a, mc
     const uint32_t adx = dx < 0 ? 0u - (uint32_t)dx : (uint32_t)dx;
     const uint32_t ady = dy < 0 ? 0u - (uint32_t)dy : (uint32_t)dy;
     const int xmajor = adx >= ady;
-    if (xmajor ? dx < 0 : dy < 0) {   /* walk from the start: the same line both ways */
+    wk->from_b = xmajor ? dx < 0 : dy < 0;
+    if (wk->from_b) {   /* walk from the start: the same line both ways */
         const mc_line_vertex tv = a;
         const uint32_t tz = za;
         a = b;
@@ -137,6 +140,7 @@ MC_ALWAYS_INLINE uint32_t walk_init(uint32_t w, uint32_t h, mc_line_vertex a, mc
     wk->xv = xmajor ? 0 : (vneg ? -1 : 1), wk->yv = xmajor ? (vneg ? -1 : 1) : 0;
     wk->ustep = ustep, wk->vstep = vneg ? 0u - vstep : vstep;
     wk->count = last - first + 1u;
+    wk->d = d, wk->first = first;
     wk->r = r, wk->m2 = m2, wk->d2 = d2;
     wk->z = z, wk->zstep = zstep, wk->zunit = zunit, wk->zr = zr, wk->zrstep = zrstep;
     return wk->count;

@@ -10,7 +10,7 @@
  * such points at most 2^44, a cross product of two differences at most 2^45; depths are below 2^16.
  */
 #include "modelc/mesh_qi.h"
-#include "line_walk.h"   /* div27, step_reaching */
+#include "line_walk.h"   /* the walk of a line, as mc_line's */
 
 typedef struct qi_line {
     int32_t ax, ay, bx, by;   /* projected corners, 1/16 pixel */
@@ -209,80 +209,10 @@ static void ray(const mc_raster_vertex v[3], int64_t a, int32_t px, int32_t py, 
 
 /* (div27 and step_reaching: line_walk.h's) */
 
-typedef struct qi_walk {
-    uint32_t d, first, count;   /* D; the steps on the target */
-    int from_b;                 /* walked from b */
-    uint32_t idx, ustep, vstep, r, m2, d2, zr, zrstep;
-    int32_t z, zstep, zunit;
-} qi_walk;
-
-/* mc_line's walk of a -> b on t, up to its first step on the target; 0 when none is on it. */
-static int qi_walk_init(qi_walk *w, const mc_target *t, mc_line_vertex a, mc_line_vertex b)
-{
-    uint32_t za = a.z < MC_LINE_DEPTH_MAX ? a.z : MC_LINE_DEPTH_MAX;
-    uint32_t zb = b.z < MC_LINE_DEPTH_MAX ? b.z : MC_LINE_DEPTH_MAX;
-    int32_t dx = b.x - a.x, dy = b.y - a.y;
-    const uint32_t adx = dx < 0 ? 0u - (uint32_t)dx : (uint32_t)dx;
-    const uint32_t ady = dy < 0 ? 0u - (uint32_t)dy : (uint32_t)dy;
-    const int xmajor = adx >= ady;
-    w->from_b = 0;
-    if (xmajor ? dx < 0 : dy < 0) {
-        const mc_line_vertex tv = a;
-        const uint32_t tz = za;
-        a = b, b = tv, za = zb, zb = tz, dx = -dx, dy = -dy;
-        w->from_b = 1;
-    } else if (!dx && !dy && zb < za) {
-        za = zb;
-    }
-    const uint32_t wd = t->width, ht = t->height;
-    int32_t u0, v0, vm0;
-    uint32_t d, m, wu, wv;
-    int vneg;
-    if (xmajor) {
-        u0 = a.x, v0 = a.y, d = adx, m = ady, wu = wd, wv = ht, w->ustep = 1, w->vstep = wd, vneg = dy < 0;
-    } else {
-        u0 = a.y, v0 = a.x, d = ady, m = adx, wu = ht, wv = wd, w->ustep = wd, w->vstep = 1, vneg = dx < 0;
-    }
-    vm0 = vneg ? (int32_t)wv - 1 - v0 : v0;
-    const int32_t u1 = u0 + (int32_t)d, vm1 = vm0 + (int32_t)m;
-    const int32_t umax = (int32_t)wu - 1, vmax = (int32_t)wv - 1;
-    if (u1 < 0 || u0 > umax || vm1 < 0 || vm0 > vmax) return 0;
-    uint32_t first = 0, last = d;
-    if (u0 < 0) first = (uint32_t)-u0;
-    if (u1 > umax) last = (uint32_t)(umax - u0);
-    if (vm0 < 0) {
-        const uint32_t i = step_reaching((uint32_t)-vm0, d, m);
-        if (i > first) first = i;
-    }
-    if (vm1 > vmax) {
-        const uint32_t i = step_reaching((uint32_t)(vmax - vm0) + 1u, d, m) - 1u;
-        if (i < last) last = i;
-    }
-    if (first > last) return 0;
-    const uint32_t d2 = 2u * d, m2 = 2u * m;
-    uint32_t k = 0, r = d ? d - 1u : 0;
-    if (first) k = div27((uint64_t)first * m2 + (d - 1u), d2, &r);
-    const uint32_t adz2 = 2u * (zb >= za ? zb - za : za - zb);
-    w->zunit = zb >= za ? 1 : -1;
-    uint32_t zk = 0, zq = 0;
-    w->zr = d ? d - 1u : 0, w->zrstep = 0;
-    if (first) zk = div27((uint64_t)first * adz2 + (d - 1u), d2, &w->zr);
-    if (d) {
-        zq = adz2 / d2;
-        w->zrstep = adz2 - zq * d2;
-    }
-    w->zstep = w->zunit * (int32_t)zq;
-    w->z = (int32_t)za + w->zunit * (int32_t)zk;
-    const uint32_t ui = (uint32_t)u0 + first;
-    const uint32_t vi = vneg ? (uint32_t)v0 - k : (uint32_t)v0 + k;
-    w->idx = xmajor ? vi * wd + ui : ui * wd + vi;
-    if (vneg) w->vstep = 0u - w->vstep;
-    w->d = d, w->first = first, w->count = last - first + 1u, w->r = r, w->m2 = m2, w->d2 = d2;
-    return 1;
-}
+/* (the walk: line_walk.h's walk_init, which also records d, first and from_b for the passes below) */
 
 /* Draws the walk's steps whose bit is set (colour and depth, no test); returns how many. */
-static uint32_t walk_draw(qi_walk *w, const mc_target *t, const uint8_t *bits, uint8_t color)
+static uint32_t walk_draw(walk *w, const mc_target *t, const uint8_t *bits, uint8_t color)
 {
     uint8_t *const cbuf = t->color;
     uint16_t *const dbuf = t->depth;
@@ -311,7 +241,7 @@ static uint32_t walk_draw(qi_walk *w, const mc_target *t, const uint8_t *bits, u
 }
 
 /* Step first + j's t from a, as a fraction of D (D > 0). */
-static int64_t step_num(const qi_walk *w, uint32_t j)
+static int64_t step_num(const walk *w, uint32_t j)
 {
     const uint32_t i = w->first + j;
     return w->from_b ? (int64_t)(w->d - i) : (int64_t)i;
@@ -496,7 +426,7 @@ static uint32_t sweep(qi_frame *fr, const qi_line *ln, uint32_t n, int *v0)
 }
 
 /* Bits of the steps on the target from the changes (t sorted from a; visible at a change). */
-static void bits_from_changes(qi_frame *fr, const qi_walk *w, const mc_qi_t *ch, uint32_t m, int v0, int v1)
+static void bits_from_changes(qi_frame *fr, const walk *w, const mc_qi_t *ch, uint32_t m, int v0, int v1)
 {
     const int64_t d = w->d;
     uint32_t k = 0;   /* changes below the step's t */
@@ -519,7 +449,7 @@ static void bits_from_changes(qi_frame *fr, const qi_walk *w, const mc_qi_t *ch,
 
 /* The steps j (0 .. count) before which step t crosses x: the first j where t_j >= x (ge) or > x,
  * for t increasing in j; where t_j <= x (ge) or < x for t decreasing. */
-static uint32_t step_bound(const qi_walk *w, int64_t xn, int64_t xd, int ge)
+static uint32_t step_bound(const walk *w, int64_t xn, int64_t xd, int ge)
 {
     uint32_t lo = 0, hi = w->count;
     while (lo < hi) {
@@ -541,7 +471,7 @@ static void add_range(int32_t *a, uint32_t j0, uint32_t j1)
 
 /* Line ln computed face by face from the definition: every face's open interval of covering on
  * each side, counted per step just after (plus) and just before (minus) its t. */
-static void face_by_face(qi_frame *fr, const qi_line *ln, const qi_walk *w)
+static void face_by_face(qi_frame *fr, const qi_line *ln, const walk *w)
 {
     const uint32_t n1 = w->count + 1u;
     int32_t *lp = fr->cnt, *lm = lp + n1, *rp = lm + n1, *rm = rp + n1;
@@ -603,8 +533,8 @@ static void draw_line(qi_frame *fr, const qi_line *ln, uint32_t j, const mc_qi_h
     mc_line_vertex la, lb;
     la.x = floor16(ln->ax), la.y = floor16(ln->ay), la.z = ln->az;
     lb.x = floor16(ln->bx), lb.y = floor16(ln->by), lb.z = ln->bz;
-    qi_walk w;
-    if (!qi_walk_init(&w, fr->t, la, lb)) return;
+    walk w;
+    if (!walk_init(fr->t->width, fr->t->height, la, lb, &w)) return;
     for (uint32_t i = 0; i < (w.count + 7u) / 8u; i++) fr->bits[i] = 0;
     const int v0 = ln->qi[0] == 0 || ln->qi[1] == 0, v1 = ln->qi[2] == 0 || ln->qi[3] == 0;
     uint32_t m = 0;
@@ -902,8 +832,8 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
             mc_line_vertex la, lb;
             la.x = floor16(a->x), la.y = floor16(a->y), la.z = a->z;
             lb.x = floor16(b->x), lb.y = floor16(b->y), lb.z = b->z;
-            qi_walk w;
-            if (!qi_walk_init(&w, t, la, lb)) continue;   /* no pixel on the target */
+            walk w;
+            if (!walk_init(t->width, t->height, la, lb, &w)) continue;   /* no pixel on the target */
             if (room && (uint8_t *)(fr.contours + C) <= (uint8_t *)(fr.lines_top - L - 1)) {
                 qi_line *ln = fr.lines_top - 1 - L;
                 ln->ax = a->x, ln->ay = a->y, ln->bx = b->x, ln->by = b->y;
