@@ -1,5 +1,6 @@
 /* A pinhole camera and a rigid pose: see modelc/camera.h. */
 #include "modelc/camera.h"
+#include "modelc/fixed.h"    /* mc_div_round, mc_round_shift */
 #include "modelc/target.h"   /* MC_OK, MC_DEPTH_EMPTY */
 
 #define DEPTH_TOP (MC_DEPTH_EMPTY - 2u)
@@ -33,9 +34,6 @@ static uint64_t isqrt64(uint64_t v)
     return r;
 }
 
-/* n / d rounded to nearest, halves away from zero, d > 0 */
-static int64_t div_round(int64_t n, int64_t d) { return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d); }
-
 int mc_quat_unit(const int32_t q[4], int32_t out[4])
 {
     /* the quaternion scaled by a power of two until its largest component lies in [2^29, 2^30), then
@@ -58,7 +56,7 @@ int mc_quat_unit(const int32_t q[4], int32_t out[4])
     }
     int64_t n = (int64_t)isqrt64(n2);
     if (n2 - (uint64_t)(n * n) > (uint64_t)n) n++;   /* to nearest: n^2 + n is the midpoint's floor */
-    for (int i = 0; i < 4; i++) out[i] = (int32_t)div_round(v[i] * ((int64_t)1 << 30), n);
+    for (int i = 0; i < 4; i++) out[i] = (int32_t)mc_div_round(v[i] * ((int64_t)1 << 30), n);
     return MC_OK;
 }
 
@@ -68,7 +66,7 @@ int mc_pose_set(mc_pose *pose, const int32_t q[4], const int32_t t[3])
     if (mc_quat_unit(q, u) != MC_OK) return MC_ERR_ARG;
     const int64_t w = u[0], x = u[1], y = u[2], z = u[3];
     /* R = I + 2 [.]: each product of two Q30 components is below 2^61; sums of two, halved into Q30 */
-#define Q30(e) ((int32_t)div_round((e), (int64_t)1 << 29))
+#define Q30(e) ((int32_t)mc_round_shift((e), 29))
     pose->r[0][0] = (int32_t)((int64_t)1 << 30) - Q30(y * y + z * z);
     pose->r[0][1] = Q30(x * y - w * z);
     pose->r[0][2] = Q30(x * z + w * y);
@@ -87,7 +85,7 @@ void mc_pose_apply(const mc_pose *pose, const int32_t p[3], int32_t c[3])
 {
     for (int i = 0; i < 3; i++) {
         const int64_t s = (int64_t)pose->r[i][0] * p[0] + (int64_t)pose->r[i][1] * p[1] + (int64_t)pose->r[i][2] * p[2];
-        c[i] = (int32_t)(div_round(s, (int64_t)1 << 30) + pose->t[i]);
+        c[i] = (int32_t)(mc_round_shift(s, 30) + pose->t[i]);
     }
 }
 
@@ -95,7 +93,7 @@ void mc_pose_apply(const mc_pose *pose, const int32_t p[3], int32_t c[3])
 static int32_t image_coord(int32_t f, int32_t u0, int32_t x, int32_t z, uint32_t *flags)
 {
     /* 16 (u0 / 2^16 + f x / (2^16 z)) + 8 = (f x + u0 z + 2^15 z) / (2^12 z); numerator below 2^62 */
-    const int64_t v = div_round((int64_t)f * x + ((int64_t)u0 + 32768) * z, (int64_t)z << 12);
+    const int64_t v = mc_div_round((int64_t)f * x + ((int64_t)u0 + 32768) * z, (int64_t)z << 12);
     const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
     if (v > lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)lim; }
     if (v < -lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)-lim; }
@@ -113,7 +111,7 @@ void mc_camera_project(const mc_camera *cam, const int32_t c[3], mc_xvertex *out
     }
     out->x = image_coord(cam->px, cam->u0, c[0], c[2], &out->flags);
     out->y = image_coord(cam->py, cam->v0, c[1], c[2], &out->flags);
-    const int64_t z = div_round(cam->zk * ((int64_t)c[2] - cam->near), (int64_t)c[2] << 8);
+    const int64_t z = mc_div_round(cam->zk * ((int64_t)c[2] - cam->near), (int64_t)c[2] << 8);
     out->z = z > (int64_t)DEPTH_TOP ? DEPTH_TOP : (uint32_t)z;
 }
 
@@ -121,7 +119,7 @@ void mc_camera_project(const mc_camera *cam, const int32_t c[3], mc_xvertex *out
 static void cut(const mc_camera *cam, const int32_t a[3], const int32_t b[3], int32_t c[3])
 {
     const int64_t num = (int64_t)a[2] - cam->near, den = (int64_t)a[2] - b[2];   /* 0 <= num < den */
-    for (int i = 0; i < 2; i++) c[i] = (int32_t)((int64_t)a[i] + div_round(((int64_t)b[i] - a[i]) * num, den));
+    for (int i = 0; i < 2; i++) c[i] = (int32_t)((int64_t)a[i] + mc_div_round(((int64_t)b[i] - a[i]) * num, den));
     c[2] = cam->near;
 }
 

@@ -25,14 +25,20 @@ MC_ALWAYS_INLINE void fold(int32_t gx, int32_t gy, uint64_t *a, uint64_t *b, int
     *neg = gy < 0;
 }
 
+/* The bin of a folded direction: how many boundaries |angle| passes, 0 (0 degrees) .. 4 (90 degrees),
+ * taken the other way round the half circle for gy < 0 */
+MC_ALWAYS_INLINE unsigned folded_bin(uint64_t a, uint64_t b, int neg)
+{
+    const unsigned k = (a > b * TAN_11) + (a > b * TAN_33) + (a > b * TAN_56) + (a > b * TAN_78);
+    return neg ? (MC_IMGEDGE_DIRS - k) & (MC_IMGEDGE_DIRS - 1u) : k;
+}
+
 unsigned mc_imgedge_bin(int32_t gx, int32_t gy)
 {
     uint64_t a, b;
     int neg;
     fold(gx, gy, &a, &b, &neg);
-    /* k: how many boundaries |angle| passes, 0 (0 degrees) .. 4 (90 degrees) */
-    const unsigned k = (a > b * TAN_11) + (a > b * TAN_33) + (a > b * TAN_56) + (a > b * TAN_78);
-    return neg ? (MC_IMGEDGE_DIRS - k) & (MC_IMGEDGE_DIRS - 1u) : k;
+    return folded_bin(a, b, neg);
 }
 
 /* The packed work value of a candidate: code (1 + bin) in the low nibble, thinning sector in bits
@@ -44,7 +50,7 @@ static uint8_t classify(int32_t gx, int32_t gy)
     fold(gx, gy, &a, &b, &neg);
     const unsigned s = (a > b * TAN_22) + (a > b * TAN_67);
     const unsigned sector = neg ? (4u - s) & 3u : s;
-    return (uint8_t)((1u + mc_imgedge_bin(gx, gy)) | sector << 4);
+    return (uint8_t)((1u + folded_bin(a, b, neg)) | sector << 4);
 }
 
 /* Thins row y (1 .. h-2) of out: its candidates' magnitudes mid against up (row y - 1) and down

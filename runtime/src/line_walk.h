@@ -163,26 +163,35 @@ MC_ALWAYS_INLINE uint32_t walk_init(uint32_t w, uint32_t h, mc_line_vertex a, mc
         }                                            \
     } while (0)
 
-/* The pixels of line a b offered to a sparse depth buffer, each at its depth less depth_offset
- * (saturating at 0), colour color: line.h's mc_line_sdepth with masks null; with masks (a constant
- * where called: null or not), the tracker's mc_track_line, each entry matched where masks has a
- * bit of want set. Returns the line's pixels on the frame. */
+/* The walk's loop into a sparse depth buffer: each pixel at its depth less depth_offset (saturating
+ * at 0), colour color, with its matched bit (masks & want) when track; masks and track are constants
+ * where called, so each combination is its own loop. */
+MC_ALWAYS_INLINE uint32_t walk_sdepth(mc_sdepth *s, walk *k, uint8_t color, uint16_t depth_offset, const uint8_t *masks,
+                                      uint8_t want, int track)
+{
+    uint32_t r = k->r, zr = k->zr, x = (uint32_t)k->x, y = (uint32_t)k->y;
+    int32_t z = k->z;
+    for (uint32_t n = k->count;;) {
+        MC_LINE_STEP_HOOK();
+        const uint32_t zt = (uint32_t)z > depth_offset ? (uint32_t)z - depth_offset : 0;
+        mc_sdepth_put(s, x, y, (uint16_t)zt, color, masks ? masks[y * s->width + x] & want : 0u, track);
+        if (--n == 0) break;
+        MC_LINE_WALK_STEP(*k, x, y, z, r, zr);
+    }
+    return k->count;
+}
+
+/* The pixels of line a b offered to a sparse depth buffer: line.h's mc_line_sdepth with masks null
+ * (unmatched entries where the buffer keeps matched bits), the tracker's mc_track_line with masks
+ * (each entry matched where masks has a bit of want set). Whether bits are kept is asked once a
+ * line, not once a pixel. Returns the line's pixels on the frame. */
 MC_ALWAYS_INLINE uint32_t mc_line_walk_sdepth(mc_sdepth *s, mc_line_vertex a, mc_line_vertex b, uint8_t color,
                                               uint16_t depth_offset, const uint8_t *masks, uint8_t want)
 {
     walk k;
     if (!walk_init(s->width, s->height, a, b, &k)) return 0;
-    uint32_t r = k.r, zr = k.zr, x = (uint32_t)k.x, y = (uint32_t)k.y;
-    int32_t z = k.z;
-    for (uint32_t n = k.count;;) {
-        MC_LINE_STEP_HOOK();
-        const uint32_t zt = (uint32_t)z > depth_offset ? (uint32_t)z - depth_offset : 0;
-        if (masks) mc_sdepth_insert_matched(s, x, y, (uint16_t)zt, color, masks[y * s->width + x] & want);
-        else mc_sdepth_insert(s, x, y, (uint16_t)zt, color);
-        if (--n == 0) break;
-        MC_LINE_WALK_STEP(k, x, y, z, r, zr);
-    }
-    return k.count;
+    if (masks) return walk_sdepth(s, &k, color, depth_offset, masks, want, 1);
+    return s->matched ? walk_sdepth(s, &k, color, depth_offset, 0, 0, 1) : walk_sdepth(s, &k, color, depth_offset, 0, 0, 0);
 }
 
 #endif

@@ -48,13 +48,18 @@ unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p
     return k;
 }
 
-/* Vertex v's position, as mc_pmesh_position (inlined: the loop below needs it per face) */
-MC_ALWAYS_INLINE void position(const mc_pmesh *pm, uint32_t v, int32_t p[3])
+/* The position a record holds (pmesh.h: x, y, z as uint16, q - 32768) */
+MC_ALWAYS_INLINE void position_of(const uint8_t *r, int32_t p[3])
 {
-    const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, v);
     p[0] = (int32_t)mc_le16(r) - 32768;
     p[1] = (int32_t)mc_le16(r + 2) - 32768;
     p[2] = (int32_t)mc_le16(r + 4) - 32768;
+}
+
+/* Vertex v's position, as mc_pmesh_position (inlined: the loop below needs it per face) */
+MC_ALWAYS_INLINE void position(const mc_pmesh *pm, uint32_t v, int32_t p[3])
+{
+    position_of(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
 }
 
 uint32_t mc_mesh_face(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, int32_t p[3][3], mc_raster_vertex v[3])
@@ -146,7 +151,7 @@ MC_ALWAYS_INLINE void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
         if ((ib == 2 ? anc16[v] : anc32[v]) != v) continue;
         int32_t p[3];
-        p[0] = (int32_t)mc_le16(r) - 32768, p[1] = (int32_t)mc_le16(r + 2) - 32768, p[2] = (int32_t)mc_le16(r + 4) - 32768;
+        position_of(r, p);
         mc_xform_vertex(x, p, &cache[v]);
     }
 }

@@ -30,9 +30,6 @@ void mc_xform_init(mc_xform *x, const mc_view *view, uint32_t width, uint32_t he
     x->za = ((int64_t)DEPTH_TOP * dmax << 8) / (dmax - dmin);   /* DEPTH_TOP * k, Q8 */
 }
 
-/* round(n / d) for d > 0, ties away from zero */
-static int64_t div_round(int64_t n, int64_t d) { return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d); }
-
 static inline int32_t band(int64_t v, uint32_t *flags)
 {
     const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
@@ -80,7 +77,7 @@ static void perspective(const mc_xform *x, const int64_t q[3], mc_xvertex *out)
     const int64_t eye16 = x->eye >> 14;
     for (int i = 0; i < 2; i++) {
         int64_t n = mc_mul_shift64(x->scale * q[i], eye16, 28);   /* pixels, Q34 */
-        int64_t o = div_round(n, d30);                            /* pixels, Q4 */
+        int64_t o = mc_div_round(n, d30);                            /* pixels, Q4 */
         if (i == 0) out->x = band(x->cx + o, &out->flags);
         else out->y = band(x->cy - o, &out->flags);
     }

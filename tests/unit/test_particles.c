@@ -31,14 +31,12 @@
 
 #define PI 3.14159265358979323846
 
-static mc_filter_params params(void) { return cube_scene_params(); }
-
 static void test_weight(void **state)
 {
     (void)state;
     mc_filter f;
     mc_particle a[4], b[4];
-    mc_filter_params prm = params();
+    mc_filter_params prm = cube_scene_params();
     prm.particles = 4, prm.fresh = 1;
     const int32_t q[4] = {1 << 30, 0, 0, 0}, t[3] = {0, 0, 300000};
     for (unsigned sharp = 1; sharp <= 64; sharp = sharp * 2 + 1) {
@@ -173,7 +171,7 @@ static void test_motion_and_determinism(void **state)
     enum { N = 20000 };
     static mc_particle a[N], b[N], c[N], d[N];
     mc_filter f, g;
-    mc_filter_params prm = params();
+    mc_filter_params prm = cube_scene_params();
     prm.particles = N, prm.fresh = 2000;
     prm.min_visible = 0xFFFFFFFFu;   /* every weight 0: resampling keeps the particles as they are */
     const int32_t q[4] = {1 << 30, 0, 0, 0}, t[3] = {0, 0, 300000};
@@ -224,7 +222,7 @@ static void test_refusals(void **state)
     mc_filter f;
     mc_particle a[8], b[8];
     const int32_t q[4] = {1 << 30, 0, 0, 0}, t[3] = {0, 0, 300000}, zero[4] = {0, 0, 0, 0};
-    mc_filter_params ok = params(), p;
+    mc_filter_params ok = cube_scene_params(), p;
     ok.particles = 8, ok.fresh = 2;
     assert_int_equal(mc_filter_init(&f, &ok, a, b, 1, q, t), MC_OK);
     assert_int_equal(mc_filter_init(&f, &ok, a, b, 1, zero, t), MC_ERR_ARG);

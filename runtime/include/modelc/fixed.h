@@ -36,6 +36,9 @@ static inline int64_t mc_round_shift(int64_t v, int s)
     return v >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
+/* n / d rounded to nearest, ties away from zero, for d > 0 and |n| + d / 2 within int64. */
+static inline int64_t mc_div_round(int64_t n, int64_t d) { return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d); }
+
 static inline mc_fix mc_fix_from_int(int32_t i) { return mc_fix_sat((int64_t)i * MC_FIX_ONE); }
 /* Integer part, rounded toward minus infinity (the pixel a coordinate falls in). */
 static inline int32_t mc_fix_floor(mc_fix a) { return a >> MC_FRAC_BITS; }
