@@ -1,9 +1,11 @@
 # modelc: every entry point. `make help` lists them.
 #
 #   make deps                    install the Debian packages that are missing (apt-get, sudo when not root)
+#   make deps-bench              install the benchmarks' big extras (BENCH_PACKAGES: libvisp-dev, ~200 packages)
 #   make demo                    deps + generator + bake the default model + its viewer + a PNG and stats
 #   make test                    the whole test suite, two suites at a time; last line "N passed, N failed, N skipped"
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
+#   make track MODEL=file [NAME=n]           bake an edge model (.cao or mesh) and build build/NAME/NAME-track
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
 #   make bench-accuracy          run time against error: depth, fraction bits, float (about 12 min)
@@ -36,10 +38,13 @@ DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo l
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
   libclang-rt-14-dev \
   libosmesa6-dev draco python3 perl strace bsdutils coreutils \
-  gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
+  gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm \
+  visp-images-data
+# the benchmarks' big extras, not in every CI run: ViSP's tracker for tests/bench/visp_track.cpp (make deps-bench)
+BENCH_PACKAGES := libvisp-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: help deps gen models views demo view readme-images test bench stress clean
+.PHONY: help deps gen models views demo view track readme-images test bench stress clean
 help:
 	@sed -n 's/^#   //p' Makefile
 
@@ -49,6 +54,14 @@ deps:
 	  echo "installing:" $$missing; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing >/dev/null; \
 	else echo "deps: all installed"; fi
+
+.PHONY: deps-bench
+deps-bench:
+	@missing=$$(for p in $(BENCH_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:" $$missing; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing >/dev/null; \
+	else echo "deps-bench: all installed"; fi
 
 # ---- generator -------------------------------------------------------------------------------
 # gen/*.cpp and one level of subfolders (gen/input/, ...); objects mirror the tree under build/gen/
@@ -99,6 +112,12 @@ $(BUILD)/host/%.o: runtime/front/host/%.c $(RT_HDR) $(wildcard runtime/front/hos
 $(BUILD)/common/%.o: runtime/front/common/%.c $(RT_HDR) $(COMMON_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
+# the tracker front end: track/ with the host's PNG writer
+TRACK_SRC := $(wildcard runtime/front/track/*.c)
+TRACK_OBJ := $(patsubst runtime/front/track/%.c,$(BUILD)/track/%.o,$(TRACK_SRC)) $(BUILD)/host/image.o $(BUILD)/common/rgb.o
+$(BUILD)/track/%.o: runtime/front/track/%.c $(RT_HDR) $(wildcard runtime/front/track/*.h runtime/front/host/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(HOST_CFLAGS) -c -o $@ $<
 # the runtime and the host front end's objects alone: the tests link them (tests/lib.sh rt_objs)
 # wherever they test the runtime as the viewers have it, instead of compiling it again
 .PHONY: runtime-objs
@@ -117,6 +136,9 @@ $(BUILD)/models/%:
 VIEW_LDFLAGS := -Wl,--gc-sections -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free -lm
 link_view = $(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $(BUILD)/$(1)/$(1)-view \
   $(BUILD)/$(1)/*.c $(RT_OBJ) $(HOST_OBJ) $(VIEW_LDFLAGS)
+
+link_track = $(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $(BUILD)/$(1)/$(1)-track \
+  $(BUILD)/$(1)/*.c $(RT_OBJ) $(TRACK_OBJ) $(VIEW_LDFLAGS)
 
 # build/NAME/budget.json stands for the whole bake of catalogue model NAME
 define catalogue_rules
@@ -138,6 +160,21 @@ view: $(MODELC) $(RT_OBJ) $(HOST_OBJ)
 	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --depth $(DEPTH) $(BAKE_OPTS)
 	$(call link_view,$(NAME))
 	@echo "built $(BUILD)/$(NAME)/$(NAME)-view"
+
+# make track MODEL=file [NAME=n] [BAKE_OPTS=..]: bake an edge model (--as edges) and build build/NAME/NAME-track
+track: $(MODELC) $(RT_OBJ) $(TRACK_OBJ)
+	@test -n "$(MODEL)" || { echo "usage: make track MODEL=path/to/file.cao|mesh [NAME=name] [BAKE_OPTS=..]" >&2; exit 2; }
+	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --as edges $(BAKE_OPTS)
+	$(call link_track,$(NAME))
+	@echo "built $(BUILD)/$(NAME)/$(NAME)-track"
+
+# ViSP's cube (Debian visp-images-data): its model and camera sequence, the tracker's real data
+VISP_MBT := /usr/share/visp-images-data/ViSP-images/mbt
+$(BUILD)/cube/budget.json: $(MODELC)
+	@test -f $(VISP_MBT)/cube.cao || { echo "modelc: $(VISP_MBT)/cube.cao missing: run make deps (package visp-images-data)" >&2; exit 1; }
+	$(MODELC) $(VISP_MBT)/cube.cao -o $(BUILD) --name cube --as edges -q
+$(BUILD)/cube/cube-track: $(BUILD)/cube/budget.json $(RT_OBJ) $(TRACK_OBJ)
+	$(call link_track,cube)
 
 # ---- demo ------------------------------------------------------------------------------------
 DEMO_VIEW := $(BUILD)/$(DEFAULT_MODEL)/$(DEFAULT_MODEL)-view
@@ -189,6 +226,15 @@ bench-silhouette: $(MODELC) models
 bench-track:
 	@tests/bench/track.sh
 
+# ViSP's model-based edge tracker (vpMbGenericTracker, edges only) on ViSP's cube sequence: the peer of
+# build/cube/cube-track, same CSV (needs make deps-bench: libvisp-dev; compare with tests/bench/cube_compare.py)
+VISP_CFLAGS = $(shell pkg-config --cflags visp 2>/dev/null)
+VISP_LIBS := -lvisp_mbt -lvisp_me -lvisp_io -lvisp_core
+$(BUILD)/bench/visp_track: tests/bench/visp_track.cpp
+	@pkg-config --exists visp || { echo "modelc: ViSP (libvisp-dev) missing: run make deps-bench" >&2; exit 1; }
+	@mkdir -p $(@D)
+	g++ -O2 -g -std=c++17 -Wall -Wextra $(VISP_CFLAGS) -o $@ $< $(VISP_LIBS)
+
 # the automatic level of detail holding frame-time targets (a RESULTS.md section; make bench runs it too)
 .PHONY: bench-lod-auto
 bench-lod-auto: $(MODELC) models
@@ -223,12 +269,12 @@ clean:
 # Every generator source but gen/main.cpp, compiled by clang with coverage for libFuzzer, ASan and
 # UBSan; one target per reader (tests/fuzz/fuzz_reader.cpp with the extension compiled in) and one
 # for the whole bake (tests/fuzz/fuzz_bake.cpp, with gen/main.cpp's main renamed so it is callable).
-#   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz bake"]   findings: tests/fuzz/regress/
+#   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz cao bake track_input"]   findings: tests/fuzz/regress/
 FUZZ_CXX ?= clang++
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CXXFLAGS := -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(GEN_CXXFLAGS)
-FUZZ_READERS := off obj ply stl xyz
-FUZZ_TARGETS ?= $(FUZZ_READERS) bake
+FUZZ_READERS := off obj ply stl xyz cao
+FUZZ_TARGETS ?= $(FUZZ_READERS) bake track_input
 FUZZ_SECONDS ?= 600
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_GEN_SRC := $(filter-out gen/main.cpp,$(GEN_SRC))
@@ -253,6 +299,13 @@ $(foreach r,$(FUZZ_READERS),$(FUZZ_DIR)/fuzz-$(r)): $(FUZZ_DIR)/fuzz-%: $(FUZZ_D
 	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
 $(FUZZ_DIR)/fuzz-bake: $(FUZZ_DIR)/bake.o $(FUZZ_DIR)/main.o $(FUZZ_GEN_OBJ)
 	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+# the tracker front end's input readers (runtime/front/track/track_input.c: C, so clang); its
+# findings are replayed by tests/unit/test_track_input.c, not through modelc
+FUZZ_CC ?= clang
+$(FUZZ_DIR)/fuzz-track_input: tests/fuzz/fuzz_track_input.c runtime/front/track/track_input.c runtime/front/track/track_input.h
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer -Wall -Wextra -Werror -Iruntime/include -o $@ \
+	  tests/fuzz/fuzz_track_input.c runtime/front/track/track_input.c -lm
 
 .PHONY: fuzz fuzz-build
 fuzz-build: $(FUZZ_BINS)

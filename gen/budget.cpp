@@ -2,6 +2,10 @@
 #include "budget.hpp"
 
 #include <regex>
+#include <stdexcept>
+
+#include "modelc/imgedge.h"   // MC_IMGEDGE_SCRATCH_WORDS
+#include "modelc/sdepth.h"    // MC_SDEPTH_WORDS, MC_SDEPTH_MATCHED_WORDS
 
 namespace mc {
 
@@ -53,6 +57,43 @@ Budget budget_of(const BakeSize &s) {
     b.depth_buffer = depth_buffer_bytes(s.screen_w, s.screen_h);
     b.runtime_ram = rt::kRuntimeStaticRam;
     b.stack = stack_bytes(s.depth);
+    return b;
+}
+
+size_t track_code_bytes() {
+    size_t code = rt::kLibgccDivision;
+    for (const auto &m : rt::kTrackModules) code += m.bytes;
+    for (const char *name : rt::kTrackShared) {
+        size_t found = 0;
+        for (const auto &m : rt::kModules) found += std::string(m.name) == name ? m.bytes : 0;
+        for (const auto &m : rt::kMeshModules) found += std::string(m.name) == name ? m.bytes : 0;
+        if (!found) throw std::logic_error(std::string("runtime_costs.hpp has no module ") + name);
+        code += found;
+    }
+    return code;
+}
+
+TrackRam track_ram(int w, int h, size_t vertices, size_t particles) {
+    TrackRam r;
+    r.frame = color_buffer_bytes(w, h);
+    r.masks = color_buffer_bytes(w, h);
+    r.scratch = 4u * MC_IMGEDGE_SCRATCH_WORDS(w);
+    r.sdepth = 4u * MC_SDEPTH_WORDS(w, h);
+    r.matched = 4u * MC_SDEPTH_MATCHED_WORDS(w, h);
+    r.cache = vertices * rt::kXvertexBytes;
+    r.particles = 2 * particles * rt::kParticleBytes;
+    return r;
+}
+
+Budget budget_of(const EdgeBakeSize &s) {
+    Budget b;
+    b.edges = s.data;
+    b.descriptors = s.chunk_entries * rt::kChunkBytes + rt::kEdgesBytes + rt::kModelBytes + s.name_bytes;
+    b.code = track_code_bytes();
+    b.color_buffer = color_buffer_bytes(s.screen_w, s.screen_h);
+    b.depth_buffer = depth_buffer_bytes(s.screen_w, s.screen_h);
+    b.runtime_ram = rt::kRuntimeStaticRam;
+    b.track = track_ram(s.screen_w, s.screen_h, s.vertices, s.particles).total();
     return b;
 }
 

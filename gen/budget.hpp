@@ -25,20 +25,22 @@ size_t parse_size(const std::string &option, const std::string &text);
 struct Budget {
     size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
     size_t pmesh = 0;                            // bytes of the progressive mesh's arrays (0: no mesh part)
+    size_t edges = 0;                            // bytes of the edge model's arrays (0: no edge part)
     size_t descriptors = 0;                      // chunk lists, levels, octree, pmesh, model, name (32-bit layout)
     size_t code = 0;                             // runtime modules + libgcc helpers
     size_t flash() const { return data() + descriptors + code; }
-    size_t data() const { return masks + colors + palette + pmesh; }
+    size_t data() const { return masks + colors + palette + pmesh + edges; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
     size_t pmesh_facing = 0;                     // the line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES)
     size_t pmesh_cache = 0;                      // the vertex projection cache (mesh_render.h)
     size_t pmesh_sdepth = 0;                     // the lines style's sparse depth buffer bits (sdepth.h)
+    size_t track = 0;                            // the tracker's memory beside the frame buffers (TrackRam)
     size_t ram() const {
-        return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache + pmesh_sdepth;
+        return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache + pmesh_sdepth + track;
     }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
-    size_t stack = 0;                            // bound for mc_octree_render at the model's depth
+    size_t stack = 0;                            // bound for mc_octree_render at the model's depth (0: none stated)
 };
 
 // What a bake emits, as the budget counts it.
@@ -56,6 +58,29 @@ struct BakeSize {
 };
 
 Budget budget_of(const BakeSize &s);
+
+// The tracker's memory for an edge model (app.h's edge fields, NAME_app.c's static arrays) beside
+// the frame buffers, which hold the sparse depth buffer's depths and colours: a w x h camera frame
+// and its edge masks, the edge detector's scratch rows, the sparse depth buffer's bit vectors (in
+// use and matched), the vertex cache and two arrays of particles.
+struct TrackRam {
+    size_t frame = 0, masks = 0, scratch = 0, sdepth = 0, matched = 0, cache = 0, particles = 0;
+    size_t total() const { return frame + masks + scratch + sdepth + matched + cache + particles; }
+};
+TrackRam track_ram(int w, int h, size_t vertices, size_t particles);
+
+// What an edge-model bake (--as edges) emits, as the budget counts it.
+struct EdgeBakeSize {
+    size_t data = 0;                             // bytes of its arrays
+    size_t chunk_entries = 0, name_bytes = 0;
+    size_t vertices = 0, particles = 0;
+    int screen_w = 0, screen_h = 0;
+};
+Budget budget_of(const EdgeBakeSize &s);
+
+// A tracker's code: its own modules (kTrackModules), those it shares with the renderers
+// (kTrackShared) and the libgcc division helpers.
+size_t track_code_bytes();
 
 // One runtime module's code, built with this MC_LEAF_SWITCH.
 inline size_t module_code_bytes(const rt::ModuleCode &m, int leaf_switch) { return leaf_switch ? m.bytes : m.bytes_loop; }

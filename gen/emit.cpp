@@ -1,5 +1,6 @@
 // Emission: see emit.hpp.
 #include "emit.hpp"
+#include "emit_files.hpp"
 #include "runtime_costs.hpp"
 #include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
 #include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
@@ -20,77 +21,6 @@
 namespace fs = std::filesystem;
 
 namespace mc {
-namespace {
-
-struct Array {
-    std::string symbol, what;
-    const uint8_t *data;
-    size_t size;
-    bool mesh = false;   // declared in NAME_pmesh.c, not NAME_octree.c
-};
-
-std::string upper(std::string s) {
-    for (char &c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return s;
-}
-
-// Initialiser lines, 24 decimal bytes a line.
-mstch::array byte_lines(const uint8_t *p, size_t n) {
-    mstch::array lines;
-    std::string line;
-    for (size_t i = 0; i < n; i++) {
-        line += std::to_string(p[i]) + ",";
-        if (i % 24 == 23 || i + 1 == n) lines.push_back(line), line.clear();
-    }
-    return lines;
-}
-
-void write_file(const fs::path &path, const std::string &text) {
-    std::ofstream f(path, std::ios::binary);
-    f << text;
-    f.close();
-    if (!f) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
-}
-
-mstch::map common(const EmitOptions &opt) {
-    return mstch::map{{"name", opt.name}, {"NAME", upper(opt.name)}, {"source", opt.source}};
-}
-
-// A file coordinate as Q32.32 (modelc/model.h), rounded to nearest, saturated.
-std::string q32(double v) {
-    const double scaled = std::ldexp(v, 32);
-    if (!(scaled < 9.2e18)) return "INT64_MAX";
-    if (!(scaled > -9.2e18)) return "INT64_MIN";
-    return "INT64_C(" + std::to_string(std::llround(scaled)) + ")";
-}
-
-std::string g9(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
-}
-
-// The model descriptor's template data: the grid cube in file coordinates (the voxels' frame is
-// the file's turned to y-up when --up z: (x, y, z) -> (x, z, -y), so turned back here) and the
-// up axis (modelc/model.h).
-mstch::map model_data(const Voxels &vox, const EmitOptions &opt) {
-    const GridCube cube = vox.cube();
-    const double side = cube.side;
-    std::array<double, 3> c{};
-    for (int i = 0; i < 3; i++) c[i] = cube.origin[i] + side / 2;
-    c = file_frame(c, opt.up);
-    mstch::map m = common(opt);
-    m.emplace("centre_q", q32(c[0]) + ", " + q32(c[1]) + ", " + q32(c[2]));
-    m.emplace("side_q", q32(side));
-    m.emplace("centre_text", g9(c[0] + 0.0) + ", " + g9(c[1] + 0.0) + ", " + g9(c[2] + 0.0));   // no "-0"
-    m.emplace("side_text", g9(side));
-    const bool z = opt.up == UpAxis::z;
-    m.emplace("up", std::string(z ? "z" : "y"));
-    m.emplace("up_code", std::string(z ? "MC_UP_Z" : "MC_UP_Y"));
-    return m;
-}
-
-}  // namespace
 
 std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8_t> *groups) {
     std::vector<size_t> sizes;
@@ -244,22 +174,6 @@ Budget budget_of(const Octree &t, const EmitOptions &opt) { return budget_of(t, 
 
 namespace {
 
-
-// Data files: arrays in order, a new file once the current one holds file_bytes.
-std::vector<std::vector<const Array *>> data_files(const std::vector<Array> &arrays, size_t file_bytes) {
-    std::vector<std::vector<const Array *>> files(1);
-    size_t in_file = 0;
-    for (const Array &a : arrays) {
-        if (in_file > 0 && in_file + a.size > file_bytes) files.emplace_back(), in_file = 0;
-        files.back().push_back(&a);
-        in_file += a.size;
-    }
-    return files;
-}
-
-// File name and contents, in the order they are written.
-using Files = std::vector<std::pair<std::string, std::string>>;
-
 // ---- template data -------------------------------------------------------------------------------
 // Everything the templates are filled with, and the files they make (all but budget.json), rendered
 // in memory: nothing touches the disk until all of it succeeded. chunk_files: which data file holds
@@ -275,25 +189,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     const size_t points = t.nodes(D);
     const size_t workspace = bud.frame_buffers();
 
-    std::vector<std::pair<std::string, std::string>> out;
-    for (size_t f = 0; f < files.size(); f++) {
-        mstch::map ctx = common(opt);
-        mstch::array arr;
-        size_t bytes = 0;
-        std::string fname = name + "_data_" + std::to_string(f) + ".c";
-        for (const Array *a : files[f]) {
-            arr.push_back(mstch::map{{"symbol", a->symbol}, {"what", a->what}, {"size", std::to_string(a->size)},
-                                     {"lines", byte_lines(a->data, a->size)}});
-            bytes += a->size;
-            chunk_files.push_back({{"symbol", a->symbol}, {"bytes", a->size}, {"file", fname}});
-        }
-        ctx.emplace("arrays", arr);
-        ctx.emplace("index", std::to_string(f + 1));
-        ctx.emplace("files", std::to_string(files.size()));
-        ctx.emplace("bytes", std::to_string(bytes));
-        ctx.emplace("count", std::to_string(files[f].size()));
-        out.emplace_back(fname, mstch::render(template_text("data.c"), ctx));
-    }
+    Files out = data_file_texts(opt, files, chunk_files);
     mstch::map octree = common(opt);
     mstch::array decls;
     for (const Array &a : arrays)
@@ -308,7 +204,9 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     octree.emplace("palette_bytes", std::to_string(palette.size()));
     octree.emplace("palette_lines", byte_lines(palette.data(), palette.size()));
     out.emplace_back(name + "_octree.c", mstch::render(template_text("octree.c"), octree));
-    mstch::map model = model_data(vox, opt);
+    mstch::map model = model_data(vox.cube(), opt);
+    model.emplace("octree_ptr", "&mc_octree_" + name);
+    model.emplace("edges_ptr", std::string("0"));
     model.emplace("pmesh_ptr", std::string(opt.pmesh ? "&mc_pmesh_" + name : "0"));
     out.emplace_back(name + "_model.c", mstch::render(template_text("model.c"), model));
     mstch::map pmesh_header;
@@ -356,7 +254,10 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         symbols.push_back(mstch::map{{"symbol", a.symbol}, {"suffix", a.symbol.substr(4 + name.size())}});
     header.emplace("symbols", symbols);
     if (opt.pmesh) header.emplace("pmesh", mstch::array{pmesh_header});
-    out.emplace_back(name + ".h", mstch::render(template_text("model.h"), header));
+    mstch::array parts{mstch::map{{"part", std::string("octree")}}};
+    if (opt.pmesh) parts.push_back(mstch::map{{"part", std::string("pmesh")}});
+    header.emplace("parts", parts);
+    out.emplace_back(name + ".h", render_header("model.h", header));
     if (!opt.lib) out.emplace_back(name + "_app.c", mstch::render(template_text("app.c"), header));
     return out;
 }
@@ -482,28 +383,6 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);
     return budget.dump(2) + "\n";
-}
-
-// Writes every file into parent/name/ as a whole: into a temporary sibling directory first, then
-// swapped in, so that a failure leaves the previous output (or none), never a part.
-void write_directory(const fs::path &parent, const std::string &name, const Files &out) {
-    const fs::path final_dir = parent / name;
-    std::string pid = std::to_string(getpid());
-    fs::path tmp = parent / ("." + name + ".tmp-" + pid), old = parent / ("." + name + ".old-" + pid);
-    try {
-        fs::create_directories(parent);
-        fs::remove_all(tmp);
-        fs::create_directory(tmp);
-        for (const auto &[fname, text] : out) write_file(tmp / fname, text);
-        if (fs::exists(final_dir)) fs::rename(final_dir, old);
-        fs::rename(tmp, final_dir);
-        fs::remove_all(old);
-    } catch (...) {
-        std::error_code ec;
-        fs::remove_all(tmp, ec);
-        if (!fs::exists(final_dir, ec) && fs::exists(old, ec)) fs::rename(old, final_dir, ec);
-        throw;
-    }
 }
 
 }  // namespace

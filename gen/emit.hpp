@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 #include "budget.hpp"
+#include "edge_model.hpp"
+#include "normalize.hpp"
 #include "octree.hpp"
 #include "pmesh.hpp"
 
@@ -27,6 +29,7 @@ struct EmitOptions {
     std::string fit_note;      // what --fit chose, recorded in budget.json
     std::vector<std::pair<std::string, std::string>> budget_extra;  // more budget.json entries: key, JSON text
     const PMesh *pmesh = nullptr;   // the mesh part (--as both), or none
+    size_t particles = 300;    // --as edges: particles the app binding's static arrays hold
 };
 
 // The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where
@@ -43,5 +46,11 @@ std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8
 // Writes everything to out_dir/name/ via a temporary directory renamed on success.
 // Returns the budget as JSON text (also written as budget.json).
 std::string emit_model(const Octree &tree, const Voxels &vox, const EmitOptions &opt);
+
+// An edge-model bake (--as edges): the budget of what emit_edges would write, and the writing:
+// NAME.h, NAME_data_N.c, NAME_edges.c, NAME_model.c (cube: the model's grid cube, for its
+// normalization), NAME_app.c (not with --emit lib) and budget.json, all at once as emit_model does.
+Budget budget_of(const EdgeModel &e, const EmitOptions &opt);
+std::string emit_edges(const EdgeModel &e, const GridCube &cube, const EmitOptions &opt);
 
 }  // namespace mc

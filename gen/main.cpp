@@ -8,9 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <cmath>
+#include <cstdlib>
 #include <regex>
 
 #include "budget.hpp"
+#include "edge_model.hpp"
 #include "emit.hpp"
 #include "fit.hpp"
 #include "model.hpp"
@@ -55,7 +59,9 @@ int main(int argc, char **argv) {
     std::string as = "points";
     std::string dump_pmesh;       // hidden: tests only, N:FILE
     mc::PMeshOptions pmesh_opt;
-    app.add_option("input", input, "model file: .off .obj .ply .stl (meshes), .xyz .ply (point sets)")->required();
+    mc::EdgeModelOptions edge_opt;
+    std::string unit = "m";
+    app.add_option("input", input, "model file: .off .obj .ply .stl .cao (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
     app.add_option("-d,--depth", vox.depth, "octree depth D: a grid of 2^D cells per side")
@@ -93,14 +99,19 @@ int main(int argc, char **argv) {
     app.add_option("--leaf-switch", emit.leaf_switch, "MC_LEAF_SWITCH the runtime is built with (config.h): "
                    "1 costs about 56 KB more code on Cortex-M, counted in the flash budget")
         ->check(CLI::Range(0, 1))->capture_default_str();
-    app.add_option("--as", as, "the parts to bake: points (the point octree), or both (the octree and a progressive "
-                   "mesh, for triangle meshes only)")
-        ->check(CLI::IsMember({"points", "both"}))->capture_default_str();
+    app.add_option("--as", as, "the parts to bake: points (the point octree), both (the octree and a progressive "
+                   "mesh, for triangle meshes only), or edges (an edge model for tracking, alone: meshes and .cao)")
+        ->check(CLI::IsMember({"points", "both", "edges"}))->capture_default_str();
+    app.add_option("--unit", unit, "--as edges: the length of one file unit: m, cm, mm, um, or metres as a number "
+                   "(.cao models are in metres)")
+        ->capture_default_str();
+    app.add_option("--particles", emit.particles, "--as edges: the most particles the app binding holds")
+        ->check(CLI::Range(size_t(1), size_t(65535)))->capture_default_str();
     app.add_option("--max-faces", pmesh_opt.max_faces, "--as both: the most faces of the mesh's finest level (0: all "
                    "of the file's)")
         ->check(CLI::Range(size_t(0), size_t(1) << 31))->capture_default_str();
-    app.add_option("--crease-angle", pmesh_opt.crease_angle, "--as both: degrees between two faces' normals above "
-                   "which the line drawings draw their edge as a crease")
+    app.add_option("--crease-angle", pmesh_opt.crease_angle, "--as both, --as edges: degrees between two faces' "
+                   "normals above which their edge is drawn as a crease, or tracked")
         ->check(CLI::Range(0.0, 180.0))->capture_default_str();
     app.add_option("--dump-pmesh-level", dump_pmesh, "N:FILE: write the faces OpenMesh's decimater leaves at N "
                    "vertices (pmesh.hpp dump_decimated), for the tests")
@@ -140,6 +151,17 @@ int main(int argc, char **argv) {
     const mc::Limits &limits = emit.limits;
     if (fit && !limits.flash && !limits.ram && !limits.stack)
         return fail("--fit needs at least one of --flash-budget, --ram-budget, --stack-budget", 2);
+    if (as == "edges") {
+        if (fit) return fail("--fit: an edge model has no depth or palette to choose (--as edges)", 2);
+        if (limits.stack) return fail("--stack-budget: the tracker's stack bound is not stated yet (--as edges)", 2);
+        static const std::map<std::string, double> units = {{"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"um", 1e-6}};
+        auto u = units.find(unit);
+        char *end = nullptr;
+        edge_opt.unit = u != units.end() ? u->second : std::strtod(unit.c_str(), &end);
+        if (u == units.end() && (end == unit.c_str() || *end || !(edge_opt.unit > 0) || !std::isfinite(edge_opt.unit)))
+            return fail("--unit " + unit + ": expected m, cm, mm, um or a positive number of metres", 2);
+        edge_opt.crease_angle = pmesh_opt.crease_angle;
+    }
     emit.lib = emit_kind == "lib";
     emit.up = up == "z" ? mc::UpAxis::z : mc::UpAxis::y;
     if (name.empty()) name = name_from_path(input);
@@ -150,6 +172,20 @@ int main(int argc, char **argv) {
         mc::Progress progress(quiet);
         progress.step("loading");
         mc::Model model = mc::load_model(input);
+        emit.name = name;
+        emit.source = std::filesystem::path(input).filename().string();
+        emit.out_dir = out_dir;
+        if (as == "edges") {   // in the file's own frame: built before normalize() turns the model
+            progress.step("edge model");
+            const mc::EdgeModel edges = mc::build_edge_model(model, input, edge_opt);
+            const mc::GridCube cube = mc::normalize(model, emit.up);
+            std::string over = mc::over_budget(mc::budget_of(edges, emit), limits);
+            if (!over.empty()) throw mc::BudgetError("over budget: " + over);
+            progress.step("writing");
+            mc::emit_edges(edges, cube, emit);
+            progress.finish();
+            return 0;
+        }
         const mc::GridCube cube = mc::normalize(model, emit.up);
         // the mesh part first: a point set asked for one stops here, before the long stages
         mc::PMesh pmesh;
@@ -179,7 +215,6 @@ int main(int argc, char **argv) {
             emit.budget_extra.emplace_back("pruning", mc::pruning_json(view_spec, pruned));
         }
         progress.step("building octree");
-        emit.name = name;
         mc::Octree tree;
         if (!fit) {
             tree = mc::build_octree(voxels, palette);
@@ -193,8 +228,6 @@ int main(int argc, char **argv) {
             emit.fit_note = choice.note;
         }
         progress.step("writing");
-        emit.source = std::filesystem::path(input).filename().string();
-        emit.out_dir = out_dir;
         mc::emit_model(tree, voxels, emit);
         progress.finish();
         if (fit) std::printf("modelc: %s\n", emit.fit_note.c_str());

@@ -32,6 +32,7 @@ struct Model {
     std::vector<std::array<uint32_t, 3>> tris;     // triangles (polygons are fan-triangulated)
     std::vector<std::array<uint8_t, 3>> colors;    // per point, RGB; empty when the file has none
     std::vector<std::array<double, 3>> normals;    // per point (point sets only); empty when none
+    std::vector<std::array<uint32_t, 2>> lines;    // edges the file names for tracking (.cao: its 3D lines and every polygon's sides, each once, smaller index first, in order of first mention); empty for other formats
 };
 
 // Loads and validates FILE. Throws InputError for anything wrong with it.

@@ -43,13 +43,22 @@ inline constexpr ModuleCode kModules[] = {
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 996, 996, "progressive-mesh level of detail and neighbours (pmesh.c)"},
     {"xform_vertex", 3896, 3896, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
-    {"raster", 6992, 6992, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
-    {"line", 2712, 2712, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
-    {"sdepth", 664, 664, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
+    {"raster", 7060, 7060, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
+    {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
+    {"sdepth", 828, 828, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 2540, 2540, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
     {"mesh_lines", 6384, 6384, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
+// The edge part's own modules (--as edges): a tracker links them with fixed, raster, line and sdepth
+// from the tables above (budget.cpp track_code_bytes).
+inline constexpr ModuleCode kTrackModules[] = {
+    {"camera", 2252, 2252, "pinhole projection of poses, near-plane clipping (camera.c)"},
+    {"imgedge", 1788, 1788, "image edges: Sobel, orientation bins, non-maximum suppression, masks (imgedge.c)"},
+    {"track", 3360, 3360, "the score of a pose: lines and faces into the sparse depth buffer (track.c)"},
+    {"particles", 2864, 2864, "the particle filter over poses (particles.c)"},
+};
+inline constexpr const char *kTrackShared[] = {"fixed", "raster", "line", "sdepth"};
 inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;
 
@@ -59,6 +68,8 @@ inline constexpr size_t kRuntimeStaticRam = 0;
 inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kOctreeBytes = 12, kModelBytes = 56;
 // mc_pmesh {5 uint32, 4 uint8, uint16, int16, 7 pointers} on a 32-bit target.
 inline constexpr size_t kPmeshBytes = 56;
+// mc_edges {3 uint32, 4 uint8, 4 pointers}, mc_particle {7 int32, 3 uint32}, mc_xvertex on a 32-bit target.
+inline constexpr size_t kEdgesBytes = 32, kParticleBytes = 40, kXvertexBytes = 16;
 
 // -fstack-usage of every function of octree_render.c, fixed.c, trig.c and xform.c that
 // mc_octree_render can reach.

@@ -11,8 +11,8 @@ cd "$(dirname "$0")/.."
 logdir=build/tests
 mkdir -p "$logdir"
 
-echo "building the generator, the runtime and the catalogue's viewers..."
-if ! make -s -j"$(nproc)" gen views >"$logdir/build.log" 2>&1; then
+echo "building the generator, the runtime, the catalogue's viewers and the cube's tracker..."
+if ! make -s -j"$(nproc)" gen views build/cube/cube-track >"$logdir/build.log" 2>&1; then
     tail -n 30 "$logdir/build.log"
     echo "0 passed, 1 failed, 0 skipped"
     exit 1
@@ -32,6 +32,7 @@ suites=(
     tests/render/suite.sh     # renders against the double-precision reference
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
+    tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
     tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree

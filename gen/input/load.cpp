@@ -64,7 +64,8 @@ Format format_of(const std::string &path) {
     if (ext == ".ply") return Format::ply;
     if (ext == ".stl") return Format::stl;
     if (ext == ".xyz") return Format::xyz;
-    fail_none(path, "unknown format '" + ext + "' (expected .off .obj .ply .stl .xyz)");
+    if (ext == ".cao") return Format::cao;
+    fail_none(path, "unknown format '" + ext + "' (expected .off .obj .ply .stl .xyz .cao)");
 }
 
 }  // namespace input
@@ -80,6 +81,7 @@ Model load_model(const std::string &path) {
     case input::Format::ply: m = input::read_ply(path, size); break;
     case input::Format::stl: m = input::read_stl(path, size); break;
     case input::Format::xyz: m = input::read_xyz(path, size); break;
+    case input::Format::cao: m = input::read_cao(path, size); break;
     }
     check_usable(path, m);
     return m;

@@ -10,6 +10,9 @@
 //     names a vertex twice dropped (OBJ first keeps each vertex's first mention, see obj.cpp),
 //     polygons fan-triangulated from their first corner
 //     (faces.hpp), RGB vertex colours when the file has them;
+//   CAO (ViSP's tracker models) is a mesh as above whose polygons are its faces from points and
+//     its faces from lines (each as the vertex loop its lines chain into), and the only format
+//     that fills Model::lines: its 3D lines, then the sides of every polygon kept, each edge once;
 //   point sets (XYZ, PLY without faces): coordinates and normals as double, RGB colours.
 #pragma once
 #include <cstdint>
@@ -19,7 +22,7 @@
 
 namespace mc::input {
 
-enum class Format { off, obj, ply, stl, xyz };
+enum class Format { off, obj, ply, stl, xyz, cao };
 
 // Format from the extension (case-insensitive); InputError for anything else.
 Format format_of(const std::string &path);
@@ -29,5 +32,6 @@ Model read_obj(const std::string &path, uint64_t size);
 Model read_ply(const std::string &path, uint64_t size);
 Model read_stl(const std::string &path, uint64_t size);
 Model read_xyz(const std::string &path, uint64_t size);
+Model read_cao(const std::string &path, uint64_t size);
 
 }  // namespace mc::input

@@ -22,7 +22,8 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
 {
     if (!f || !prm || !p || !spare || !q || !t) return MC_ERR_ARG;
     if (!prm->particles || prm->particles > 65535u || prm->fresh >= prm->particles || prm->step_t < 0 ||
-        prm->step_r < 0 || prm->step_t > (1 << 28) || prm->step_r > (1 << 28) || !prm->sharpness ||
+        prm->step_r < 0 || prm->step_t > (1 << 28) || prm->step_r > (1 << 28) || prm->fresh_r < 0 ||
+        prm->fresh_r > (1 << 28) || prm->layers > 4 || !prm->sharpness ||
         prm->sharpness > 64 || (prm->dof != 3 && prm->dof != 6))
         return MC_ERR_ARG;
     for (int k = 0; k < 3; k++)
@@ -32,6 +33,7 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     if (mc_quat_unit(q, u) != MC_OK) return MC_ERR_ARG;
     mc_filter_params *fp = &f->prm;   /* field by field, as copy() */
     fp->particles = prm->particles, fp->fresh = prm->fresh, fp->step_t = prm->step_t, fp->step_r = prm->step_r;
+    fp->fresh_r = prm->fresh_r, fp->layers = prm->layers ? prm->layers : 1;
     for (int k = 0; k < 3; k++) fp->lo[k] = prm->lo[k], fp->hi[k] = prm->hi[k];
     fp->min_visible = prm->min_visible, fp->sharpness = prm->sharpness, fp->dof = prm->dof;
     f->p = p, f->spare = spare;
@@ -62,6 +64,24 @@ static int32_t step(mc_rng *r, int32_t s)
     int64_t sum = 0;
     for (int k = 0; k < 4; k++) sum += (int64_t)mc_rng_below(r, 2u * (uint32_t)s + 1u) - s;
     return (int32_t)(sum / 2);
+}
+
+static void quat_mul(const int32_t a[4], const int32_t b[4], int32_t out[4]);
+
+/* Particle p moved: its translation by a step of step_t per axis (kept inside camera.h's range), its
+ * orientation turned by (1, e1, e2, e3) of steps of step_r (none when step_r is 0). */
+static void move(mc_rng *r, mc_particle *p, int32_t step_t, int32_t step_r)
+{
+    for (int k = 0; k < 3; k++) {
+        const int32_t v = p->t[k] + step(r, step_t);
+        p->t[k] = v > T_MAX ? T_MAX : v < -T_MAX ? -T_MAX : v;
+    }
+    if (!step_r) return;
+    int32_t d[4], q[4];
+    d[0] = 1 << 30;
+    for (int k = 1; k < 4; k++) d[k] = step(r, step_r);
+    quat_mul(p->q, d, q);
+    mc_quat_unit(q, p->q);
 }
 
 /* a (x) b, Q30 quaternions (components at most 2^30 or so: each product below 2^61) */
@@ -121,26 +141,18 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
     mc_particle *p = f->spare;
     for (uint32_t i = 0; i < n; i++) {
         if (i < drawn) {   /* motion */
-            for (int k = 0; k < 3; k++) {   /* kept inside camera.h's range */
-                const int32_t v = p[i].t[k] + step(r, prm->step_t);
-                p[i].t[k] = v > T_MAX ? T_MAX : v < -T_MAX ? -T_MAX : v;
-            }
-            if (!given) {
-                int32_t d[4];
-                d[0] = 1 << 30;
-                for (int k = 1; k < 4; k++) d[k] = step(r, prm->step_r);
-                int32_t q[4];
-                quat_mul(p[i].q, d, q);
-                mc_quat_unit(q, p[i].q);
-            }
+            move(r, &p[i], prm->step_t, given ? 0 : prm->step_r);
         } else {           /* re-detection */
             for (int k = 0; k < 3; k++)
                 p[i].t[k] = prm->lo[k] + (int32_t)mc_rng_below(r, (uint32_t)((int64_t)prm->hi[k] - prm->lo[k]) + 1u);
-            if (!given) {
+            if (!given && !prm->fresh_r) {   /* any orientation */
                 int32_t q[4];
                 for (int k = 0; k < 4; k++) q[k] = step(r, 1 << 28);
                 if (!(q[0] | q[1] | q[2] | q[3])) q[0] = 1;
                 mc_quat_unit(q, p[i].q);
+            } else if (!given) {             /* near the last estimate's */
+                for (int k = 0; k < 4; k++) p[i].q[k] = f->estimate.q[k];
+                move(r, &p[i], 0, prm->fresh_r);
             }
         }
         if (given)
@@ -148,7 +160,19 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
         const int rc = score(f, view, &p[i]);
         if (rc != MC_OK) return rc;
     }
-    f->spare = f->p, f->p = p;
+    /* further layers: all N drawn again from the weights just found and moved by steps halved
+     * each layer (an annealed search: the same frame, a finer look around the likely poses) */
+    for (unsigned layer = 1; layer < prm->layers; layer++) {
+        mc_particle *d = p == f->spare ? f->p : f->spare;
+        mc_filter_resample(r, p, n, d, n);
+        p = d;
+        for (uint32_t i = 0; i < n; i++) {
+            move(r, &p[i], prm->step_t >> layer, given ? 0 : prm->step_r >> layer);
+            const int rc = score(f, view, &p[i]);
+            if (rc != MC_OK) return rc;
+        }
+    }
+    if (p != f->p) f->spare = f->p, f->p = p;
     /* the estimate: weighted means, the orientations turned to the heaviest one's hemisphere */
     uint64_t total = 0;
     uint32_t best = 0;

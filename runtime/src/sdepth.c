@@ -12,6 +12,7 @@ int mc_sdepth_init(mc_sdepth *s, uint16_t width, uint16_t height, uint32_t *bits
     s->used = bits, s->rows = bits + (uint32_t)height * s->blocks;
     s->matched = 0;
     s->in_use = s->in_use_matched = 0;
+    s->row_lo = height, s->row_hi = 0;
     s->empty_depth = empty_depth, s->empty_color = empty_color;
     const uint32_t n = (uint32_t)width * height, words = MC_SDEPTH_WORDS(width, height);
     for (uint32_t i = 0; i < words; i++) bits[i] = 0;
@@ -31,7 +32,7 @@ void mc_sdepth_keep_matched(mc_sdepth *s, uint32_t *matched)
 
 void mc_sdepth_clear(mc_sdepth *s)
 {
-    for (uint32_t y = 0; y < s->height; y++) {
+    for (uint32_t y = s->row_lo; y <= s->row_hi; y++) {
         uint32_t *rw = s->rows + y * s->row_words;
         for (uint32_t k = 0; k < s->row_words; k++) {
             for (uint32_t m = rw[k]; m; m &= ~(0x80000000u >> mc_clz32(m))) {
@@ -48,6 +49,24 @@ void mc_sdepth_clear(mc_sdepth *s)
         }
     }
     s->in_use = s->in_use_matched = 0;
+    s->row_lo = s->height, s->row_hi = 0;
+}
+
+void mc_sdepth_forget(mc_sdepth *s)
+{
+    for (uint32_t y = s->row_lo; y <= s->row_hi; y++) {
+        uint32_t *rw = s->rows + y * s->row_words;
+        for (uint32_t k = 0; k < s->row_words; k++) {
+            for (uint32_t m = rw[k]; m; m &= ~(0x80000000u >> mc_clz32(m))) {
+                const uint32_t w = y * s->blocks + 32u * k + mc_clz32(m);
+                s->used[w] = 0;
+                if (s->matched) s->matched[w] = 0;
+            }
+            rw[k] = 0;
+        }
+    }
+    s->in_use = s->in_use_matched = 0;
+    s->row_lo = s->height, s->row_hi = 0;
 }
 
 void mc_sdepth_remove(mc_sdepth *s, uint32_t x, uint32_t y)

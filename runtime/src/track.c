@@ -52,6 +52,34 @@ static void hide(mc_sdepth *sd, const mc_raster_vertex v[3], int cull)
 
 static void as_raster(const mc_xvertex *x, mc_raster_vertex *r) { r->x = x->x, r->y = x->y, r->z = x->z; }
 
+/* Whether face i of a model with every vertex projected is seen from outside: hide()'s sign rule, so
+ * that the shortcut and the face pass cull the same faces. */
+static int front(const mc_edges *m, const mc_xvertex *cache, uint32_t i)
+{
+    uint32_t f[3];
+    mc_edges_face(m, i, f);
+    const mc_xvertex *a = &cache[f[0]], *b = &cache[f[1]], *c = &cache[f[2]];
+    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) <= 0;
+}
+
+/* A convex model wholly beyond the near plane and inside the band: each line with a face towards the
+ * camera goes into the buffer and no face hides any part of it; the others are hidden whole. */
+static void convex_lines(const mc_track_view *view, mc_track_score *score)
+{
+    const mc_edges *m = view->model;
+    const mc_xvertex *cache = view->cache;
+    for (uint32_t i = 0; i < m->lines; i++) {
+        uint32_t f[2], ends[2], drawn;
+        mc_edges_line_faces(m, i, f);
+        if (!front(m, cache, f[0]) && !front(m, cache, f[1])) continue;
+        mc_edges_line(m, i, ends);
+        mc_xvertex e[2];
+        e[0] = cache[ends[0]], e[1] = cache[ends[1]];
+        score->pixels += draw_line(view, e, &drawn);
+        score->lines += drawn;
+    }
+}
+
 int mc_track_score_pose(const mc_track_view *view, const mc_pose *pose, mc_track_score *score)
 {
     if (!view || !pose || !score || !view->model || !view->cam || !view->sd || !view->masks || !view->cache)
@@ -62,11 +90,19 @@ int mc_track_score_pose(const mc_track_view *view, const mc_pose *pose, mc_track
     if (!sd->matched || sd->width != cam->width || sd->height != cam->height) return MC_ERR_ARG;
     mc_xvertex *cache = view->cache;
     score->visible = score->matched = score->pixels = score->lines = 0;
-    mc_sdepth_clear(sd);
+    mc_sdepth_forget(sd);   /* every reader below goes by the bits */
+    uint32_t flagged = 0;
     for (uint32_t v = 0; v < m->vertices; v++) {
         int32_t c[3];
         camera_point(m, pose, v, c);
         mc_camera_project(cam, c, &cache[v]);
+        flagged |= cache[v].flags;
+    }
+    if (m->convex && !(flagged & (MC_XFORM_NEAR | MC_XFORM_FAR_OUT))) {
+        convex_lines(view, score);
+        score->visible = mc_sdepth_count(sd);
+        score->matched = mc_sdepth_count_matched(sd);
+        return MC_OK;
     }
     /* the lines first: their pixels become the buffer's entries */
     for (uint32_t i = 0; i < m->lines; i++) {

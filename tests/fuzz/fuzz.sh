@@ -5,7 +5,7 @@
 # timeout, allocation over the limit) minimized and, one per distinct report, added to
 # tests/fuzz/regress/TARGET/, which tests/fuzz/suite.sh replays in make test.
 #
-# usage: tests/fuzz/fuzz.sh [TARGET...]       (default: off obj ply stl xyz bake)
+# usage: tests/fuzz/fuzz.sh [TARGET...]       (default: off obj ply stl xyz cao bake track_input)
 #   FUZZ_SECONDS=600   seconds per target
 #   FUZZ_JOBS=1        libFuzzer worker processes per target (-fork)
 #   FUZZ_TIMEOUT=10    seconds one input may take before it is a hang
@@ -23,10 +23,10 @@ RSS_MB=${FUZZ_RSS_MB:-2048}
 MALLOC_MB=${FUZZ_MALLOC_MB:-512}
 MAX_LEN=${FUZZ_MAX_LEN:-4096}
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl xyz bake)
+[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl xyz cao bake track_input)
 bins=build/fuzz
 dir=${FUZZ_WORK:-build/fuzz}
-exts=(off obj ply stl xyz)   # the bake target's format byte, as in fuzz_bake.cpp
+exts=(off obj ply stl xyz cao)   # the bake target's format byte, as in fuzz_bake.cpp
 limits=(-timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -malloc_limit_mb="$MALLOC_MB")
 export ASAN_OPTIONS="abort_on_error=1:halt_on_error=1:detect_leaks=1:allocator_may_return_null=0"
 
@@ -50,6 +50,24 @@ for i in "${!exts[@]}"; do
         [ -f "$f" ] && { printf "\\x$(printf %02x "$i")"; cat "$f"; } >"$seeds/bake/$(basename "$f")"
     done
 done
+
+# the tracker's input readers (track_input, tests/fuzz/fuzz_track_input.c; its findings are
+# replayed by tests/unit/test_track_input.c): small PGMs (P5, P2, 16-bit, a crop of ViSP's cube
+# sequence), ViSP's tracker settings and pose (Debian visp-images-data, when installed), a camera
+# file's XML, an orientation file and the command-line forms
+ts=$seeds/track_input
+mkdir -p "$ts"
+printf 'P5\n# seed\n4 2\n255\n\001\002\003\004\375\376\377\000' >"$ts/p5.pgm"
+printf 'P2\n3 2\n15\n0 1 2\n# c\n13 14 15\n' >"$ts/p2.pgm"
+printf 'P5 2 1 65535\n\001\002\377\377' >"$ts/p5-16.pgm"
+visp=/usr/share/visp-images-data/ViSP-images/mbt
+[ -f "$visp/cube/image0000.pgm" ] && { printf 'P5\n32 16\n255\n'; tail -c +16 "$visp/cube/image0000.pgm" | head -c 512; } >"$ts/cube.pgm"
+for f in cube.xml cube.0.pos; do [ -f "$visp/$f" ] && cp "$visp/$f" "$ts/"; done
+printf '<root><camera><model><px>600</px><py>601</py><u0>320</u0><v0>240</v0></model></camera></root>\n' >"$ts/camera.xml"
+printf '0.02 0.1 0.5\n# theta u\n2.1 1.1 -0.4\n' >"$ts/pose.pos"
+printf '# theta u per frame\n0 0 0\n0.1 -0.2 0.3 # c\n\n1e-3 0 3.14\n' >"$ts/orient.txt"
+printf '547.7,542.1,338.7,234.5' >"$ts/camera.txt"
+printf '0.02,0.1,0.5,2.1,1.1,-0.4' >"$ts/pose.txt"
 
 # signature FILE TARGET: what a finding's report says, without addresses or sizes, and the first
 # frame in the generator's own code: two findings with one signature are one bug
@@ -77,7 +95,7 @@ install_finding() {
         [ -n "$b" ] || return
         [ $((b & 128)) -ne 0 ] && views=.views
         [ $((b & 64)) -ne 0 ] && mesh=.mesh
-        ext=${exts[$(((b & 63) % 5))]}
+        ext=${exts[$(((b & 63) % ${#exts[@]}))]}
         tail -c +2 "$f" >"tests/fuzz/regress/$t/$kind-$sha$views$mesh.$ext"
         echo "tests/fuzz/regress/$t/$kind-$sha$views$mesh.$ext"
     else

@@ -3,11 +3,11 @@
 // own command line (gen/main.cpp compiled with its main renamed mc_fuzz_modelc_main, so this
 // target follows however the stages are split into functions).
 //
-// Input layout: byte 0 chooses the format (kExt[(byte & 63) % 5]); with bit 6 set, --as both (the
-// progressive mesh: OpenMesh's decimation of whatever topology the file has); with bit 7 set,
-// --views front:40 (the visibility pass); the rest is the file. tests/fuzz/fuzz.sh stores a
-// finding as regress/bake/NAME[.views][.mesh].EXT (the byte turned into the name), which
-// tests/fuzz/suite.sh replays with the same options.
+// Input layout: byte 0 chooses the format (kExt[(byte & 63) % 6]; a new format goes at the end, so
+// bytes 0..4 keep theirs); with bit 6 set, --as both (the progressive mesh: OpenMesh's decimation
+// of whatever topology the file has); with bit 7 set, --views front:40 (the visibility pass); the
+// rest is the file. tests/fuzz/fuzz.sh stores a finding as regress/bake/NAME[.views][.mesh].EXT
+// (the byte turned into the name), which tests/fuzz/suite.sh replays with the same options.
 //
 // Promise: the reader answers with the value or an InputError only (as in fuzz_reader.cpp), and
 // the bake returns 0 or 1; a crash, sanitizer report, abort, allocation over -malloc_limit_mb or
@@ -24,13 +24,13 @@
 int mc_fuzz_modelc_main(int argc, char **argv);
 
 namespace {
-const char *const kExt[5] = {"off", "obj", "ply", "stl", "xyz"};
+const char *const kExt[6] = {"off", "obj", "ply", "stl", "xyz", "cao"};
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (size < 1) return 0;
     static const mc_fuzz::TempInput tmp;
-    const std::string path = tmp.write(kExt[(data[0] & 63) % 5], data + 1, size - 1);
+    const std::string path = tmp.write(kExt[(data[0] & 63) % 6], data + 1, size - 1);
     try {
         mc::load_model(path);
     } catch (const mc::InputError &) {

@@ -3,18 +3,19 @@
 
 usage: seeds.py MODELS_DIR OUT_DIR
 
-Writes OUT_DIR/{off,obj,ply,stl,xyz}/: small valid files cut from the catalogue's models (the first
-faces of a mesh with their vertices renumbered, the first points of a point set), the same meshes
-in every format the generator reads (OBJ, ASCII and binary STL, ASCII and binary PLY, with and
-without colours), and truncated prefixes of the originals; and OUT_DIR/bake/, each of those with
-the bake fuzzer's leading format byte (tests/fuzz/fuzz_bake.cpp). Valid seeds let the mutations
-start deep in each reader instead of at its first header check.
+Writes OUT_DIR/{off,obj,ply,stl,xyz,cao}/: small valid files cut from the catalogue's models (the
+first faces of a mesh with their vertices renumbered, the first points of a point set), the same
+meshes in every format the generator reads (OBJ, ASCII and binary STL, ASCII and binary PLY, with
+and without colours, CAO with faces from lines and from points), ViSP's cube as CAO written here,
+and truncated prefixes of the originals; and OUT_DIR/bake/, each of those with the bake fuzzer's
+leading format byte (tests/fuzz/fuzz_bake.cpp). Valid seeds let the mutations start deep in each
+reader instead of at its first header check.
 """
 import os
 import struct
 import sys
 
-EXTS = ["off", "obj", "ply", "stl", "xyz"]
+EXTS = ["off", "obj", "ply", "stl", "xyz", "cao"]  # the bake target's format byte: new ones at the end
 
 
 def read_off(path, faces_wanted):
@@ -85,10 +86,45 @@ def mesh_files(name, v, faces, out):
     ply += b"".join(struct.pack("<3f", *p) for p in v)
     ply += b"".join(struct.pack("<B%di" % len(f), len(f), *f) for f in faces)
     write(f"{out}/ply/{name}-binary.ply", ply)
+    write(f"{out}/cao/{name}.cao", cao(name, v, faces))
+
+
+def cao(name, v, faces, by_lines=4):
+    """CAO: the first BY_LINES faces from 3D lines (their edges, each once), the rest from points."""
+    lines, index = [], {}
+    for f in faces[:by_lines]:
+        for a, b in zip(f, f[1:] + f[:1]):
+            if (a, b) not in index and (b, a) not in index:
+                index[(a, b)] = len(lines)
+                lines.append((a, b))
+
+    def line(a, b):
+        return index[(a, b)] if (a, b) in index else index[(b, a)]
+    text = "V1\n# %s\n# points\n%d\n" % (name, len(v)) + "".join("%g %g %g\n" % p for p in v)
+    text += "# 3D lines\n%d\n" % len(lines) + "".join("%d %d\n" % l for l in lines)
+    text += "# faces from lines\n%d\n" % len(faces[:by_lines])
+    text += "".join("%d %s name=l%d\n" % (len(f), " ".join(str(line(a, b)) for a, b in zip(f, f[1:] + f[:1])), k)
+                    for k, f in enumerate(faces[:by_lines]))
+    text += "# faces from points\n%d\n" % len(faces[by_lines:])
+    text += "".join("%d %s name=\"p %d\"\n" % (len(f), " ".join(map(str, f)), k) for k, f in enumerate(faces[by_lines:]))
+    return text + "# cylinders\n0\n# circles\n0\n"
+
+
+def cube_files(out):
+    """ViSP's cube (mbt/cube.cao in ViSP's images), written here: as ViSP ships it, from lines, and V2."""
+    v = [(0, 0, 0), (-0.084, 0, 0), (-0.084, 0.084, 0), (0, 0.084, 0),
+         (0, 0, 0.084), (-0.084, 0, 0.084), (-0.084, 0.084, 0.084), (0, 0.084, 0.084)]
+    faces = [[0, 4, 5, 1], [1, 5, 6, 2], [6, 7, 3, 2], [3, 7, 4, 0], [0, 1, 2, 3], [7, 6, 5, 4]]
+    write(f"{out}/cao/cube.cao", cao("cube", v, faces, 0))
+    write(f"{out}/cao/cube-lines.cao", cao("cube", v, faces, 6))
+    v2 = "V2\n8\n" + "".join("%g %g %g %d %d\n" % (p + (i, 2 * i)) for i, p in enumerate(v))
+    v2 += "1\n0 6 useLod=true\n0\n6\n" + "".join("4 %s\n" % " ".join(map(str, f)) for f in faces)
+    write(f"{out}/cao/cube-v2.cao", v2)  # no cylinder or circle counts, as in older files
 
 
 def main():
     models, out = sys.argv[1], sys.argv[2]
+    cube_files(out)
     for name in ["nefertiti", "head", "fandisk"]:
         path = f"{models}/{name}.off"
         if not os.path.exists(path):

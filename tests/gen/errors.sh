@@ -68,7 +68,7 @@ expect missing-file "$in/missing.off" - '^cannot open: No such file or directory
 mkdir -p "$in/dir.off"
 expect directory "$in/dir.off" - '^cannot open: Is a directory$'
 printf 'OFF\n%s\n' "$TETRA_V" >"$in/model.txt"
-expect unknown-extension "$in/model.txt" - "^unknown format '\.txt' \(expected \.off \.obj \.ply \.stl \.xyz\)$"
+expect unknown-extension "$in/model.txt" - "^unknown format '\.txt' \(expected \.off \.obj \.ply \.stl \.xyz \.cao\)$"
 : >"$in/empty.off"
 expect empty-file "$in/empty.off" - '^file is empty$'
 
@@ -477,6 +477,155 @@ expect xyz-identical-points "$f" - '^all 3 points are identical \(zero extent\)$
 f=$in/xyz-comments-only.xyz
 printf '# nothing here\n\n' >"$f"
 expect xyz-no-points "$f" - '^point set has no points$'
+
+# ---------------------------------------------------------------------------------- CAO
+
+# ViSP's cube: line 1 the header, 2 the point count, 3-10 the points, 11 the 3D line count, 12 the
+# count of faces from lines, 13 the count of faces from points, 14-19 the faces, 20 the cylinder
+# count, 21 the circle count.
+CAO_P=$'8\n0 0 0\n-1 0 0\n-1 1 0\n0 1 0\n0 0 1\n-1 0 1\n-1 1 1\n0 1 1'
+CAO_F=$'6\n4 0 4 5 1\n4 1 5 6 2\n4 6 7 3 2\n4 3 7 4 0\n4 0 1 2 3\n4 7 6 5 4'
+# The cube's 12 edges as 3D lines (lines 12-23 of a file with them) and its faces from them.
+CAO_L=$'12\n0 4\n4 5\n5 1\n1 0\n5 6\n6 2\n2 1\n6 7\n7 3\n3 2\n7 4\n3 0'
+
+f=$in/cao-bad-header.cao
+printf '# cube\nW1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-bad-header "$f" 2 "^expected the version header V1, found 'W1'$"
+
+f=$in/cao-no-header.cao
+printf '%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-no-header "$f" 1 "^expected the version header V1, found '8'$"
+
+f=$in/cao-version.cao
+printf 'V3\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-unknown-version "$f" 1 "^version 'V3' is not supported \(V1 or V2\)$"
+
+f=$in/cao-include.cao
+printf 'V1\nload("parts/door.cao")\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-include "$f" 2 '^includes \(load\(\.\.\.\)\) are not supported$'
+
+f=$in/cao-include-first.cao
+printf '# parts\nload("a.cao", t=[0; 0; 1])\nV1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-include-before-header "$f" 2 '^includes \(load\(\.\.\.\)\) are not supported$'
+
+f=$in/cao-count.cao
+printf 'V1\neight\n' >"$f"
+expect cao-count-not-a-number "$f" 2 "^expected the number of points, found 'eight'$"
+
+f=$in/cao-count-negative.cao
+printf 'V1\n%s\n-2\n' "$CAO_P" >"$f"
+expect cao-count-negative "$f" 11 '^negative number of 3D lines: -2$'
+
+f=$in/cao-count-junk.cao
+printf 'V1\n%s\n0 lines\n' "$CAO_P" >"$f"
+expect cao-count-junk "$f" 11 "^unexpected 'lines' after the number of 3D lines$"
+
+f=$in/cao-count-large.cao
+printf 'V1\n60000000\n0 0 0\n' >"$f"
+expect cao-too-many-points "$f" 2 '^60000000 points exceed the limit of 50000000$'
+
+f=$in/cao-no-points.cao
+printf 'V1\n0\n0\n0\n0\n' >"$f"
+expect cao-no-points "$f" 2 '^number of points is 0'
+
+f=$in/cao-truncated.cao
+printf 'V1\n%s\n' "$CAO_P" | head -n 7 >"$f"
+expect cao-truncated-points "$f" 7 '^file ends after 5 of 8 points$'
+
+f=$in/cao-truncated-section.cao
+printf 'V1\n%s\n0\n0\n# faces from points\n' "$CAO_P" >"$f"
+expect cao-truncated-before-faces "$f" 13 '^file ends before the number of faces from points$'
+
+f=$in/cao-point-values.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '5s/$/ 7/' >"$f"
+expect cao-point-extra-value "$f" 5 '^expected 3 numbers per point \(x y z\), found 4$'
+
+f=$in/cao-v2-point.cao
+printf 'V2\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-v2-without-image-coordinates "$f" 3 '^expected 5 values per point \(x y z i j\), found 3$'
+
+f=$in/cao-nan.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '6s/^0/nan/' >"$f"
+expect cao-nan "$f" 6 "^coordinate is not finite: 'nan'$"
+
+f=$in/cao-line-index.cao
+printf 'V1\n%s\n2\n0 1\n1 8\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-line-point-index-out-of-range "$f" 13 '^point index 8 out of range \(0\.\.7\)$'
+
+f=$in/cao-line-same.cao
+printf 'V1\n%s\n2\n0 1\n3 3 name=dot\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-line-names-a-point-twice "$f" 13 '^3D line names point 3 twice$'
+
+f=$in/cao-line-short.cao
+printf 'V1\n%s\n1\n0 name=half\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-line-one-index "$f" 12 '^3D line has 1 point index \(expected 2\)$'
+
+f=$in/cao-face-index.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '16s/6/9/' >"$f"
+expect cao-face-point-index-out-of-range "$f" 16 '^point index 9 out of range \(0\.\.7\)$'
+
+f=$in/cao-face-line-index.cao
+printf 'V1\n%s\n%s\n2\n4 0 1 2 3\n4 4 5 6 12\n0\n0\n0\n' "$CAO_P" "$CAO_L" >"$f"
+expect cao-face-line-index-out-of-range "$f" 26 '^line index 12 out of range \(0\.\.11\)$'
+
+f=$in/cao-face-no-lines.cao
+printf 'V1\n%s\n0\n1\n3 0 1 2\n0\n0\n0\n' "$CAO_P" >"$f"
+expect cao-face-line-index-without-lines "$f" 13 '^line index 0 out of range \(the file has no 3D lines\)$'
+
+# lines 0 1 2 run 0-4-5-1 and line 4 (5-6) branches off at 5: the walk cannot close at 0 (the first
+# point reported is the smallest)
+f=$in/cao-not-a-loop.cao
+printf 'V1\n%s\n%s\n1\n4 0 1 2 4\n0\n0\n0\n' "$CAO_P" "$CAO_L" >"$f"
+expect cao-face-lines-not-a-loop "$f" 25 "^the face's lines do not form one closed loop \(point 0 ends 1 of them, not 2\)$"
+
+# two triangles, 0-1-2 and 4-5-6, as one face: every point ends two lines, yet no single loop
+f=$in/cao-two-loops.cao
+printf 'V1\n%s\n6\n0 1\n1 2\n2 0\n4 5\n5 6\n6 4\n1\n6 0 1 2 3 4 5\n0\n0\n0\n' "$CAO_P" >"$f"
+expect cao-face-lines-two-loops "$f" 19 "^the face's lines do not form one closed loop \(they form more than one\)$"
+
+f=$in/cao-face-two.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '15s/.*/2 1 5/' >"$f"
+expect cao-face-two-points "$f" 15 '^face has 2 points \(at least 3 needed\)$'
+
+f=$in/cao-face-lines-two.cao
+printf 'V1\n%s\n%s\n1\n2 0 1\n0\n0\n0\n' "$CAO_P" "$CAO_L" >"$f"
+expect cao-face-two-lines "$f" 25 '^face has 2 lines \(at least 3 needed\)$'
+
+f=$in/cao-face-short.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '14s/.*/4 0 4 5 name=front/' >"$f"
+expect cao-face-fewer-indices "$f" 14 '^face has 3 point indices but its count says 4$'
+
+f=$in/cao-face-long.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '14s/.*/3 0 4 5 1/' >"$f"
+expect cao-face-more-indices "$f" 14 '^face count says 3 but 4 point indices follow$'
+
+f=$in/cao-junk.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '17s/$/ junk/' >"$f"
+expect cao-junk-after-face "$f" 17 "^expected key=value attributes after the face, found 'junk'$"
+
+f=$in/cao-junk-line.cao
+printf 'V1\n%s\n1\n0 1 // edge\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-junk-after-line "$f" 12 "^expected key=value attributes after the 3D line, found '//'$"
+
+f=$in/cao-quote.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n' "$CAO_P" "$CAO_F" | sed '18s/$/ name="bottom face/' >"$f"
+expect cao-unclosed-quote "$f" 18 "^quoted value of 'name=\"bottom' has no closing quote$"
+
+f=$in/cao-cylinder.cao
+printf 'V1\n%s\n0\n0\n%s\n1\n0 6 0.5\n0\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-cylinder "$f" 20 '^cylinders are not supported: modelc tracks lines and polygons$'
+
+f=$in/cao-circle.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n# circles\n1\n0.5 0 1 3\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-circle "$f" 22 '^circles are not supported: modelc tracks lines and polygons$'
+
+f=$in/cao-extra.cao
+printf 'V1\n%s\n0\n0\n%s\n0\n0\n4 0 1 2 3\n' "$CAO_P" "$CAO_F" >"$f"
+expect cao-extra-data "$f" 22 "^extra data after the circles: '4'$"
+
+f=$in/cao-no-faces.cao
+printf 'V1\n%s\n1\n0 1\n0\n0\n' "$CAO_P" >"$f"
+expect cao-no-faces "$f" - '^mesh has no faces$'
 
 # ---------------------------------------------------------------------------------- summary
 

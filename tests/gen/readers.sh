@@ -158,6 +158,33 @@ lines '0.1 0 0 0 0 1' '1 0 0 0 1 0' >"$d/normals.xyz"
 gives "XYZ: coordinates and normals as double" "$d/normals.xyz" "$(lines 'point set points 2 triangles 0 colours 0 normals 2' \
     'v 0x1.999999999999ap-4 0x0p+0 0x0p+0 n 0x0p+0 0x0p+0 0x1p+0' 'v 0x1p+0 0x0p+0 0x0p+0 n 0x0p+0 0x1p+0 0x0p+0')"
 
+# ---------------------------------------------------------------------------------- CAO
+# ViSP's cube (mbt/cube.cao in ViSP's images): faces from points only
+cao_points() { lines 8 '0 0 0' '-0.084 0 0' '-0.084 0.084 0' '0 0.084 0' '0 0 0.084' '-0.084 0 0.084' '-0.084 0.084 0.084' '0 0.084 0.084'; }
+{ lines V1; cao_points; lines 0 0 6 '4 0 4 5 1' '4 1 5 6 2' '4 6 7 3 2' '4 3 7 4 0' '4 0 1 2 3' '4 7 6 5 4' 0 0; } >"$d/plain.cao"
+lines '# cube, 84 mm' '' V1 '# 3D points' '8                    # Number of points' ' 0.000  0.000  0.000 # Point with index 0' \
+    '-0.084  0.000  0.000' '-0.0840 0.084  +0' '0	0.084	0' '0 0 84e-3' '' '-0.084 0 0.084' '-0.084 0.084 0.084' \
+    '0.000 0.084 0.084 # point with index 7' '# 3D lines' '0                    # No 3D lines' '# 3D faces from lines' 0 \
+    '# 3D faces from points' '6' '4 0 4 5 1 name=front useLod=true' '4 1 5 6 2   name="left side" minPolygonAreaThreshold=2500' \
+    '4 6 7 3 2	name="back" # comment' '4 3 7 4 0 name=""' '4 0 1 2 3 name="a  b" useLod=false' '4 7 6 5 4#top' \
+    '# 3D cylinders' 0 '# 3D circles' '0 # none' >"$d/comments.cao"
+same "CAO: comments (before the header too), blank lines, tabs, '+0', '84e-3', attributes (quoted, with spaces, empty)" "$d/comments.cao" "$d/plain.cao"
+crlf <"$d/comments.cao" >"$d/crlf.cao"
+same "CAO: CRLF line ends" "$d/crlf.cao" "$d/plain.cao"
+# the cube's 12 edges as 3D lines (some written backwards), five faces from them (lines in any
+# order; the loop runs from the first line's first point) and the sixth from points
+{ lines V1; cao_points; lines 12 '0 4 name=e0' '5 4 useLod=false' '1 5 minLineLengthThreshold=50' '0 1' '5 6' '2 6' '1 2' '6 7' \
+    '3 7' '2 3' '4 7 name="last but one"' '0 3' 5 '4 0 2 3 1' '4 2 4 5 6' '4 7 8 9 5 name=back' '4 8 10 0 11' '4 3 6 9 11' \
+    1 '4 7 6 5 4' 0 0; } >"$d/lines.cao"
+same "CAO: faces from lines (lines backwards, out of order) give the faces from points" "$d/lines.cao" "$d/plain.cao"
+{ lines V2 8 '0 0 0 10 20' '-0.084 0 0 1 2' '-0.084 0.084 0 1 2' '0 0.084 0 1 2' '0 0 0.084 1 2' '-0.084 0 0.084 1 2' \
+    '-0.084 0.084 0.084 1 2' '0 0.084 0.084 -1 +2' 0 0 6 '4 0 4 5 1' '4 1 5 6 2' '4 6 7 3 2' '4 3 7 4 0' '4 0 1 2 3' '4 7 6 5 4'; } >"$d/v2.cao"
+same "CAO: V2 (image coordinates after each point), no cylinder or circle counts (older files)" "$d/v2.cao" "$d/plain.cao"
+lines V1 4 '0 0 0' '1 0 0' '0 1 0' '0 0 1' 2 '3 0' '1 0' 0 3 '3 0 2 1' '4 0 1 1 3' '3 1 2 3' 0 0 >"$d/edges.cao"
+gives "CAO: 3D lines first, then each polygon's sides, every edge once, smaller index first; a face naming a point twice adds neither" \
+    "$d/edges.cao" "$(lines 'mesh points 4 triangles 2 colours 0 normals 0 lines 6' 'v 0x0p+0 0x0p+0 0x0p+0' 'v 0x1p+0 0x0p+0 0x0p+0' \
+        'v 0x0p+0 0x1p+0 0x0p+0' 'v 0x0p+0 0x0p+0 0x1p+0' 'f 0 2 1' 'f 1 2 3' 'l 0 3' 'l 0 1' 'l 0 2' 'l 1 2' 'l 2 3' 'l 1 3')"
+
 # ---------------------------------------------------------------------------------- faces without area
 # Vertices 2 and 4 share a position, so several faces have no area; some samples lie nearest to
 # one of them, where CGAL's barycentric coordinates used to fail an assertion mid-bake.
@@ -183,7 +210,9 @@ lines ply 'format ascii 1.0' 'element vertex 50000000' 'property float x' 'prope
     'element face 1' 'property list uint int vertex_indices' end_header; perl -e 'print pack("f<9 L<", 0,0,0, 1,0,0, 0,1,0, 4000000000)'; } >"$d/absurd-list.ply"
 perl -e 'print pack("a80 V", "binary", 50000000), pack("f<12 v", 0,0,1, 0,0,0, 1,0,0, 0,1,0, 0)' >"$d/absurd.stl"
 lines 50000000 '0 0 0' '1 0 0' >"$d/absurd.xyz"
-for f in absurd.off absurd-ascii.ply absurd-bin.ply absurd-list.ply absurd.stl absurd.xyz; do
+lines V1 50000000 '0 0 0' >"$d/absurd.cao"
+lines V1 3 '0 0 0' '1 0 0' '0 1 0' 0 0 50000000 '3 0 1 2' >"$d/absurd-faces.cao"
+for f in absurd.off absurd-ascii.ply absurd-bin.ply absurd-list.ply absurd.stl absurd.xyz absurd.cao absurd-faces.cao; do
     rc=0
     (ulimit -v $limit_kb && exec "$modelc" "$d/$f" -o "$tmp/out" --name absurd -q) 2>"$tmp/err.txt" >/dev/null || rc=$?
     n=$(awk 'END { print NR }' "$tmp/err.txt")

@@ -1,6 +1,7 @@
 /* A synthetic tracking scene for tests and benchmarks (never linked into a tracker): ViSP's 84 mm
  * cube (the mbt/cube sequence's cube.cao, centred on its own origin so that a pose's translation is
- * the cube's centre), its 12 edges to match and 12 triangles to hide them, before ViSP's cube camera
+ * the cube's centre), its 12 edges to match and 12 triangles to hide them, marked convex as the
+ * generator marks it (the tracker's shortcut, track.h), before ViSP's cube camera
  * (mbt/cube.xml, 640x480) scaled to the frame asked for; a frame's edge masks are the cube's own
  * visible lines at the true pose, drawn by the tracker's score (mc_track_score_pose) and spread by
  * a pixel (mc_imgedge_masks): the image a perfect edge detector would give, with no clutter. The
@@ -17,8 +18,8 @@
 #include <modelc/particles.h>
 
 typedef struct cube_scene {
-    uint8_t bpos[96], bline[48], bface[72];
-    mc_chunk cpos[2], cline[2], cface[2];
+    uint8_t bpos[96], bline[48], bface[72], blf[48];
+    mc_chunk cpos[2], cline[2], cface[2], clf[2];
     mc_edges e;
     mc_camera cam;
     mc_sdepth sd;
@@ -57,6 +58,22 @@ static int cube_scene_new(cube_scene *s, unsigned w, unsigned h)
     s->cface[0].data = s->bface, s->cface[0].size = 72;
     s->e.vertices = 8, s->e.lines = 12, s->e.faces = 12, s->e.index_bytes = 2, s->e.record_shift = 4, s->e.closed = 1;
     s->e.positions = s->cpos, s->e.line_list = s->cline, s->e.face_list = s->cface;
+    /* convex: each edge's two faces (the triangles of quads q and r are 2q, 2q + 1), for the
+     * tracker's shortcut (track.h) */
+    for (int i = 0; i < 12; i++) {
+        int n = 0;
+        for (int f = 0; f < 12 && n < 2; f++) {
+            const uint32_t *c = quad[f / 2];
+            const uint32_t t[3] = {c[0], f % 2 ? c[2] : c[1], f % 2 ? c[3] : c[2]};
+            for (int k = 0; k < 3; k++) {
+                const uint32_t a = t[k], b = t[(k + 1) % 3];
+                if ((a == edge[i][0] && b == edge[i][1]) || (a == edge[i][1] && b == edge[i][0])) cube_put16(s->blf + 4 * i + 2 * n++, (uint32_t)f);
+            }
+        }
+        if (n != 2) return 1;
+    }
+    s->clf[0].data = s->blf, s->clf[0].size = 48;
+    s->e.convex = 1, s->e.line_faces = s->clf;
     /* mbt/cube.xml: px 547.74, py 542.07, u0 338.70, v0 234.51 at 640x480; the frame w x h takes
      * the scale w / 640 and is centred on the same principal point */
     const double k = w / 640.0;

@@ -5,6 +5,7 @@
 # (imgedge), the pinhole camera and pose (camera), filled triangles (raster), vertex projection
 # (xform) and clipping at the near plane and the guard band (clip); the tracker's pose score
 # against a dense z-buffer (track) and its particle filter on a synthetic cube sequence (particles);
+# the tracker front end's readers of frames, cameras, poses and orientations (track input);
 # view clamping,
 # mc_octree_render's contract on hand-made and random scenes, hole filling (cmocka,
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
@@ -49,7 +50,12 @@ run_cmocka() {
             pending = ""; reason = ""; collecting = 0
         }
         /^1\.\.[0-9]+$/ { plan = substr($0, 4); next }
-        /^ok [0-9]+ - / { flush(); sub(/^ok [0-9]+ - /, ""); print "ok - " pfx $0; n++; next }
+        /^ok [0-9]+ - / { flush(); sub(/^ok [0-9]+ - /, ""); print "ok - " pfx $0; n++; note = ""; next }
+        # cmocka skip(): "not ok N # SKIP test", the reason the test printed last
+        /^not ok [0-9]+ # SKIP / {
+            flush(); sub(/^not ok [0-9]+ # SKIP /, "")
+            print "ok - " pfx $0 " # SKIP " (note != "" ? note : "skipped by the test"); n++; note = ""; next
+        }
         /^not ok [0-9]+ - / {
             flush(); sub(/^not ok [0-9]+ - /, ""); pending = "not ok - " pfx $0; reason = err; err = ""
             collecting = 1; n++; next
@@ -62,7 +68,7 @@ run_cmocka() {
             else print
             next
         }
-        { flush(); print "# " $0 }
+        { flush(); print "# " $0; note = $0 }
         END { flush(); print n + 0, plan + 0 > countfile }
     ' "$log"
     read -r n plan <"$log.count"
@@ -160,6 +166,9 @@ build_and_run "unit: imgedge: " test_imgedge runtime/ref/imgedge_ref.c
 build_and_run "unit: camera: " test_camera runtime/ref/camera_ref.c
 build_and_run "unit: track: " test_track
 build_and_run "unit: particles: " test_particles
+# the tracker front end's input readers (host-only C: runtime/front/track/), and the track_input
+# fuzzer's check, which replays its findings (tests/fuzz/regress/track_input/)
+build_and_run "unit: track input: " test_track_input runtime/front/track/track_input.c tests/fuzz/fuzz_track_input.c
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to

@@ -1,8 +1,10 @@
-/* The binding between a baked model and a front end (viewer or firmware main).
+/* The binding between a baked model and a front end (viewer, tracker or firmware main).
  *
  * Promise: modelc writes NAME_app.c defining mc_app_model: the model (model.h) and static frame
  * buffers of exactly the size asked for at bake time (--screen), and, with a mesh part, the static
- * memory its level of detail and line drawings need. A front end links against this
+ * memory its level of detail and line drawings need; with an edge part, what a tracker needs for
+ * camera frames of that size and --particles particles (the frame buffers then hold the sparse depth
+ * buffer's depths and colours). A front end links against this
  * one symbol and so works with any model; it asks app->model which parts it has. Libraries built
  * with --emit lib leave it out.
  */
@@ -10,7 +12,9 @@
 #define MODELC_APP_H
 
 #include <stdint.h>
+#include "imgedge.h"
 #include "model.h"
+#include "particles.h"
 #include "sdepth.h"
 #include "xform.h"
 
@@ -24,6 +28,14 @@ typedef struct mc_app {
     mc_xvertex *pmesh_cache; /* its vertex projection cache (mesh_render.h), or NULL */
     uint32_t *pmesh_sdepth;  /* its lines style's sparse depth buffer bits, MC_SDEPTH_WORDS of the screen
                                 (sdepth.h), or NULL */
+    uint8_t *edges_frame;    /* the edge part's: a grey camera frame, max_width * max_height, or NULL */
+    uint8_t *edges_masks;    /* its edge masks (imgedge.h), max_width * max_height */
+    uint32_t *edges_scratch; /* the edge detector's rows, MC_IMGEDGE_SCRATCH_WORDS(max_width) words */
+    uint32_t *edges_sdepth;  /* the sparse depth buffer's bits, MC_SDEPTH_WORDS of the screen */
+    uint32_t *edges_matched; /* and its matched bits, MC_SDEPTH_MATCHED_WORDS of the screen */
+    mc_xvertex *edges_cache; /* the projected vertices, one per vertex of the edge model */
+    mc_particle *particles;  /* 2 * max_particles: the filter's two arrays (particles.h) */
+    uint32_t max_particles;
 } mc_app;
 
 extern const mc_app mc_app_model;

@@ -7,8 +7,11 @@
  *   positions  per vertex: x, y, z as int32, micrometres (camera.h's units), |x|, |y|, |z| < 2^28
  *   lines      per line: its two vertices
  *   faces      per triangle: its three vertices, counter-clockwise seen from outside when closed
+ *   line_faces per line: the two faces it lies between (convex models only; empty otherwise)
  * closed: 1 when the faces bound a solid (every edge of them shared by two faces), so that a face
  * seen from behind is hidden by another and a tracker may cull it.
+ * convex: 1 when closed, convex, and every line the edge of exactly two faces: a line is then seen
+ * exactly when one of its faces is seen from outside, and hidden wholly otherwise.
  *
  * Promise: the accessors read one record each, at one shift, one mask and one multiply (chunk.h);
  * no heap, no floating point. Freestanding.
@@ -24,9 +27,11 @@ typedef struct mc_edges {
     uint8_t index_bytes;         /* 2 or 4 */
     uint8_t record_shift;        /* 2^record_shift records in each chunk but the last, every array */
     uint8_t closed;              /* 1: the faces bound a solid */
+    uint8_t convex;              /* 1: closed, convex, line_faces recorded */
     const mc_chunk *positions;   /* vertices records of 12 bytes */
     const mc_chunk *line_list;   /* lines records of 2 index_bytes */
     const mc_chunk *face_list;   /* faces records of 3 index_bytes */
+    const mc_chunk *line_faces;  /* convex: lines records of 2 index_bytes; else an empty list */
 } mc_edges;
 
 /* Vertex v's position, um. */
@@ -53,6 +58,14 @@ static inline void mc_edges_face(const mc_edges *m, uint32_t i, uint32_t v[3])
     const unsigned ib = m->index_bytes;
     const uint8_t *r = mc_chunk_record(m->face_list, m->record_shift, 3u * ib, i);
     v[0] = mc_le_index(r, ib), v[1] = mc_le_index(r + ib, ib), v[2] = mc_le_index(r + 2u * ib, ib);
+}
+
+/* Line i's two faces (convex models only). */
+static inline void mc_edges_line_faces(const mc_edges *m, uint32_t i, uint32_t f[2])
+{
+    const unsigned ib = m->index_bytes;
+    const uint8_t *r = mc_chunk_record(m->line_faces, m->record_shift, 2u * ib, i);
+    f[0] = mc_le_index(r, ib), f[1] = mc_le_index(r + ib, ib);
 }
 
 #endif

@@ -2,9 +2,8 @@
  *
  * Promise: modelc writes one const mc_model per bake (mc_model_NAME, in NAME_model.c), whatever it
  * was asked to prepare. A front end asks the model what it has: a part pointer is NULL when the bake
- * did not make that part. Today every bake makes the octree; a bake with --as both adds the pmesh
- * (progressive mesh, pmesh.h); edges (the edge model for tracking) is declared for the part to come
- * and is NULL in every bake.
+ * did not make that part: a bake with --as points makes the octree, --as both adds the pmesh
+ * (progressive mesh, pmesh.h), and --as edges makes the edge model for tracking (edges.h) alone.
  *
  * The normalization says where the model sits in its file's coordinates, so that a front end can
  * map between file units and the unit cube every part is drawn in (xform.h: at zoom 1 the cube's
@@ -20,11 +19,9 @@
 #define MODELC_MODEL_H
 
 #include <stdint.h>
+#include "edges.h"
 #include "octree.h"
 #include "pmesh.h"
-
-/* A part to come; its descriptor is not defined yet. */
-typedef struct mc_edges mc_edges;
 
 /* The file's axis that is shown as up (the runtime's +y). */
 enum { MC_UP_Y = 1, MC_UP_Z = 2 };
@@ -38,7 +35,7 @@ typedef struct mc_model {
     const char *name;
     const mc_octree *octree;    /* point octree (octree.h, drawn by octree_render.h), or NULL */
     const mc_pmesh *pmesh;      /* progressive mesh (pmesh.h), or NULL */
-    const mc_edges *edges;      /* edge model: NULL in every bake today */
+    const mc_edges *edges;      /* edge model for tracking (edges.h), or NULL */
     uint8_t up;                 /* MC_UP_Y or MC_UP_Z */
 } mc_model;
 

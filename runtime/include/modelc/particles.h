@@ -13,17 +13,24 @@
  *      (1, e1, e2, e3), each e a step of step_r in Q30, made unit length again); in 3-DOF mode
  *      every particle takes the frame's given orientation (the paper's IMU);
  *   3. re-detection: F fresh particles with translations uniform in the box [lo, hi] and, in 6-DOF
- *      mode, orientations from four steps of 2^30 made unit length (spread over every rotation);
+ *      mode, orientations from four steps of 2^28 made unit length (spread over every rotation) or,
+ *      with fresh_r, the last estimate's turned as in the motion by steps of fresh_r (a random
+ *      search over all rotations rarely lands near the object's; one around the last estimate
+ *      finds it again after a jump of a few tens of degrees);
  *   4. weighing: each particle's pose scored (mc_track_score_pose); r = matched / visible in Q16;
  *      weight 2^(sharpness (r - 1)) in Q16, its exponent truncated to sixteenths (65536 at r = 1,
  *      halving every 1/sharpness of r below, at most 2^(1/16) times the exact value), or 0 where
  *      fewer than min_visible line pixels are visible;
+ *   4b. with layers L > 1, L - 1 more rounds on the same frame: all N particles drawn again from the
+ *      weights just found (systematic resampling) and moved by the steps halved each round (step_t
+ *      and step_r shifted right by the round's number), no fresh ones, and weighed again (an
+ *      annealed search: N L scores, a finer look around the likely poses);
  *   5. the estimate: the weighted mean of the translations and of the orientations (each turned to
  *      the hemisphere of the heaviest particle's, then made unit length); its own score gives the
  *      confidence, r of the estimate in Q16 (0 when it shows fewer than min_visible pixels).
  * Random numbers: a PCG32 stream (rng.h) seeded at init, so the same frames give the same poses on
  * every machine. Memory: the caller's, two arrays of N particles; no heap, no floating point.
- * Work: N + 1 scores a frame, plus N for the motion and the resampling. Freestanding.
+ * Work: N L + 1 scores a frame, plus N L for the motion and the resampling. Freestanding.
  */
 #ifndef MODELC_PARTICLES_H
 #define MODELC_PARTICLES_H
@@ -44,10 +51,12 @@ typedef struct mc_filter_params {
     uint32_t fresh;             /* F < N placed at random each frame */
     int32_t step_t;             /* translation step per frame, um (see the promise), >= 0 */
     int32_t step_r;             /* orientation step per frame, Q30 (2^30 / 100: about 1 degree), >= 0 */
+    int32_t fresh_r;            /* fresh particles' turn from the estimate, as step_r; 0: any orientation */
     int32_t lo[3], hi[3];       /* the box fresh translations are drawn in, um, lo <= hi, within +-(2^28 - 1) */
     uint32_t min_visible;       /* fewer visible line pixels weigh 0 */
     uint8_t sharpness;          /* 1 .. 64: how fast the weight falls as r drops */
     uint8_t dof;                /* 6, or 3 (orientation given each frame) */
+    uint8_t layers;             /* 0 or 1: one weighing a frame; 2 .. 4: that many (see the promise) */
 } mc_filter_params;
 
 typedef struct mc_filter {
@@ -59,9 +68,9 @@ typedef struct mc_filter {
 } mc_filter;
 
 /* Starts with every particle at pose (q, t), equal weights. Returns MC_OK, or MC_ERR_ARG for a null
- * array, N = 0 or above 65535, F >= N, a step below 0 or above 2^28, lo > hi, a box or t beyond
- * +-(2^28 - 1), a sharpness outside 1 .. 64, dof not 3 or 6, or q = 0. Translations stay within
- * +-(2^28 - 1) um as they move. */
+ * array, N = 0 or above 65535, F >= N, a step (or fresh_r) below 0 or above 2^28, lo > hi, a box or
+ * t beyond +-(2^28 - 1), a sharpness outside 1 .. 64, dof not 3 or 6, layers above 4, or q = 0.
+ * Translations stay within +-(2^28 - 1) um as they move. */
 int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc_particle *spare, uint64_t seed,
                    const int32_t q[4], const int32_t t[3]);
 

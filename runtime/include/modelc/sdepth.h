@@ -15,7 +15,8 @@
  * matched the camera's edge image when inserted (mc_sdepth_insert_matched), so that the visible and
  * the matched pixels of a pose are two population counts once the faces have removed the hidden ones.
  *
- * Promise: a pixel not in use holds empty_depth and empty_color; a pixel in use holds the depth and
+ * Promise: a pixel not in use holds empty_depth and empty_color (but after mc_sdepth_forget, which
+ * leaves them stale for callers that go by the bits alone); a pixel in use holds the depth and
  * colour of the entry kept there. mc_sdepth_init makes every pixel empty (a full pass over the
  * arrays); mc_sdepth_clear empties the pixels in use only (work proportional to them and to the
  * blocks and rows, not to the area). mc_sdepth_insert keeps, of the entries given for a pixel, the
@@ -50,6 +51,8 @@ typedef struct mc_sdepth {
     uint16_t blocks, row_words;
     uint16_t empty_depth;   /* what a pixel not in use holds */
     uint8_t empty_color;
+    uint16_t row_lo, row_hi; /* every row with an entry since the last clear lies in row_lo .. row_hi
+                                (row_lo > row_hi: none), so that clearing passes over those rows only */
     uint32_t in_use;        /* pixels in use, kept as they change */
     uint32_t in_use_matched;   /* of those, matched (0 when no matched bits are kept) */
 } mc_sdepth;
@@ -67,6 +70,13 @@ void mc_sdepth_keep_matched(mc_sdepth *s, uint32_t *matched);
 
 /* Empties the pixels in use, and only those. */
 void mc_sdepth_clear(mc_sdepth *s);
+
+/* Empties the pixels in use as far as the bit vectors tell, leaving their depths and colours as they
+ * were: a pixel not in use then holds empty_depth and empty_color only until an entry came and went.
+ * For callers that read only pixels in use (the tracker: insertion, the face pass, the counts and
+ * mc_sdepth_in_use all go by the bits), at the cost of a word per block with entries instead of a
+ * write per pixel. */
+void mc_sdepth_forget(mc_sdepth *s);
 
 /* Pixels in use (kept as entries come and go: no work). */
 static inline uint32_t mc_sdepth_count(const mc_sdepth *s) { return s->in_use; }
@@ -99,6 +109,12 @@ MC_ALWAYS_INLINE int mc_sdepth_in_use(const mc_sdepth *s, uint32_t x, uint32_t y
     return (s->used[y * s->blocks + (x >> 5)] >> (31u - (x & 31u))) & 1u;
 }
 
+/* Whether pixel (x, y) (on the frame) holds an entry that matched (0 when no matched bits are kept). */
+MC_ALWAYS_INLINE int mc_sdepth_is_matched(const mc_sdepth *s, uint32_t x, uint32_t y)
+{
+    return s->matched ? (s->matched[y * s->blocks + (x >> 5)] >> (31u - (x & 31u))) & 1u : 0;
+}
+
 /* mc_sdepth_insert, and with track (a constant where called) the entry's matched bit m as well. */
 MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_t z, uint8_t c, uint32_t m, int track)
 {
@@ -108,7 +124,11 @@ MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_
         if (z >= s->depth[i]) return 0;
     } else {
         s->used[w] = u | bit;
-        if (!u) s->rows[y * s->row_words + (x >> 10)] |= 0x80000000u >> ((x >> 5) & 31u);   /* the block's first */
+        if (!u) {   /* the block's first */
+            s->rows[y * s->row_words + (x >> 10)] |= 0x80000000u >> ((x >> 5) & 31u);
+            if (y < s->row_lo) s->row_lo = (uint16_t)y;
+            if (y > s->row_hi) s->row_hi = (uint16_t)y;
+        }
         s->in_use++;
     }
     s->depth[i] = z;
