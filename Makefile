@@ -12,7 +12,7 @@
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
 #   make bench-mesh              filled triangles and line drawings against Mesa llvmpipe on one thread
 #   make bench-silhouette        silhouette search: recall against work, against the exact scan
-#   make bench-track             the tracker's particle filter: time and error on a synthetic cube sequence
+#   make bench-track             the tracker: time and error on synthetic and ViSP's real cube sequences, beside ViSP (make deps-bench)
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
@@ -114,8 +114,10 @@ $(BUILD)/common/%.o: runtime/front/common/%.c $(RT_HDR) $(COMMON_HDR)
 	$(CC) $(CFLAGS) $(RT_CFLAGS) -c -o $@ $<
 # the tracker front end: track/ with the host's PNG writer
 TRACK_SRC := $(wildcard runtime/front/track/*.c)
-TRACK_OBJ := $(patsubst runtime/front/track/%.c,$(BUILD)/track/%.o,$(TRACK_SRC)) $(BUILD)/host/image.o $(BUILD)/common/rgb.o
-$(BUILD)/track/%.o: runtime/front/track/%.c $(RT_HDR) $(wildcard runtime/front/track/*.h runtime/front/host/*.h)
+TRACK_OBJ := $(patsubst runtime/front/track/%.c,$(BUILD)/track/%.o,$(TRACK_SRC)) $(BUILD)/host/image.o $(BUILD)/common/rgb.o \
+  $(BUILD)/common/track_frame.o
+$(BUILD)/track/%.o: runtime/front/track/%.c $(RT_HDR) $(wildcard runtime/front/track/*.h runtime/front/host/*.h) \
+  runtime/front/common/track_frame.h
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(HOST_CFLAGS) -c -o $@ $<
 # the runtime and the host front end's objects alone: the tests link them (tests/lib.sh rt_objs)
@@ -185,8 +187,12 @@ demo: deps
 	@echo "wrote $(BUILD)/$(DEFAULT_MODEL).png; run $(DEMO_VIEW) in a terminal to turn it"
 
 # the README's pictures, rendered by the viewer binaries
-readme-images: $(BUILD)/bunny00/bunny00-view $(BUILD)/nefertiti/nefertiti-view
+readme-images: $(BUILD)/bunny00/bunny00-view $(BUILD)/nefertiti/nefertiti-view $(BUILD)/cube/cube-track
 	$(BUILD)/bunny00/bunny00-view --png models/img/bunny00.png --zoom 0.9 --yaw 25 --pitch 10
+	rm -rf $(BUILD)/cube/overlay && mkdir -p $(BUILD)/cube/overlay
+	$(BUILD)/cube/cube-track --frames '$(VISP_MBT)/cube/image%04d.pgm' --camera $(VISP_MBT)/cube.xml \
+	  --init $(VISP_MBT)/cube.0.pos --count 31 --out $(BUILD)/cube/poses.csv --overlay $(BUILD)/cube/overlay
+	cp $(BUILD)/cube/overlay/frame0030.png models/img/cube_track.png
 	$(BUILD)/nefertiti/nefertiti-view --png models/img/nefertiti.png --zoom 0.85 --yaw -30 --pitch 5
 	$(MAKE) --no-print-directory view MODEL=$(BUILD)/models/bunny00.off NAME=bunny00_mesh BAKE_OPTS="--as both"
 	for m in shaded lines shaded+lines; do \
@@ -225,6 +231,7 @@ bench-silhouette: $(MODELC) models
 .PHONY: bench-track
 bench-track:
 	@tests/bench/track.sh
+	@tests/bench/track_seq.sh
 
 # ViSP's model-based edge tracker (vpMbGenericTracker, edges only) on ViSP's cube sequence: the peer of
 # build/cube/cube-track, same CSV (needs make deps-bench: libvisp-dev; compare with tests/bench/cube_compare.py)
@@ -339,7 +346,7 @@ FW_ELF := $(FW_DIR)/$(FW_MODEL).elf
 FW_HOSTVIEW := $(FW_BAKE)/$(FW_MODEL)-view
 FW_QEMU_TIMEOUT ?= 600
 ARM_CC := arm-none-eabi-gcc
-FW_SRC := $(wildcard runtime/front/fw/*.c) $(COMMON_SRC)
+FW_SRC := $(filter-out runtime/front/fw/track_main.c,$(wildcard runtime/front/fw/*.c)) $(COMMON_SRC)
 FW_HDR := $(wildcard runtime/front/fw/*.h) $(COMMON_HDR)
 # the catalogue's bake options without its --depth, then the board's depth and screen (and mesh part)
 FW_BAKE_OPTS = $(strip $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) \
@@ -405,3 +412,110 @@ firmware-run: firmware $(FW_HOSTVIEW)
 
 bench-firmware:
 	@tests/fw/bench.sh
+
+# ---- the tracker on Cortex-M: ViSP's cube under QEMU, its poses equal to the host tracker's ------
+#   make firmware-track BOARD=b        bake ViSP's cube (--as edges) for board b, store frames of its sequence, cross-compile, check the ELF
+#   make firmware-track-run BOARD=b    run it under qemu-system-arm; compare its poses with the host tracker's on the same frames
+#   make bench-firmware-track          Cortex-M4 instructions per frame and per particle under QEMU, edges and filter
+# The bake (build/fw/B-track/cube): --screen FW_TRACK_SCREEN and --particles FW_TRACK_PARTICLES (100):
+# 160x120 (the frames shrunk 4 times, 111 KB of RAM), on lm3s6965evb 106x80 (6 times: 160x120 needs
+# 111 KB of its 64 KiB RAM; 106x80 55 KB, beside the 3840-byte stack reservation).
+# runtime/front/fw/track_frames.py shrinks FW_TRACK_FRAMES frames from FW_TRACK_FIRST of the real
+# sequence on the host into a generated C file (build/fw/B-track/frames.c, linked into the firmware:
+# runtime/front/fw/track_main.c), and writes the same frames as PGM files with the host tracker's
+# arguments (frames/host-args: --shrunk K, the same camera, start pose and particles); the host
+# tracker linked with the same bake (build/fw/B-track/cube/cube-track) runs on those with --fixed-out.
+FW_TRACK_SCREEN ?= $(if $(filter lm3s6965evb,$(BOARD)),106x80,160x120)
+FW_TRACK_PARTICLES ?= 100
+FW_TRACK_FIRST ?= 0
+FW_TRACK_FRAMES ?= 8
+FW_TRACK_DIR := $(BUILD)/fw/$(BOARD)-track
+FW_TRACK_BAKE := $(FW_TRACK_DIR)/cube
+FW_TRACK_ELF := $(FW_TRACK_DIR)/cube-track.elf
+FW_TRACK_HOST := $(FW_TRACK_BAKE)/cube-track
+FW_TRACK_OPTS = --screen $(FW_TRACK_SCREEN) --particles $(FW_TRACK_PARTICLES)
+FW_TRACK_SRC := runtime/front/fw/track_main.c runtime/front/fw/counter.c runtime/front/fw/stack.c \
+  runtime/front/common/track_frame.c runtime/front/track/track_input.c
+FW_TRACK_LDFLAGS = $(subst $(FW_DIR)/$(FW_MODEL).map,$(FW_TRACK_DIR)/cube-track.map,$(FW_LDFLAGS))
+FW_TRACK_QEMU = timeout $(FW_QEMU_TIMEOUT) qemu-system-arm -M $($(BOARD).qemu) -nographic -monitor none
+
+.PHONY: firmware-track firmware-track-run bench-firmware-track fw-track-args fw-track-host fw-track-bench
+fw-track-args:
+	@test -n "$(filter $(BOARD),$(FW_BOARDS))" || { echo "usage: make firmware-track|firmware-track-run BOARD=<$(FW_BOARDS)>" >&2; exit 2; }
+	@test -f $(VISP_MBT)/cube.cao || { echo "modelc: $(VISP_MBT)/cube.cao missing: run make deps (package visp-images-data)" >&2; exit 1; }
+
+# the bake and the frames are redone when their options change (e.g. FW_TRACK_PARTICLES=50)
+$(FW_TRACK_DIR)/opts: FORCE
+	@mkdir -p $(@D)
+	@echo '$(FW_TRACK_OPTS) --first $(FW_TRACK_FIRST) --count $(FW_TRACK_FRAMES)' | cmp -s - $@ || \
+	  echo '$(FW_TRACK_OPTS) --first $(FW_TRACK_FIRST) --count $(FW_TRACK_FRAMES)' > $@
+$(FW_TRACK_BAKE)/budget.json: $(MODELC) $(FW_TRACK_DIR)/opts
+	rm -rf $(FW_TRACK_BAKE)
+	$(MODELC) $(VISP_MBT)/cube.cao -o $(FW_TRACK_DIR) --name cube --as edges -q $(FW_TRACK_OPTS)
+# the stored frames as C, as PGM files with the host's arguments, and budget.json with the frames counted
+$(FW_TRACK_DIR)/frames.c: runtime/front/fw/track_frames.py $(FW_TRACK_BAKE)/budget.json
+	rm -rf $(FW_TRACK_DIR)/frames
+	python3 runtime/front/fw/track_frames.py --frames '$(VISP_MBT)/cube/image%04d.pgm' --camera $(VISP_MBT)/cube.xml \
+	  --init $(VISP_MBT)/cube.0.pos --first $(FW_TRACK_FIRST) --count $(FW_TRACK_FRAMES) --screen $(FW_TRACK_SCREEN) \
+	  --particles $(FW_TRACK_PARTICLES) --c $@ --pgm $(FW_TRACK_DIR)/frames \
+	  --budget $(FW_TRACK_BAKE)/budget.json --budget-out $(FW_TRACK_DIR)/budget.json
+
+# runtime (freestanding), the tracker's front end, the bake and the frames, compiled for the board, then linked
+$(FW_TRACK_ELF): $(FW_TRACK_DIR)/frames.c $(FW_TRACK_BAKE)/budget.json $(RT_SRC) $(RT_HDR) $(FW_TRACK_SRC) $(FW_HDR) \
+  runtime/front/track/track_input.h runtime/front/fw/boards/$(BOARD).ld runtime/front/fw/boards/$(BOARD).mk Makefile
+	@rm -rf $(FW_TRACK_DIR)/obj && mkdir -p $(FW_TRACK_DIR)/obj
+	@set -e; o=$(FW_TRACK_DIR)/obj; \
+	for f in $(RT_SRC); do echo "  ARM CC $$f"; \
+	  $(ARM_CC) $(FW_CFLAGS) $(RT_CFLAGS) -c -o $$o/rt_$$(basename $$f .c).o $$f; done; \
+	for f in $(FW_TRACK_SRC); do echo "  ARM CC $$f"; \
+	  $(ARM_CC) $(FW_CFLAGS) $(HOST_CFLAGS) -c -o $$o/fw_$$(basename $$f .c).o $$f; done; \
+	for f in $(FW_TRACK_BAKE)/*.c $(FW_TRACK_DIR)/frames.c; do echo "  ARM CC $$f"; \
+	  $(ARM_CC) $(FW_CFLAGS) $(RT_CFLAGS) -c -o $$o/model_$$(basename $$f .c).o $$f; done
+	$(ARM_CC) -o $@ $(FW_TRACK_DIR)/obj/*.o $(FW_TRACK_LDFLAGS)
+
+# the host tracker linked with the same bake: --fixed-out writes what the firmware must print
+$(FW_TRACK_HOST): $(FW_TRACK_BAKE)/budget.json $(RT_OBJ) $(TRACK_OBJ)
+	$(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $@ $(FW_TRACK_BAKE)/*.c $(RT_OBJ) $(TRACK_OBJ) $(VIEW_LDFLAGS)
+
+# after linking: no heap, model arrays, buffers and stored frames against budget.json, the board, the stack
+firmware-track: fw-track-args $(FW_TRACK_ELF)
+	python3 runtime/front/fw/check_elf.py --elf $(FW_TRACK_ELF) --budget $(FW_TRACK_DIR)/budget.json \
+	  --ld runtime/front/fw/boards/$(BOARD).ld --obj $(FW_TRACK_DIR)/obj --depth 0
+
+firmware-track-run: firmware-track $(FW_TRACK_HOST)
+	@set -o pipefail; $(FW_TRACK_QEMU) -semihosting-config enable=on,target=native,arg=cube-track \
+	  -kernel $(FW_TRACK_ELF) < /dev/null 2>&1 | tee $(FW_TRACK_DIR)/run.txt
+	$(FW_TRACK_HOST) $$(cat $(FW_TRACK_DIR)/frames/host-args) --out $(FW_TRACK_DIR)/host.csv \
+	  --fixed-out $(FW_TRACK_DIR)/host-poses.txt
+	@grep '^pose ' $(FW_TRACK_DIR)/run.txt > $(FW_TRACK_DIR)/fw-poses.txt || true
+	@n=$$(wc -l < $(FW_TRACK_DIR)/host-poses.txt); \
+	if grep -q '^done' $(FW_TRACK_DIR)/run.txt && [ "$$n" -eq $(FW_TRACK_FRAMES) ] && \
+	    cmp -s $(FW_TRACK_DIR)/fw-poses.txt $(FW_TRACK_DIR)/host-poses.txt; then \
+	  echo "firmware-track-run: all $$n poses equal the host's"; \
+	else echo "firmware-track-run: firmware and host differ:" >&2; \
+	  diff $(FW_TRACK_DIR)/fw-poses.txt $(FW_TRACK_DIR)/host-poses.txt >&2; exit 1; fi
+
+# Cortex-M4 (mps2-an386) under -icount shift=0 with "bench": instructions per frame of mc_track_edges
+# (the frame's copy, edges, masks) and of mc_filter_step, per particle, and the poses against the host's
+bench-firmware-track:
+	@mkdir -p $(BUILD)/fw/mps2-an386-track
+	@$(MAKE) -s --no-print-directory firmware-track fw-track-host BOARD=mps2-an386 >$(BUILD)/fw/mps2-an386-track/build.txt 2>&1 || \
+	  { tail -20 $(BUILD)/fw/mps2-an386-track/build.txt; echo "bench-firmware-track: the build failed" >&2; exit 1; }
+	@$(MAKE) -s --no-print-directory fw-track-bench BOARD=mps2-an386
+fw-track-host: fw-track-args $(FW_TRACK_HOST)
+fw-track-bench: fw-track-args
+	@set -o pipefail; $(FW_TRACK_QEMU) -icount shift=0 -semihosting-config enable=on,target=native,arg=cube-track,arg=bench \
+	  -kernel $(FW_TRACK_ELF) < /dev/null > $(FW_TRACK_DIR)/bench.txt 2>&1 || \
+	  { tail -5 $(FW_TRACK_DIR)/bench.txt; echo "bench-firmware-track: QEMU failed" >&2; exit 1; }
+	@$(FW_TRACK_HOST) $$(cat $(FW_TRACK_DIR)/frames/host-args) --out /dev/null --fixed-out $(FW_TRACK_DIR)/host-poses.txt
+	@grep '^pose ' $(FW_TRACK_DIR)/bench.txt | cmp -s - $(FW_TRACK_DIR)/host-poses.txt && same=yes || same=NO; \
+	awk -v same=$$same -v screen=$(FW_TRACK_SCREEN) -v cpu="$(BOARD), $$(qemu-system-arm --version | head -1)" ' \
+	  /^cost track/ { n++; e += $$5; f += $$7; px += $$9; p = $$11; l = $$13; \
+	    r[n] = sprintf("%5d %11d %11d %9d %15.0f %15.0f", $$3, $$5, $$7, $$9, $$7 / $$11, ($$5 + $$7) / $$11) } \
+	  END { if (!n) { print "bench-firmware-track: no cost lines" > "/dev/stderr"; exit 1 } \
+	    printf "bench-firmware-track: Cortex-M4 instructions (%s, -icount shift=0), cube at %s, %d particles, %d layer(s)\n", cpu, screen, p, l; \
+	    printf "%5s %11s %11s %9s %15s %15s\n", "frame", "edges", "filter", "edge-px", "filter/particle", "frame/particle"; \
+	    for (i = 1; i <= n; i++) print r[i]; \
+	    printf "%5s %11.0f %11.0f %9.0f %15.0f %15.0f\n", "mean", e / n, f / n, px / n, f / n / p, (e + f) / n / p; \
+	    printf "per frame: edges %.0f, filter %.0f; per particle: edges %.0f, filter %.0f (%d scores a frame: N L + 1); poses equal the host tracker'"'"'s: %s\n", \
+	      e / n, f / n, e / n / p, f / n / p, p * l + 1, same }' $(FW_TRACK_DIR)/bench.txt && [ $$same = yes ]

@@ -2,7 +2,7 @@
 # The tracker's particle filter: run time and error on the synthetic cube sequence
 # (tests/track/cube_scene.h: ViSP's 84 mm cube before ViSP's cube camera scaled to the frame, each
 # frame's edges those of the cube's visible lines at the true pose, spread by a pixel; no clutter,
-# no noise: the real sequences and ViSP's tracker side by side are still to come). For each frame
+# no noise: the real and cluttered sequences beside ViSP's tracker are track_seq.sh's). For each frame
 # size and particle count (a third of them fresh each frame, as the paper's 100 of 300), in 6-DOF
 # and 3-DOF (orientation given): tests/bench/track_frames.c runs 60 frames from a start 15 mm off;
 # wall ms of mc_filter_step per frame (median over frames, then over rounds), the pose errors

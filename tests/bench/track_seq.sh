@@ -1,0 +1,213 @@
+#!/usr/bin/env bash
+# The tracker on camera sequences, side by side with ViSP's model-based edge tracker
+# (vpMbGenericTracker, edge features; tests/bench/visp_track.cpp, make deps-bench) in one run:
+#   1. ViSP's real cube sequence (Debian visp-images-data, mbt/cube: 218 frames of 640x480): ViSP at
+#      640x480 and at 320x240; modelc's tracker (build/cube/cube-track) in 6-DOF at 320x240 (one
+#      layer of 300 particles, two of 150) and 640x480, and in 3-DOF with ViSP's own orientation as
+#      the IMU stand-in. There is no ground truth: modelc's poses are compared with ViSP's at
+#      640x480 over frames 0..180, where ViSP's overlay stays on the cube (after 180 it drifts, by
+#      its own projection error and overlays).
+#   2. synthetic sequences with exact truth (tests/track/synth.c: clutter, noise, blur, a passing
+#      occluder, a jump): the cube in 6-DOF and 3-DOF, with and without a jump, fandisk in 3-DOF,
+#      and ViSP on the cube without a jump; success (translation < 5 cm and rotation < 5 degrees),
+#      frames to re-detect after a jump (tests/track/errors.py).
+#   3. run time against error on the synthetic cube (6-DOF, no jump): particles 50 .. 1000, one or
+#      two layers; a Pareto plot (tests/bench/track_pareto.png).
+# Times: median over frames of the per-frame wall time (modelc: image edges + filter step; ViSP:
+# track()), the machine shared; instructions: callgrind over 20 frames (modelc: mc_imgedge,
+# mc_imgedge_masks and mc_filter_step; ViSP: vpMbGenericTracker::track), which do not drift.
+# Writes a marked section of RESULTS.md.
+#   tests/bench/track_seq.sh [RESULTS.md]      (make bench-track runs it after track.sh)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+. tests/bench/section.sh
+results=${1:-tests/bench/RESULTS.md}
+out=build/bench/track_seq
+mkdir -p "$out"
+mbt=/usr/share/visp-images-data/ViSP-images/mbt
+[ -f "$mbt/cube.cao" ] || { echo "track_seq.sh: $mbt missing: make deps (visp-images-data)" >&2; exit 1; }
+make -s gen runtime-objs build/bench/visp_track build/track/tracker.o build/track/track_input.o build/host/image.o build/common/rgb.o
+modelc=build/bin/modelc
+visp=build/bench/visp_track
+cmds=()
+run() { cmds+=("$*"); "$@"; }
+# the cube's edge bake with room for 1,000 particles, and its tracker, linked as the Makefile links one
+link_track() {   # DIR NAME
+    run gcc -O2 -g -std=c99 -ffreestanding -Iruntime/include -ffunction-sections -fdata-sections -o "$1/$2/$2-track" "$1/$2"/*.c \
+        $(make -s --no-print-directory --eval 'p: ; @echo $(RT_OBJ) $(TRACK_OBJ)' p) \
+        -Wl,--gc-sections -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free -lm
+}
+run "$modelc" "$mbt/cube.cao" -o "$out" --name cube --as edges --particles 1000 -q
+link_track "$out" cube
+track=$out/cube/cube-track
+cam2=273.86837875,271.0372029,169.10184970,117.00416725   # cube.xml's camera at 320x240
+med() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+ms_of() { python3 -c 'import csv,sys; [print(float(r["edges_ms"]) + float(r["filter_ms"])) for r in csv.DictReader(open(sys.argv[1]))]' "$1" | med; }
+ir_total() { callgrind_annotate "$1" 2>/dev/null | awk '/PROGRAM TOTALS/ && !done {gsub(",", "", $1); print $1; done = 1}'; }
+cmp_visp() {   # CSV: "median mm | median deg | within 1 cm and 3 deg" against ViSP at 640x480, frames 0..180
+    python3 tests/bench/cube_compare.py "$1" "$out/visp_640.csv" --range 0:180 --quiet |
+        awk '/^translation/ {t = $5} /^rotation/ {r = $5} /^frames within/ {w = $8 " of " $10} END {print t " | " r " | " w}' | tr -d ','
+}
+
+# ---- 1. the real cube -------------------------------------------------------------------------
+F=(--frames "$mbt/cube/image%04d.pgm")
+run "$visp" "${F[@]}" --model "$mbt/cube.cao" --settings "$mbt/cube.xml" --init "$mbt/cube.0.pos" --out "$out/visp_640.csv" >/dev/null
+run "$visp" "${F[@]}" --model "$mbt/cube.cao" --settings "$mbt/cube.xml" --init "$mbt/cube.0.pos" --scale 2 --out "$out/visp_320.csv" >/dev/null
+python3 -c 'import csv,sys; [print(r["tux"], r["tuy"], r["tuz"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/visp_640.csv" >"$out/visp_orientation.txt"
+T=("${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos")
+names=(m6_320 m6_320_l2 m6_640 m3_320)
+labels=("modelc 6-DOF, 320x240, 300 particles" "modelc 6-DOF, 320x240, 2 layers of 150" "modelc 6-DOF, 640x480, 300 particles, radius 3" "modelc 3-DOF (ViSP's orientation as the IMU), 320x240, 300 particles")
+opts=("--scale 2" "--scale 2 --particles 150 --fresh 50 --layers 2" "--scale 1 --radius 3" "--scale 2 --orientation $out/visp_orientation.txt")
+real_rows=$out/real_rows.txt
+: >"$real_rows"
+vg() {   # NAME FUNCTIONS PROGRAM ARGS...: instructions per frame over 20 frames in FUNCTIONS (a |-list)
+    local name=$1 fns=$2 t=()
+    shift 2
+    IFS='|' read -r -a list <<<"$fns"
+    for f in "${list[@]}"; do t+=("--toggle-collect=$f"); done
+    run valgrind --tool=callgrind "${t[@]}" --callgrind-out-file="$out/$name.cg" "$@" --count 20 >/dev/null 2>"$out/$name.cg.log"
+    echo "$(ir_total "$out/$name.cg") / 20 / 1000000" | bc -l
+}
+for i in "${!names[@]}"; do
+    n=${names[$i]}
+    # shellcheck disable=SC2086
+    run "$track" "${T[@]}" ${opts[$i]} --out "$out/$n.csv"
+    # shellcheck disable=SC2086
+    ir=$(vg "$n" "mc_filter_step|mc_imgedge|mc_imgedge_masks" "$track" "${T[@]}" ${opts[$i]} --out "$out/$n.cg.csv")
+    printf '| %s | %.3f | %.2f M | %s |\n' "${labels[$i]}" "$(ms_of "$out/$n.csv")" "$ir" "$(cmp_visp "$out/$n.csv")" >>"$real_rows"
+done
+for s in 640 320; do
+    ms=$(python3 -c 'import csv,sys; [print(r["filter_ms"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/visp_$s.csv" | med)
+    sc=""; [ "$s" = 320 ] && sc="--scale 2"
+    # shellcheck disable=SC2086
+    ir=$(vg "visp_$s" "vpMbGenericTracker::track(vpImage<unsigned char> const&)" "$visp" "${F[@]}" --model "$mbt/cube.cao" \
+        --settings "$mbt/cube.xml" --init "$mbt/cube.0.pos" $sc --out "$out/visp_$s.cg.csv")
+    agree="(the reference)"; [ "$s" = 320 ] && agree=$(cmp_visp "$out/visp_320.csv")
+    printf '| ViSP vpMbGenericTracker (edges), %sx%s | %.3f | %.2f M | %s |\n' "$s" "$((s * 3 / 4))" "$ms" "$ir" "$agree" >>"$real_rows"
+done
+python3 tests/bench/cube_compare.py "$out/visp_640.csv" "$out/visp_640.csv" --quiet >/dev/null   # the comparer runs at all
+first_off=$(python3 - "$out/m6_320.csv" "$out/visp_640.csv" <<'PYEOF'
+import csv, math, sys
+sys.path.insert(0, "tests/track")
+import errors
+a, b = errors.load(sys.argv[1]), errors.load(sys.argv[2])
+for k in sorted(a):
+    if k in b and (1000 * math.dist(a[k][:3], b[k][:3]) > 10 or errors.angle_deg(a[k][3:], b[k][3:]) > 3):
+        print(k)
+        break
+else:
+    print("none")
+PYEOF
+)
+
+# ---- 2. synthetic sequences -----------------------------------------------------------------------
+synth_bin() {   # NAME: tests/track/synth.c linked with bake NAME
+    gcc -std=c99 -O2 -Iruntime/include -DSYNTH_MODEL="mc_model_$1" -o "$out/synth_$1" tests/track/synth.c \
+        "$2/$1/$1"_data_*.c "$2/$1/$1_edges.c" "$2/$1/$1_model.c" -lm
+}
+make -s build/models/fandisk.off
+run "$modelc" build/models/fandisk.off -o "$out" --name fandisk_e --as edges --unit 0.1 -q
+link_track "$out" fandisk_e
+synth_bin cube "$out"
+synth_bin fandisk_e "$out"
+syn_rows=$out/syn_rows.txt
+: >"$syn_rows"
+seq_run() {   # LABEL NAME SYNTH TRACKER FRAMES JUMP SYNTH-OPTS -- TRACK-OPTS
+    local label=$1 name=$2 syn=$3 tr=$4 frames=$5 jump=$6
+    shift 6
+    local so=()
+    while [ "$1" != -- ]; do so+=("$1"); shift; done
+    shift
+    local d=$out/$name
+    rm -rf "$d" && mkdir -p "$d"
+    local j=()
+    [ "$jump" -ge 0 ] && j=(--jump "$jump")
+    run "$syn" --out "$d" --frames "$frames" "${j[@]}" "${so[@]}"
+    run "$tr" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$d/init.pos" --out "$d/poses.csv" "$@"
+    local line
+    line=$(python3 tests/track/errors.py "$d/truth.csv" "$d/poses.csv" "${j[@]}")
+    f() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+    printf '| %s | %s | %s | %s | %s | %s | %s | %.3f |\n' "$label" "$frames" "$(f success)" "$([ "$jump" -ge 0 ] && f tracked_rate || f rate)" \
+        "$([ "$jump" -ge 0 ] && f redetect || echo -)" "$(f median_mm)" "$(f median_deg)" "$(ms_of "$d/poses.csv")" >>"$syn_rows"
+}
+S="--occlude 30:45 --seed 4"
+seq_run "cube, 6-DOF, 300 particles" c6 "$out/synth_cube" "$track" 100 -1 $S -- --radius 1 --search 100
+seq_run "cube, 6-DOF, 2 layers of 150" c6l "$out/synth_cube" "$track" 100 -1 $S -- --radius 1 --search 100 --particles 150 --fresh 50 --layers 2
+seq_run "cube, 6-DOF, a jump at 50" c6j "$out/synth_cube" "$track" 100 50 $S -- --radius 1 --search 100
+seq_run "cube, 3-DOF, a jump at 50" c3j "$out/synth_cube" "$track" 100 50 $S -- --radius 1 --search 100 --orientation "$out/c3j/orientation.txt"
+seq_run "fandisk (12,946 faces), 3-DOF, 150 particles, a jump at 30" f3j "$out/synth_fandisk_e" "$out/fandisk_e/fandisk_e-track" 60 30 \
+    --start 0,0,0.45,0.4,0.6,0.2 $S -- --search 100 --particles 150 --step-t 3 --orientation "$out/f3j/orientation.txt"
+# ViSP on the synthetic cube: its settings with the 320x240 camera
+sed -e "s|<u0>[^<]*</u0>|<u0>169.10184970</u0>|; s|<v0>[^<]*</v0>|<v0>117.00416725</v0>|" \
+    -e "s|<px>[^<]*</px>|<px>273.86837875</px>|; s|<py>[^<]*</py>|<py>271.0372029</py>|" "$mbt/cube.xml" >"$out/cube_320.xml"
+run "$visp" --frames "$out/c6/image%04d.pgm" --model "$mbt/cube.cao" --settings "$out/cube_320.xml" --init "$out/c6/init.pos" \
+    --range 4 --sample-step 2 --out "$out/c6/visp.csv" >/dev/null
+vline=$(python3 tests/track/errors.py "$out/c6/truth.csv" "$out/c6/visp.csv")
+vf() { echo "$vline" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+printf '| ViSP, cube, 6-DOF | 100 | %s | %s | - | %s | %s | %.3f |\n' "$(vf success)" "$(vf rate)" "$(vf median_mm)" "$(vf median_deg)" \
+    "$(python3 -c 'import csv,sys; [print(r["filter_ms"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/c6/visp.csv" | med)" >>"$syn_rows"
+
+# ---- 3. run time against error ------------------------------------------------------------------
+pareto=$out/pareto.dat
+: >"$pareto"
+par_rows=$out/par_rows.txt
+: >"$par_rows"
+for layers in 1 2; do
+    for n in 50 100 200 300 600 1000; do
+        d=$out/c6
+        run "$track" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$d/init.pos" --out "$out/p_${layers}_$n.csv" \
+            --radius 1 --search 100 --particles "$n" --fresh $((n / 3)) --layers "$layers"
+        line=$(python3 tests/track/errors.py "$d/truth.csv" "$out/p_${layers}_$n.csv")
+        pf() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+        ms=$(python3 -c 'import csv,sys; [print(r["filter_ms"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/p_${layers}_$n.csv" | med)
+        echo "$layers $n $ms $(pf median_deg) $(pf median_mm) $(pf rate)" >>"$pareto"
+        printf '| %s | %s | %.3f | %s | %s | %s |\n' "$n" "$layers" "$ms" "$(pf rate)" "$(pf median_mm)" "$(pf median_deg)" >>"$par_rows"
+    done
+done
+cat >"$out/pareto.gp" <<GP
+set terminal pngcairo size 720,440 font "sans,10"
+set output "tests/bench/track_pareto.png"
+set title "Synthetic cube, 6-DOF, 320x240: time against error (particles 50 .. 1000)"
+set xlabel "filter step, ms per frame (median)"
+set ylabel "median rotation error, degrees"
+set logscale x
+set grid
+plot "$pareto" using (\$1 == 1 ? \$3 : 1/0):4 with linespoints title "one layer", \
+     "$pareto" using (\$1 == 2 ? \$3 : 1/0):4 with linespoints title "two layers (N/2 each)"
+GP
+gnuplot "$out/pareto.gp" 2>/dev/null || gnuplot -e 'set terminal png' "$out/pareto.gp"
+cmds+=("gnuplot $out/pareto.gp   # tests/bench/track_pareto.png")
+
+sec=$out/section.md
+{
+    echo "## Tracking: real and synthetic sequences, side by side with ViSP"
+    echo
+    echo "\`tests/bench/track_seq.sh\` (\`make bench-track\`, after \`make deps-bench\` for ViSP). ms: median over the frames of the per-frame wall time (modelc: image edges and the filter step; ViSP: \`track()\`), the machine shared; Ir: callgrind instructions per frame over 20 frames (modelc: \`mc_imgedge\`, \`mc_imgedge_masks\`, \`mc_filter_step\`; ViSP: \`vpMbGenericTracker::track\`). gcc -O2; ViSP $(pkg-config --modversion visp 2>/dev/null || echo '?') from Debian."
+    echo
+    echo "### ViSP's real cube sequence (mbt/cube, 218 frames)"
+    echo
+    echo "No ground truth: the columns compare each run with ViSP at 640x480 over frames 0..180, where ViSP's own overlay stays on the cube. modelc's 6-DOF run first leaves 1 cm and 3 degrees of ViSP at frame $first_off."
+    echo
+    echo "| tracker | ms per frame | Ir per frame | median distance to ViSP, mm | median angle to ViSP, deg | frames within 1 cm and 3 deg of ViSP |"
+    echo "|---|---:|---:|---:|---:|---:|"
+    cat "$real_rows"
+    echo
+    echo "### Synthetic sequences with exact truth (320x240)"
+    echo
+    echo "\`tests/track/synth.c\`: ViSP's cube camera at 320x240, 40 random rectangles of clutter, noise of sigma 3, a 3x3 blur, a dark bar sweeping across frames 30..45, and with a jump the pose moved by (40, -25, 30) mm and 25 degrees at once. Success: translation error < 5 cm and rotation error < 5 degrees; with a jump, the rate counts the frames outside the re-detection, which is the frames from the jump to the first of 5 successes in a row."
+    echo
+    echo "| sequence | frames | successes | rate | re-detected after | median error mm | median error deg | ms per frame |"
+    echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+    cat "$syn_rows"
+    echo
+    echo "### Run time against error: the synthetic cube, 6-DOF, no jump"
+    echo
+    echo "![time against error](track_pareto.png)"
+    echo
+    echo "| particles | layers | ms per frame (filter) | rate | median error mm | median error deg |"
+    echo "|---:|---:|---:|---:|---:|---:|"
+    cat "$par_rows"
+    echo
+    echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)."
+} >"$sec"
+write_section "$results" track_seq "$sec" "${cmds[@]}"
