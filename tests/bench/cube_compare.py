@@ -17,9 +17,13 @@ import argparse
 import csv
 import math
 import shutil
+import os
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "track"))
+import errors  # noqa: E402  (tests/track/errors.py: the rotation angle between two theta-u vectors)
 
 
 def read_track(path):
@@ -38,29 +42,12 @@ def read_track(path):
     return poses
 
 
-def rotation(w):
-    """Rotation matrix of the theta-u vector w (Rodrigues)."""
-    th = math.sqrt(sum(x * x for x in w))
-    if th < 1e-12:
-        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-    x, y, z = (c / th for c in w)
-    c, s, v = math.cos(th), math.sin(th), 1 - math.cos(th)
-    return [[c + x * x * v, x * y * v - z * s, x * z * v + y * s],
-            [y * x * v + z * s, c + y * y * v, y * z * v - x * s],
-            [z * x * v - y * s, z * y * v + x * s, c + z * z * v]]
-
-
 def angle_between(w1, w2):
-    """Angle of R1^T R2 in degrees."""
-    r1, r2 = rotation(w1), rotation(w2)
-    trace = sum(r1[k][i] * r2[k][i] for i in range(3) for k in range(3))  # trace(R1^T R2)
-    return math.degrees(math.acos(max(-1.0, min(1.0, (trace - 1) / 2))))
+    """Angle of R1^T R2 in degrees (tests/track/errors.py's, Rodrigues)."""
+    return errors.angle_deg(w1, w2)
 
 
-def median(v):
-    s = sorted(v)
-    n = len(s)
-    return s[n // 2] if n % 2 else (s[n // 2 - 1] + s[n // 2]) / 2
+median = errors.median
 
 
 def plot(png, dat, names):
