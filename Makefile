@@ -507,7 +507,7 @@ fw-track-bench: fw-track-args
 	@set -o pipefail; $(FW_TRACK_QEMU) -icount shift=0 -semihosting-config enable=on,target=native,arg=cube-track,arg=bench \
 	  -kernel $(FW_TRACK_ELF) < /dev/null > $(FW_TRACK_DIR)/bench.txt 2>&1 || \
 	  { tail -5 $(FW_TRACK_DIR)/bench.txt; echo "bench-firmware-track: QEMU failed" >&2; exit 1; }
-	@$(FW_TRACK_HOST) $$(cat $(FW_TRACK_DIR)/frames/host-args) --out /dev/null --fixed-out $(FW_TRACK_DIR)/host-poses.txt
+	@$(FW_TRACK_HOST) $$(cat $(FW_TRACK_DIR)/frames/host-args) --fixed-out $(FW_TRACK_DIR)/host-poses.txt >/dev/null
 	@grep '^pose ' $(FW_TRACK_DIR)/bench.txt | cmp -s - $(FW_TRACK_DIR)/host-poses.txt && same=yes || same=NO; \
 	awk -v same=$$same -v screen=$(FW_TRACK_SCREEN) -v cpu="$(BOARD), $$(qemu-system-arm --version | head -1)" ' \
 	  /^cost track/ { n++; e += $$5; f += $$7; px += $$9; p = $$11; l = $$13; \

@@ -34,6 +34,7 @@ suites=(
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
+    tests/fw/track.sh         # the tracker firmware under QEMU: ViSP's cube, poses equal the host tracker's
     tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
     tests/gen/errors.sh       # malformed input: one error line, no output

@@ -199,4 +199,14 @@ mkdir -p "$out/cut"
 for k in 0 1 2; do cp "$mbt/cube/image000$k.pgm" "$out/cut/f$k.pgm"; done
 cp "$out/cut.pgm" "$out/cut/f3.pgm"
 bad_run "a truncated frame mid-sequence: no CSV" 1 "f3.pgm" --frames "$out/cut/f%d.pgm" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos"
+# an output that is not a regular file (a pipe here; /dev/null alike) is written into, never
+# replaced by a renamed file
+rm -f "$out/pipe" "$out/pipe.txt" && mkfifo "$out/pipe"
+cat "$out/pipe" >"$out/pipe.txt" &
+reader=$!
+build/cube/cube-track "${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" --count 2 --out "$out/pipe" 2>"$out/pipe.err"
+rc=$?
+wait "$reader"
+check "--out into a pipe: the pipe stays a pipe and gets the CSV" \
+    "$([ "$rc" -eq 0 ] && [ -p "$out/pipe" ] && [ "$(wc -l <"$out/pipe.txt")" -eq 3 ] || echo "exit $rc, $(ls -l "$out/pipe" | cut -c1), $(wc -l <"$out/pipe.txt") lines: $(oneline <"$out/pipe.err")")"
 exit $status

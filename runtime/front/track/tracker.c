@@ -3,15 +3,19 @@
  * pose a frame.
  *
  *   NAME-track --frames 'DIR/image%04d.pgm' --camera FILE.xml|px,py,u0,v0 --init FILE.pos|tx,ty,tz,tux,tuy,tuz
- *              [--orientation FILE] [--particles N] [--out FILE.csv] [--overlay DIR] [options]
+ *              [--orientation FILE] [--particles N] [--out FILE.csv] [--overlay DIR] [--fixed-out FILE] [options]
  *
  * Each frame: read (PGM), shrunk by an integer factor to fit the bake's --screen (a box average;
- * the camera's intrinsics scaled to match), its edges found and spread into masks (imgedge.h),
- * then one step of the filter. Poses are written in ViSP's convention (metres, theta-u radians,
- * object to camera), with the estimate's confidence and score and the time of each stage, as CSV
- * to --out (written whole at the end: a failure leaves no partial file) or standard output.
+ * the camera's intrinsics scaled to match; --shrunk K: frames shrunk K times already), its edges
+ * found and spread into masks (imgedge.h), then one step of the filter: the pipeline and settings
+ * of ../common/track_frame.h, which the firmware tracker (../fw/track_main.c) runs too. Poses are
+ * written in ViSP's convention (metres, theta-u radians, object to camera), with the estimate's
+ * confidence and score and the time of each stage, as CSV to --out (written whole at the end: a
+ * failure leaves no partial file) or standard output.
  * --overlay writes a PNG a frame: the frame dimmed, its edge pixels grey, and the model's visible
- * lines at the estimate coloured by orientation (matched ones bright).
+ * lines at the estimate coloured by orientation (matched ones bright). --fixed-out writes the
+ * estimate's integer fields a frame, the lines the firmware tracker prints (track_frame.h
+ * MC_TRACK_POSE_LINE), so that the two compare as text.
  *
  * Errors: one line "NAME-track: ..." and exit status 1 (bad data) or 2 (bad usage). All memory is
  * static: the bake's (mc_app_model, sized by --screen and --particles) and this file's frame
@@ -22,9 +26,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <modelc/app.h>
 
+#include "../common/track_frame.h"
 #include "../host/image.h"
 #include "../host/timing.h"
 #include "track_input.h"
@@ -45,11 +51,9 @@ static int fail(int status, const char *fmt, const char *a, const char *b)
 }
 
 typedef struct options {
-    const char *frames, *camera, *init, *orientation, *out, *overlay;
-    long first, count, particles, fresh, layers, scale, threshold, radius, tolerance, sharpness, min_visible;
-    double step_t_mm, step_r_deg, fresh_r_deg, search_mm, near_m, far_m;
-    unsigned long seed;
-    int dof;
+    const char *frames, *camera, *init, *orientation, *out, *overlay, *fixed_out;
+    long first, count, scale, shrunk;
+    mc_track_settings s;   /* the filter's and the edges' settings (track_frame.h) */
 } options;
 
 static const char usage[] =
@@ -65,6 +69,8 @@ static const char usage[] =
     "  --layers L           weighings a frame, 1..4: each further one draws all N again from the last\n"
     "                       weights with steps halved (default 1)\n"
     "  --scale K            shrink frames K times (default: the least that fits the bake's --screen)\n"
+    "  --shrunk K           the frames were shrunk K times already (a K x K box average, as --scale does): the\n"
+    "                       camera is scaled by K, the frames tracked as they are\n"
     "  --threshold T        image edge gradient magnitude, 1..1442 (default 30)\n"
     "  --radius R           pixels an image edge may lie from a model line, 0..8 (default 2)\n"
     "  --tolerance B        orientation bins of 22.5 degrees a match may be off, 0..3 (default 1)\n"
@@ -78,7 +84,9 @@ static const char usage[] =
     "  --near M, --far M    the camera's depth range in metres (default 0.02, 20)\n"
     "  --seed S             the random stream (default 1)\n"
     "  --out FILE           the poses as CSV (default: standard output)\n"
-    "  --overlay DIR        a PNG a frame, DIR/frameNNNN.png\n";
+    "  --overlay DIR        a PNG a frame, DIR/frameNNNN.png\n"
+    "  --fixed-out FILE     the estimate's integer fields, a line a frame: \"pose K q0 q1 q2 q3 t0 t1 t2 visible\n"
+    "                       matched confidence\" (Q30, um, Q16), as the firmware tracker prints them\n";
 
 static int number(const char *opt, const char *text, double lo, double hi, double *v)
 {
@@ -136,9 +144,9 @@ static int exists(const char *path)
 static int parse(int argc, char **argv, options *o)
 {
     memset(o, 0, sizeof *o);
-    o->count = -1, o->particles = 300, o->fresh = -1, o->layers = 1, o->threshold = 30, o->radius = 2, o->tolerance = 1;
-    o->sharpness = 32, o->min_visible = 20, o->step_t_mm = 5, o->step_r_deg = 2, o->fresh_r_deg = 15, o->search_mm = 60;
-    o->near_m = 0.02, o->far_m = 20, o->seed = 1, o->dof = 6;
+    o->count = -1;
+    mc_track_settings *s = &o->s;
+    mc_track_settings_default(s);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         double d;
@@ -153,50 +161,40 @@ static int parse(int argc, char **argv, options *o)
         if (!strcmp(a, "--frames")) o->frames = v;
         else if (!strcmp(a, "--camera")) o->camera = v;
         else if (!strcmp(a, "--init")) o->init = v;
-        else if (!strcmp(a, "--orientation")) o->orientation = v, o->dof = 3;
+        else if (!strcmp(a, "--orientation")) o->orientation = v, s->dof = 3;
         else if (!strcmp(a, "--out")) o->out = v;
         else if (!strcmp(a, "--overlay")) o->overlay = v;
+        else if (!strcmp(a, "--fixed-out")) o->fixed_out = v;
         else if (!strcmp(a, "--first")) rc = integer(a, v, 0, 100000000, &o->first);
         else if (!strcmp(a, "--count")) rc = integer(a, v, 1, 100000000, &o->count);
-        else if (!strcmp(a, "--particles")) rc = integer(a, v, 1, 65535, &o->particles);
-        else if (!strcmp(a, "--fresh")) rc = integer(a, v, 0, 65534, &o->fresh);
-        else if (!strcmp(a, "--layers")) rc = integer(a, v, 1, 4, &o->layers);
+        else if (!strcmp(a, "--particles")) rc = integer(a, v, 1, 65535, &s->particles);
+        else if (!strcmp(a, "--fresh")) rc = integer(a, v, 0, 65534, &s->fresh);
+        else if (!strcmp(a, "--layers")) rc = integer(a, v, 1, 4, &s->layers);
         else if (!strcmp(a, "--scale")) rc = integer(a, v, 1, 64, &o->scale);
-        else if (!strcmp(a, "--threshold")) rc = integer(a, v, 1, MC_IMGEDGE_THRESHOLD_MAX, &o->threshold);
-        else if (!strcmp(a, "--radius")) rc = integer(a, v, 0, 8, &o->radius);
-        else if (!strcmp(a, "--tolerance")) rc = integer(a, v, 0, 3, &o->tolerance);
-        else if (!strcmp(a, "--sharpness")) rc = integer(a, v, 1, 64, &o->sharpness);
-        else if (!strcmp(a, "--min-visible")) rc = integer(a, v, 0, 100000000, &o->min_visible);
-        else if (!strcmp(a, "--seed")) rc = integer(a, v, 0, 2000000000, &l), o->seed = (unsigned long)l;
-        else if (!strcmp(a, "--step-t")) rc = number(a, v, 0, 1000, &o->step_t_mm);
-        else if (!strcmp(a, "--step-r")) rc = number(a, v, 0, 45, &o->step_r_deg);
-        else if (!strcmp(a, "--fresh-r")) rc = number(a, v, 0, 28, &o->fresh_r_deg);
-        else if (!strcmp(a, "--search")) rc = number(a, v, 0, 10000, &o->search_mm);
-        else if (!strcmp(a, "--near")) rc = number(a, v, 1e-5, 100, &o->near_m);
-        else if (!strcmp(a, "--far")) rc = number(a, v, 1e-4, 268, &o->far_m);
+        else if (!strcmp(a, "--shrunk")) rc = integer(a, v, 1, 64, &o->shrunk);
+        else if (!strcmp(a, "--threshold")) rc = integer(a, v, 1, MC_IMGEDGE_THRESHOLD_MAX, &s->threshold);
+        else if (!strcmp(a, "--radius")) rc = integer(a, v, 0, 8, &s->radius);
+        else if (!strcmp(a, "--tolerance")) rc = integer(a, v, 0, 3, &s->tolerance);
+        else if (!strcmp(a, "--sharpness")) rc = integer(a, v, 1, 64, &s->sharpness);
+        else if (!strcmp(a, "--min-visible")) rc = integer(a, v, 0, 100000000, &s->min_visible);
+        else if (!strcmp(a, "--seed")) rc = integer(a, v, 0, 2000000000, &l), s->seed = (unsigned long)l;
+        else if (!strcmp(a, "--step-t")) rc = number(a, v, 0, 1000, &s->step_t_mm);
+        else if (!strcmp(a, "--step-r")) rc = number(a, v, 0, 45, &s->step_r_deg);
+        else if (!strcmp(a, "--fresh-r")) rc = number(a, v, 0, 28, &s->fresh_r_deg);
+        else if (!strcmp(a, "--search")) rc = number(a, v, 0, 10000, &s->search_mm);
+        else if (!strcmp(a, "--near")) rc = number(a, v, 1e-5, 100, &s->near_m);
+        else if (!strcmp(a, "--far")) rc = number(a, v, 1e-4, 268, &s->far_m);
         else return fail(2, "unknown option %s (see %s --help)", a, prog);
         if (rc) return rc;
         (void)d;
     }
     if (!o->frames || !o->camera || !o->init) return fail(2, "%s%s", "--frames, --camera and --init are required (see --help)", "");
     if (check_pattern(o->frames)) return fail(2, "--frames %s: expected one integer conversion such as %%04d%s", o->frames, "");
-    if (o->fresh < 0) o->fresh = o->particles / 3;
-    if (o->fresh >= o->particles) return fail(2, "--fresh must be below --particles%s%s", "", "");
-    if (!(o->near_m < o->far_m)) return fail(2, "--near must be below --far%s%s", "", "");
+    if (s->fresh < 0) s->fresh = s->particles / 3;
+    if (s->fresh >= s->particles) return fail(2, "--fresh must be below --particles%s%s", "", "");
+    if (!(s->near_m < s->far_m)) return fail(2, "--near must be below --far%s%s", "", "");
+    if (o->scale && o->shrunk) return fail(2, "--scale and --shrunk exclude each other%s%s", "", "");
     return 0;
-}
-
-/* a K x K box average of src (w x h) into dst ((w / K) x (h / K)), rounded */
-static void shrink(const uint8_t *src, unsigned w, unsigned K, uint8_t *dst, unsigned dw, unsigned dh)
-{
-    const unsigned n = K * K;
-    for (unsigned y = 0; y < dh; y++)
-        for (unsigned x = 0; x < dw; x++) {
-            unsigned s = 0;
-            for (unsigned j = 0; j < K; j++)
-                for (unsigned i = 0; i < K; i++) s += src[(size_t)(y * K + j) * w + x * K + i];
-            dst[(size_t)y * dw + x] = (uint8_t)((s + n / 2) / n);
-        }
 }
 
 /* the colour of orientation bin b: a hue wheel around the half circle */
@@ -226,6 +224,41 @@ static int write_overlay(const options *o, long k, const uint8_t *frame, unsigne
     return 0;
 }
 
+/* An output file written whole or not at all: into PATH.tmp, renamed over PATH at the end. A path
+ * that exists and is not a regular file (/dev/null, a pipe, a terminal) is written directly: renaming
+ * over it would replace the device with a file. */
+typedef struct outfile {
+    FILE *f;
+    const char *path;
+    char tmp[4200];
+    int direct;
+} outfile;
+
+static int out_open(outfile *o, const char *path)
+{
+    struct stat st;
+    o->path = path;
+    o->direct = stat(path, &st) == 0 && !S_ISREG(st.st_mode);
+    snprintf(o->tmp, sizeof o->tmp, "%s.tmp", path);
+    o->f = fopen(o->direct ? path : o->tmp, "w");
+    return o->f ? 0 : -1;
+}
+
+/* Closes o (not opened: nothing to do); with keep, puts what it wrote in place, else removes it.
+ * Returns -1 when keeping failed. */
+static int out_close(outfile *o, int keep)
+{
+    if (!o->f) return 0;
+    const int failed = fclose(o->f) != 0;
+    o->f = NULL;
+    if (o->direct) return keep && failed ? -1 : 0;
+    if (!keep || failed) {
+        remove(o->tmp);
+        return keep ? -1 : 0;
+    }
+    return rename(o->tmp, o->path) ? -1 : 0;
+}
+
 int main(int argc, char **argv)
 {
     const mc_app *app = &mc_app_model;
@@ -235,7 +268,7 @@ int main(int argc, char **argv)
     if (rc) return rc;
     if (!app->model->edges || !app->edges_frame)
         return fail(1, "model %s has no edge part: bake it with modelc --as edges%s", app->model->name, "");
-    if ((unsigned long)o.particles > app->max_particles) {
+    if ((unsigned long)o.s.particles > app->max_particles) {
         char n[32];
         snprintf(n, sizeof n, "%lu", (unsigned long)app->max_particles);
         return fail(2, "--particles: at most %s, the bake's --particles%s", n, "");
@@ -246,15 +279,18 @@ int main(int argc, char **argv)
     if (frame_path(&o, o.first, path, sizeof path)) return fail(2, "--frames %s: path too long%s", o.frames, "");
     uint16_t fw, fh;
     if (mc_pgm_read(path, NULL, 0, &fw, &fh, err, sizeof err)) return fail(1, "%s%s", err, "");
-    long K = o.scale;
+    /* K: how many times this program shrinks the frames; the camera's frames were shrunk K times
+     * in all, by it or (--shrunk) before */
+    long K = o.shrunk ? 1 : o.scale;
     if (!K)
         for (K = 1; fw / K > app->max_width || fh / K > app->max_height; K++) continue;
+    const unsigned long camera_k = (unsigned long)(o.shrunk ? o.shrunk : K);
     const unsigned w = fw / (unsigned)K, h = fh / (unsigned)K;
     if (w > app->max_width || h > app->max_height || w < 3 || h < 3) {
         char s[96];
         snprintf(s, sizeof s, "%ux%u shrunk %ld times is %ux%u; the bake holds %ux%u", fw, fh, K, w, h,
                  app->max_width, app->max_height);
-        return fail(2, "--scale: %s%s", s, "");
+        return fail(2, "%s: %s", o.shrunk ? "--shrunk" : "--scale", s);
     }
 
     mc_track_intrinsics in;
@@ -262,12 +298,10 @@ int main(int argc, char **argv)
     if (cl > 4 && !strcmp(o.camera + cl - 4, ".xml") ? mc_track_camera_read_xml(o.camera, &in, err, sizeof err)
                                                     : mc_track_camera_parse(o.camera, &in, err, sizeof err))
         return fail(1, "%s%s", err, "");
-    /* pixel i of the shrunk frame covers pixels K i .. K i + K - 1, so u' + 1/2 = (u + 1/2) / K */
-    const double px = in.px / K, py = in.py / K, u0 = (in.u0 + 0.5) / K - 0.5, v0 = (in.v0 + 0.5) / K - 0.5;
+    /* the intrinsics scaled to the shrunk frame, in Q16 (track_frame.h) */
     mc_camera cam;
-    if (mc_camera_init(&cam, (int32_t)lround(px * 65536), (int32_t)lround(py * 65536), (int32_t)lround(u0 * 65536),
-                       (int32_t)lround(v0 * 65536), (uint16_t)w, (uint16_t)h, (int32_t)lround(o.near_m * 1e6),
-                       (int32_t)lround(o.far_m * 1e6)) != MC_OK)
+    if (mc_track_camera_fixed(&cam, in.px, in.py, in.u0, in.v0, camera_k, (uint16_t)w, (uint16_t)h, o.s.near_m,
+                              o.s.far_m) != MC_OK)
         return fail(1, "--camera %s: not a usable camera%s", o.camera, "");
 
     double pose0[6];
@@ -281,34 +315,26 @@ int main(int argc, char **argv)
     mc_track_orient_reader orient;
     if (o.orientation && mc_track_orient_open(&orient, o.orientation, err, sizeof err)) return fail(1, "%s%s", err, "");
 
-    mc_sdepth sd;
-    if (mc_sdepth_init(&sd, (uint16_t)w, (uint16_t)h, app->edges_sdepth, app->depth, app->color, 0xFFFF, 0) != MC_OK)
-        return fail(1, "cannot set up the depth buffer%s%s", "", "");
-    memset(app->edges_matched, 0, 4u * MC_SDEPTH_MATCHED_WORDS(w, h));
-    mc_sdepth_keep_matched(&sd, app->edges_matched);
-    mc_track_view view = {app->model->edges, &cam, &sd, app->edges_masks, app->edges_cache, (uint8_t)o.tolerance};
+    /* the depth buffer, the scoring view and the filter (track_frame.h) */
+    static mc_track_state tr;
+    const int started = mc_track_start(&tr, app, &cam, &o.s, q, t);
+    if (started == MC_TRACK_START_SDEPTH) return fail(1, "cannot set up the depth buffer%s%s", "", "");
+    if (started != MC_TRACK_START_OK) return fail(2, "the filter's settings are out of range (see --help)%s%s", "", "");
+    const mc_filter *f = &tr.f;
 
-    mc_filter_params prm;
-    memset(&prm, 0, sizeof prm);
-    prm.particles = (uint32_t)o.particles, prm.fresh = (uint32_t)o.fresh;
-    prm.step_t = (int32_t)lround(o.step_t_mm * 1000);
-    prm.step_r = (int32_t)lround(o.step_r_deg * 3.14159265358979323846 / 180 / 2 * (1 << 30));   /* half-angle */
-    prm.fresh_r = (int32_t)lround(o.fresh_r_deg * 3.14159265358979323846 / 180 / 2 * (1 << 30));
-    for (int k = 0; k < 3; k++) {
-        const double lo = t[k] - o.search_mm * 1000, hi = t[k] + o.search_mm * 1000;
-        prm.lo[k] = (int32_t)fmax(lo, -268435455.0), prm.hi[k] = (int32_t)fmin(hi, 268435455.0);
-    }
-    prm.min_visible = (uint32_t)o.min_visible, prm.sharpness = (uint8_t)o.sharpness, prm.dof = (uint8_t)o.dof;
-    prm.layers = (uint8_t)o.layers;
-    mc_filter f;
-    if (mc_filter_init(&f, &prm, app->particles, app->particles + app->max_particles, o.seed, q, t) != MC_OK)
-        return fail(2, "the filter's settings are out of range (see --help)%s%s", "", "");
-
-    char tmp[4200];
-    FILE *out = stdout;
+    outfile csv = {0}, fx = {0};
+    FILE *out = stdout, *fixed = NULL;
     if (o.out) {
-        snprintf(tmp, sizeof tmp, "%s.tmp", o.out);
-        if (!(out = fopen(tmp, "w"))) return fail(1, "%s: cannot write: %s", o.out, strerror(errno));
+        if (out_open(&csv, o.out)) return fail(1, "%s: cannot write: %s", o.out, strerror(errno));
+        out = csv.f;
+    }
+    if (o.fixed_out) {
+        if (out_open(&fx, o.fixed_out)) {
+            const int e = errno;
+            out_close(&csv, 0);
+            return fail(1, "%s: cannot write: %s", o.fixed_out, strerror(e));
+        }
+        fixed = fx.f;
     }
     fprintf(out, "frame,tx,ty,tz,tux,tuy,tuz,confidence,visible,matched,edges_ms,filter_ms\n");
     long done = 0;
@@ -325,34 +351,34 @@ int main(int argc, char **argv)
             if (got == 0) { rc = fail(1, "%s: no orientation for frame %s", o.orientation, path); break; }
         }
         const double t0 = mc_host_now_ms();
-        if (K > 1) shrink(raw, fw, (unsigned)K, app->edges_frame, w, h);
-        else memcpy(app->edges_frame, raw, (size_t)w * h);
-        mc_imgedge(app->edges_frame, w, (uint16_t)w, (uint16_t)h, (uint16_t)o.threshold, app->edges_masks, app->edges_scratch);
-        if (o.overlay) memcpy(codes, app->edges_masks, (size_t)w * h);
-        mc_imgedge_masks(app->edges_masks, (uint16_t)w, (uint16_t)h, (unsigned)o.radius, (uint8_t *)app->edges_scratch);
+        mc_track_edges(&tr, raw, fw, (unsigned)K, o.overlay ? codes : NULL);
         const double t1 = mc_host_now_ms();
-        if (mc_filter_step(&f, &view, o.orientation ? oq : NULL) != MC_OK) { rc = fail(1, "%s: the filter failed%s", path, ""); break; }
+        if (mc_filter_step(&tr.f, &tr.view, o.orientation ? oq : NULL) != MC_OK) { rc = fail(1, "%s: the filter failed%s", path, ""); break; }
         const double t2 = mc_host_now_ms();
         double p[6];
-        mc_track_pose_from_fixed(f.estimate.q, f.estimate.t, p);
+        mc_track_pose_from_fixed(f->estimate.q, f->estimate.t, p);
         fprintf(out, "%ld,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%lu,%lu,%.3f,%.3f\n", k, p[0], p[1], p[2], p[3], p[4], p[5],
-                f.confidence / 65536.0, (unsigned long)f.estimate.visible, (unsigned long)f.estimate.matched, t1 - t0,
+                f->confidence / 65536.0, (unsigned long)f->estimate.visible, (unsigned long)f->estimate.matched, t1 - t0,
                 t2 - t1);
+        if (fixed) fprintf(fixed, MC_TRACK_POSE_LINE, MC_TRACK_POSE_ARGS(k, f));
         if (o.overlay) {
             mc_pose pose;
             mc_track_score sc;
-            if (mc_pose_set(&pose, f.estimate.q, f.estimate.t) != MC_OK || mc_track_score_pose(&view, &pose, &sc) != MC_OK ||
-                (rc = write_overlay(&o, k, app->edges_frame, w, h, &sd, app->color)))
+            if (mc_pose_set(&pose, f->estimate.q, f->estimate.t) != MC_OK || mc_track_score_pose(&tr.view, &pose, &sc) != MC_OK ||
+                (rc = write_overlay(&o, k, app->edges_frame, w, h, &tr.sd, app->color)))
                 break;
         }
     }
     if (o.orientation) mc_track_orient_close(&orient);
-    if (o.out) {
-        if (fclose(out) || rc) {
-            remove(tmp);
-            return rc ? rc : fail(1, "%s: cannot write%s", o.out, "");
-        }
-        if (rename(tmp, o.out)) return fail(1, "%s: cannot write: %s", o.out, strerror(errno));
+    /* each file written whole or not at all: both kept, or neither */
+    if (rc) {
+        out_close(&fx, 0), out_close(&csv, 0);
+        return rc;
     }
+    if (out_close(&fx, 1)) {
+        out_close(&csv, 0);
+        return fail(1, "%s: cannot write: %s", o.fixed_out, strerror(errno));
+    }
+    if (out_close(&csv, 1)) return fail(1, "%s: cannot write: %s", o.out, strerror(errno));
     return rc;
 }
