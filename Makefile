@@ -498,6 +498,10 @@ firmware-track-run: firmware-track $(FW_TRACK_HOST)
 # Cortex-M4 (mps2-an386) under -icount shift=0 with "bench": instructions per frame of mc_track_edges
 # (the frame's copy, edges, masks) and of mc_filter_step, per particle, and the poses against the host's
 bench-firmware-track:
+	@tests/fw/track_bench.sh
+# the table alone (tests/fw/track_bench.sh writes it into RESULTS.md)
+.PHONY: fw-bench-firmware-track
+fw-bench-firmware-track:
 	@mkdir -p $(BUILD)/fw/mps2-an386-track
 	@$(MAKE) -s --no-print-directory firmware-track fw-track-host BOARD=mps2-an386 >$(BUILD)/fw/mps2-an386-track/build.txt 2>&1 || \
 	  { tail -20 $(BUILD)/fw/mps2-an386-track/build.txt; echo "bench-firmware-track: the build failed" >&2; exit 1; }
