@@ -515,11 +515,11 @@ fw-track-bench: fw-track-args
 	@grep '^pose ' $(FW_TRACK_DIR)/bench.txt | cmp -s - $(FW_TRACK_DIR)/host-poses.txt && same=yes || same=NO; \
 	awk -v same=$$same -v screen=$(FW_TRACK_SCREEN) -v cpu="$(BOARD), $$(qemu-system-arm --version | head -1)" ' \
 	  /^cost track/ { n++; e += $$5; f += $$7; px += $$9; p = $$11; l = $$13; \
-	    r[n] = sprintf("%5d %11d %11d %9d %15.0f %15.0f", $$3, $$5, $$7, $$9, $$7 / $$11, ($$5 + $$7) / $$11) } \
+	    r[n] = sprintf("%5d %11d %11d %9d %15.0f %15.0f", $$3, $$5, $$7, $$9, $$7 / ($$11 * $$13 + 1), ($$5 + $$7) / ($$11 * $$13 + 1)) } \
 	  END { if (!n) { print "bench-firmware-track: no cost lines" > "/dev/stderr"; exit 1 } \
 	    printf "bench-firmware-track: Cortex-M4 instructions (%s, -icount shift=0), cube at %s, %d particles, %d layer(s)\n", cpu, screen, p, l; \
-	    printf "%5s %11s %11s %9s %15s %15s\n", "frame", "edges", "filter", "edge-px", "filter/particle", "frame/particle"; \
+	    printf "%5s %11s %11s %9s %15s %15s\n", "frame", "edges", "filter", "edge-px", "filter/score", "frame/score"; \
 	    for (i = 1; i <= n; i++) print r[i]; \
-	    printf "%5s %11.0f %11.0f %9.0f %15.0f %15.0f\n", "mean", e / n, f / n, px / n, f / n / p, (e + f) / n / p; \
-	    printf "per frame: edges %.0f, filter %.0f; per particle: edges %.0f, filter %.0f (%d scores a frame: N L + 1); poses equal the host tracker'"'"'s: %s\n", \
-	      e / n, f / n, e / n / p, f / n / p, p * l + 1, same }' $(FW_TRACK_DIR)/bench.txt && [ $$same = yes ]
+	    printf "%5s %11.0f %11.0f %9.0f %15.0f %15.0f\n", "mean", e / n, f / n, px / n, f / n / (p * l + 1), (e + f) / n / (p * l + 1); \
+	    printf "per frame: edges %.0f, filter %.0f; per scored pose (%d a frame: %d particles x %d layers + the estimate): filter %.0f; per particle: %.0f; poses equal the host tracker'"'"'s: %s\n", \
+	      e / n, f / n, p * l + 1, p, l, f / n / (p * l + 1), f / n / p, same }' $(FW_TRACK_DIR)/bench.txt && [ $$same = yes ]

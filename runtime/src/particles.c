@@ -162,13 +162,16 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
     }
     /* further layers: all N drawn again from the weights just found and moved by steps halved
      * each layer (an annealed search: the same frame, a finer look around the likely poses) */
+    mc_track_view fine;   /* field by field: a struct copy may become a memcpy call */
+    fine.model = view->model, fine.cam = view->cam, fine.sd = view->sd, fine.cache = view->cache;
+    fine.tolerance = view->tolerance, fine.masks = view->fine ? view->fine : view->masks, fine.fine = 0;
     for (unsigned layer = 1; layer < prm->layers; layer++) {
         mc_particle *d = p == f->spare ? f->p : f->spare;
         mc_filter_resample(r, p, n, d, n);
         p = d;
         for (uint32_t i = 0; i < n; i++) {
             move(r, &p[i], prm->step_t >> layer, given ? 0 : prm->step_r >> layer);
-            const int rc = score(f, view, &p[i]);
+            const int rc = score(f, &fine, &p[i]);
             if (rc != MC_OK) return rc;
         }
     }

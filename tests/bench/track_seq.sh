@@ -11,8 +11,8 @@
 #      occluder, a jump): the cube in 6-DOF and 3-DOF, with and without a jump, fandisk in 3-DOF,
 #      and ViSP on the cube without a jump; success (translation < 5 cm and rotation < 5 degrees),
 #      frames to re-detect after a jump (tests/track/errors.py).
-#   3. run time against error on the synthetic cube (6-DOF, no jump): particles 50 .. 1000, one or
-#      two layers; a Pareto plot (tests/bench/track_pareto.png).
+#   3. run time against error on the synthetic cube (6-DOF, no jump): particles 33 .. 1000, one
+#      layer or three (the later two with the fine masks); a Pareto plot (tests/bench/track_pareto.png).
 # Times: median over frames of the per-frame wall time (modelc: image edges + filter step; ViSP:
 # track()), the machine shared; instructions: callgrind over 20 frames (modelc: mc_imgedge,
 # mc_imgedge_masks and mc_filter_step; ViSP: vpMbGenericTracker::track), which do not drift.
@@ -55,9 +55,12 @@ run "$visp" "${F[@]}" --model "$mbt/cube.cao" --settings "$mbt/cube.xml" --init 
 run "$visp" "${F[@]}" --model "$mbt/cube.cao" --settings "$mbt/cube.xml" --init "$mbt/cube.0.pos" --scale 2 --out "$out/visp_320.csv" >/dev/null
 python3 -c 'import csv,sys; [print(r["tux"], r["tuy"], r["tuz"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/visp_640.csv" >"$out/visp_orientation.txt"
 T=("${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos")
-names=(m6_320 m6_320_l2 m6_640 m3_320)
-labels=("modelc 6-DOF, 320x240, 300 particles" "modelc 6-DOF, 320x240, 2 layers of 150" "modelc 6-DOF, 640x480, 300 particles, radius 3" "modelc 3-DOF (ViSP's orientation as the IMU), 320x240, 300 particles")
-opts=("--scale 2" "--scale 2 --particles 150 --fresh 50 --layers 2" "--scale 1 --radius 3" "--scale 2 --orientation $out/visp_orientation.txt")
+names=(m6_320_1 m6_320 m6_640_1 m6_640 m3_320)
+labels=("modelc 6-DOF, 320x240, one layer of 300 particles (the paper's)" "modelc 6-DOF, 320x240, 3 layers of 100 (the default)"
+        "modelc 6-DOF, 640x480, one layer of 300 particles, radius 3" "modelc 6-DOF, 640x480, 3 layers of 100 (the default)"
+        "modelc 3-DOF (ViSP's orientation as the IMU), 320x240, 3 layers of 100")
+opts=("--scale 2 --particles 300 --layers 1" "--scale 2" "--scale 1 --particles 300 --layers 1 --radius 3" "--scale 1"
+      "--scale 2 --orientation $out/visp_orientation.txt")
 real_rows=$out/real_rows.txt
 : >"$real_rows"
 vg() {   # NAME FUNCTIONS PROGRAM ARGS...: instructions per frame over 20 frames in FUNCTIONS (a |-list)
@@ -86,7 +89,7 @@ for s in 640 320; do
     printf '| ViSP vpMbGenericTracker (edges), %sx%s | %.3f | %.2f M | %s |\n' "$s" "$((s * 3 / 4))" "$ms" "$ir" "$agree" >>"$real_rows"
 done
 python3 tests/bench/cube_compare.py "$out/visp_640.csv" "$out/visp_640.csv" --quiet >/dev/null   # the comparer runs at all
-first_off=$(python3 - "$out/m6_320.csv" "$out/visp_640.csv" <<'PYEOF'
+first_off=$(python3 - "$out/m6_640.csv" "$out/visp_640.csv" <<'PYEOF'
 import csv, math, sys
 sys.path.insert(0, "tests/track")
 import errors
@@ -131,12 +134,12 @@ seq_run() {   # LABEL NAME SYNTH TRACKER FRAMES JUMP SYNTH-OPTS -- TRACK-OPTS
         "$([ "$jump" -ge 0 ] && f redetect || echo -)" "$(f median_mm)" "$(f median_deg)" "$(ms_of "$d/poses.csv")" >>"$syn_rows"
 }
 S="--occlude 30:45 --seed 4"
-seq_run "cube, 6-DOF, 300 particles" c6 "$out/synth_cube" "$track" 100 -1 $S -- --radius 1 --search 100
-seq_run "cube, 6-DOF, 2 layers of 150" c6l "$out/synth_cube" "$track" 100 -1 $S -- --radius 1 --search 100 --particles 150 --fresh 50 --layers 2
-seq_run "cube, 6-DOF, a jump at 50" c6j "$out/synth_cube" "$track" 100 50 $S -- --radius 1 --search 100
-seq_run "cube, 3-DOF, a jump at 50" c3j "$out/synth_cube" "$track" 100 50 $S -- --radius 1 --search 100 --orientation "$out/c3j/orientation.txt"
+seq_run "cube, 6-DOF, one layer of 300, radius 1" c6 "$out/synth_cube" "$track" 100 -1 $S -- --radius 1 --search 100 --particles 300 --layers 1
+seq_run "cube, 6-DOF, 3 layers of 100 (the default)" c6l "$out/synth_cube" "$track" 100 -1 $S -- --search 100
+seq_run "cube, 6-DOF, a jump at 50" c6j "$out/synth_cube" "$track" 100 50 $S -- --search 100
+seq_run "cube, 3-DOF, a jump at 50" c3j "$out/synth_cube" "$track" 100 50 $S -- --search 100 --orientation "$out/c3j/orientation.txt"
 seq_run "fandisk (12,946 faces), 3-DOF, 150 particles, a jump at 30" f3j "$out/synth_fandisk_e" "$out/fandisk_e/fandisk_e-track" 60 30 \
-    --start 0,0,0.45,0.4,0.6,0.2 $S -- --search 100 --particles 150 --step-t 3 --orientation "$out/f3j/orientation.txt"
+    --start 0,0,0.45,0.4,0.6,0.2 $S -- --search 100 --particles 150 --layers 1 --step-t 3 --orientation "$out/f3j/orientation.txt"
 # ViSP on the synthetic cube: its settings with the 320x240 camera
 sed -e "s|<u0>[^<]*</u0>|<u0>169.10184970</u0>|; s|<v0>[^<]*</v0>|<v0>117.00416725</v0>|" \
     -e "s|<px>[^<]*</px>|<px>273.86837875</px>|; s|<py>[^<]*</py>|<py>271.0372029</py>|" "$mbt/cube.xml" >"$out/cube_320.xml"
@@ -152,11 +155,11 @@ pareto=$out/pareto.dat
 : >"$pareto"
 par_rows=$out/par_rows.txt
 : >"$par_rows"
-for layers in 1 2; do
-    for n in 50 100 200 300 600 1000; do
+for layers in 1 3; do
+    for n in 33 67 100 200 333 1000; do
         d=$out/c6
         run "$track" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$d/init.pos" --out "$out/p_${layers}_$n.csv" \
-            --radius 1 --search 100 --particles "$n" --fresh $((n / 3)) --layers "$layers"
+            --search 100 --particles "$n" --fresh $((n / 3)) --layers "$layers"
         line=$(python3 tests/track/errors.py "$d/truth.csv" "$out/p_${layers}_$n.csv")
         pf() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
         ms=$(python3 -c 'import csv,sys; [print(r["filter_ms"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/p_${layers}_$n.csv" | med)
@@ -167,13 +170,13 @@ done
 cat >"$out/pareto.gp" <<GP
 set terminal pngcairo size 720,440 font "sans,10"
 set output "tests/bench/track_pareto.png"
-set title "Synthetic cube, 6-DOF, 320x240: time against error (particles 50 .. 1000)"
-set xlabel "filter step, ms per frame (median)"
+set title "Synthetic cube, 6-DOF, 320x240: time against error (particles 33 .. 1000)"
+set xlabel "filter step, ms per frame (median; scores a frame: particles x layers)"
 set ylabel "median rotation error, degrees"
 set logscale x
 set grid
-plot "$pareto" using (\$1 == 1 ? \$3 : 1/0):4 with linespoints title "one layer", \
-     "$pareto" using (\$1 == 2 ? \$3 : 1/0):4 with linespoints title "two layers (N/2 each)"
+plot "$pareto" using (\$1 == 1 ? \$3 : 1/0):4 with linespoints title "one layer, radius 2", \
+     "$pareto" using (\$1 == 3 ? \$3 : 1/0):4 with linespoints title "three layers, radius 2 then 1"
 GP
 gnuplot "$out/pareto.gp" 2>/dev/null || gnuplot -e 'set terminal png' "$out/pareto.gp"
 cmds+=("gnuplot $out/pareto.gp   # tests/bench/track_pareto.png")
@@ -186,7 +189,7 @@ sec=$out/section.md
     echo
     echo "### ViSP's real cube sequence (mbt/cube, 218 frames)"
     echo
-    echo "No ground truth: the columns compare each run with ViSP at 640x480 over frames 0..180, where ViSP's own overlay stays on the cube. modelc's 6-DOF run first leaves 1 cm and 3 degrees of ViSP at frame $first_off."
+    echo "No ground truth: the columns compare each run with ViSP at 640x480 over frames 0..180, where ViSP's own overlay stays on the cube. modelc's default run at 640x480 first leaves 1 cm and 3 degrees of ViSP at frame $first_off."
     echo
     echo "| tracker | ms per frame | Ir per frame | median distance to ViSP, mm | median angle to ViSP, deg | frames within 1 cm and 3 deg of ViSP |"
     echo "|---|---:|---:|---:|---:|---:|"

@@ -141,7 +141,7 @@ why=$(run cube3 cube 80 --jump 40 --occlude 10:25 --seed 3 -- --orientation "$ou
 [ -n "$why" ] && notok "cube, 3-DOF" "$why" || judge "cube, 3-DOF, clutter, noise, blur, an occluder, a jump at 40: >= 95 % tracked, re-detected within 30" cube3 0.95 --jump 40
 why=$(run cube6 cube 80 --occlude 30:45 --seed 4 -- --radius 1 --search 100)
 [ -n "$why" ] && notok "cube, 6-DOF" "$why" || judge "cube, 6-DOF, clutter, noise, blur, an occluder: >= 95 %" cube6 0.95
-why=$(run fandisk3 fandisk60 40 --start 0,0,0.45,0.4,0.6,0.2 --jump 20 --occlude 5:12 --seed 5 -- --orientation "$out/fandisk3/orientation.txt" --search 100 --particles 150 --step-t 3)
+why=$(run fandisk3 fandisk60 40 --start 0,0,0.45,0.4,0.6,0.2 --jump 20 --occlude 5:12 --seed 5 -- --orientation "$out/fandisk3/orientation.txt" --search 100 --particles 150 --layers 1 --step-t 3)
 [ -n "$why" ] && notok "fandisk, 3-DOF" "$why" || judge "fandisk (12,946 faces), 3-DOF, a jump at 20: >= 95 % tracked, re-detected within 30" fandisk3 0.95 --jump 20
 
 # ---- ViSP's real cube sequence ------------------------------------------------------------------

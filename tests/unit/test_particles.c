@@ -149,6 +149,42 @@ static void test_layers(void **state)
     free(s);
 }
 
+/* The later layers score with the view's fine masks: the same masks given as fine change nothing;
+ * empty fine masks (no edge anywhere) leave the later layers no weight, and the poses change. */
+static void test_fine_masks(void **state)
+{
+    (void)state;
+    cube_scene *s = malloc(sizeof *s);
+    assert_int_equal(cube_scene_new(s, 160, 90), 0);
+    uint8_t *none = calloc((size_t)s->w * s->h, 1);
+    assert_non_null(none);
+    int32_t q[4], t[3];
+    cube_scene_truth(0, q, t);
+    mc_filter_params prm = cube_scene_params();
+    prm.particles = 60, prm.fresh = 20, prm.layers = 2;
+    static mc_particle a[60], b[60];
+    int32_t got[3][7];
+    for (int run = 0; run < 3; run++) {
+        mc_filter f;
+        assert_int_equal(mc_filter_init(&f, &prm, a, b, 3, q, t), MC_OK);
+        for (int k = 0; k < 5; k++) {
+            int32_t tq[4], tt[3];
+            cube_scene_truth(k, tq, tt);
+            assert_int_equal(cube_scene_frame(s, tq, tt), 0);
+            s->view.fine = run == 0 ? 0 : run == 1 ? s->masks : none;
+            assert_int_equal(mc_filter_step(&f, &s->view, tq), MC_OK);
+        }
+        for (int k = 0; k < 4; k++) got[run][k] = f.estimate.q[k];
+        for (int k = 0; k < 3; k++) got[run][4 + k] = f.estimate.t[k];
+    }
+    s->view.fine = 0;
+    assert_memory_equal(got[0], got[1], sizeof got[0]);
+    assert_memory_not_equal(got[0], got[2], sizeof got[0]);
+    free(none);
+    cube_scene_free(s);
+    free(s);
+}
+
 static void test_track_near(void **state)
 {
     (void)state;
@@ -288,6 +324,7 @@ int main(void)
         cmocka_unit_test(test_track_near),
         cmocka_unit_test(test_redetect),
         cmocka_unit_test(test_layers),
+        cmocka_unit_test(test_fine_masks),
         cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

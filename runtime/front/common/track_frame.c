@@ -9,7 +9,7 @@
 
 void mc_track_settings_default(mc_track_settings *s)
 {
-    s->particles = 300, s->fresh = -1, s->layers = 1, s->threshold = 30, s->radius = 2, s->tolerance = 1;
+    s->particles = 100, s->fresh = -1, s->layers = 3, s->threshold = 30, s->radius = 2, s->fine_radius = 1, s->tolerance = 1;
     s->sharpness = 32, s->min_visible = 20;
     s->step_t_mm = 5, s->step_r_deg = 2, s->fresh_r_deg = 15, s->search_mm = 60, s->near_m = 0.02, s->far_m = 20;
     s->seed = 1, s->dof = 6;
@@ -55,6 +55,7 @@ int mc_track_start(mc_track_state *t, const mc_app *app, const mc_camera *cam, c
     t->app = app;
     t->w = cam->width, t->h = cam->height;
     t->threshold = (uint16_t)s->threshold, t->radius = (uint8_t)s->radius;
+    t->fine_radius = s->layers > 1 && s->fine_radius < s->radius ? (int)s->fine_radius : -1;
     if (mc_sdepth_init(&t->sd, t->w, t->h, app->edges_sdepth, app->depth, app->color, 0xFFFF, 0) != MC_OK)
         return MC_TRACK_START_SDEPTH;
     const uint32_t words = MC_SDEPTH_MATCHED_WORDS(t->w, t->h);
@@ -62,6 +63,7 @@ int mc_track_start(mc_track_state *t, const mc_app *app, const mc_camera *cam, c
     mc_sdepth_keep_matched(&t->sd, app->edges_matched);
     t->view.model = app->model->edges, t->view.cam = cam, t->view.sd = &t->sd, t->view.masks = app->edges_masks;
     t->view.cache = app->edges_cache, t->view.tolerance = (uint8_t)s->tolerance;
+    t->view.fine = t->fine_radius >= 0 ? app->edges_frame : 0;   /* the frame's buffer, once its edges are found */
     mc_filter_params prm;
     mc_track_filter_params(s, t_um, &prm);
     if (mc_filter_init(&t->f, &prm, app->particles, app->particles + app->max_particles, s->seed, q, t_um) != MC_OK)
@@ -82,7 +84,7 @@ static void shrink(const uint8_t *src, unsigned w, unsigned K, uint8_t *dst, uns
         }
 }
 
-uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, unsigned k, uint8_t *codes)
+uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, unsigned k, uint8_t *codes, uint8_t *grey)
 {
     const mc_app *app = t->app;
     const uint32_t n = (uint32_t)t->w * t->h;
@@ -92,10 +94,16 @@ uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, u
         for (uint32_t y = 0; y < t->h; y++)
             for (uint32_t x = 0; x < t->w; x++) app->edges_frame[y * t->w + x] = src[y * src_w + x];
     }
+    if (grey)
+        for (uint32_t i = 0; i < n; i++) grey[i] = app->edges_frame[i];
     const uint32_t edges =
         mc_imgedge(app->edges_frame, t->w, t->w, t->h, t->threshold, app->edges_masks, app->edges_scratch);
     if (codes)
         for (uint32_t i = 0; i < n; i++) codes[i] = app->edges_masks[i];
+    if (t->fine_radius >= 0) {   /* the grey frame is done with: its buffer takes the fine masks */
+        for (uint32_t i = 0; i < n; i++) app->edges_frame[i] = app->edges_masks[i];
+        mc_imgedge_masks(app->edges_frame, t->w, t->h, (unsigned)t->fine_radius, (uint8_t *)app->edges_scratch);
+    }
     mc_imgedge_masks(app->edges_masks, t->w, t->h, t->radius, (uint8_t *)app->edges_scratch);
     return edges;
 }

@@ -16,7 +16,9 @@
  *     bits kept and cleared, the scoring view, and the filter at pose (q, t) with the seed;
  *   - mc_track_edges: the frame into app->edges_frame (a k x k box average of src, rounded to
  *     nearest, or for k = 1 a copy), its edges (mc_imgedge at the threshold), optionally those codes
- *     copied to codes, then spread into masks (mc_imgedge_masks at the radius); then the caller runs
+ *     copied to codes, then spread into masks (mc_imgedge_masks at the radius) and, with more than
+ *     one layer and a fine radius below the radius, into fine masks in the frame's buffer (the
+ *     later layers' sharper likelihood, particles.h); then the caller runs
  *     mc_filter_step(&t->f, &t->view, ...) (the two stages apart, so that either side times them);
  *   - MC_TRACK_POSE_LINE / MC_TRACK_POSE_ARGS: one line per frame of the estimate's integer fields,
  *     "pose K q0 q1 q2 q3 t0 t1 t2 visible matched confidence", printed the same on every machine.
@@ -34,13 +36,16 @@
 
 typedef struct mc_track_settings {
     long particles, fresh;          /* fresh < 0: particles / 3 */
-    long layers, threshold, radius, tolerance, sharpness, min_visible;
+    long layers, threshold, radius, fine_radius, tolerance, sharpness, min_visible;
     double step_t_mm, step_r_deg, fresh_r_deg, search_mm, near_m, far_m;
     unsigned long seed;
     int dof;                        /* 6, or 3 with an orientation a frame */
 } mc_track_settings;
 
-/* The defaults: 300 particles, fresh -1 (a third), 1 layer, threshold 30, radius 2, tolerance 1,
+/* The defaults: 100 particles, fresh -1 (a third), 3 layers (300 scores a frame, as the paper's 300
+ * particles, but the later two with the sharper masks: on ViSP's cube sequence this follows ViSP's
+ * tracker more closely than one layer of 300), threshold 30, radius 2 (fine radius 1, for the later
+ * layers), tolerance 1,
  * sharpness 32, min_visible 20, steps 5 mm and 2 degrees, fresh turn 15 degrees, search 60 mm,
  * near 0.02 m, far 20 m, seed 1, 6 DOF. */
 void mc_track_settings_default(mc_track_settings *s);
@@ -59,6 +64,7 @@ typedef struct mc_track_state {
     uint16_t w, h;                  /* the frame as tracked: the camera's width and height */
     uint16_t threshold;
     uint8_t radius;
+    int fine_radius;                /* the later layers' masks' radius, or -1: one set of masks */
     mc_sdepth sd;
     mc_track_view view;             /* points at sd and at the caller's camera */
     mc_filter f;
@@ -73,8 +79,10 @@ int mc_track_start(mc_track_state *t, const mc_app *app, const mc_camera *cam, c
                    const int32_t q[4], const int32_t t_um[3]);
 
 /* src: the frame before shrinking, src_w pixels a row, at least k t->w x k t->h; codes: NULL, or
- * t->w x t->h bytes for the edge codes before spreading. Returns mc_imgedge's edge pixel count. */
-uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, unsigned k, uint8_t *codes);
+ * t->w x t->h bytes for the edge codes before spreading; grey: NULL, or t->w x t->h bytes for the
+ * shrunk frame (with layers > 1 and a fine radius below the radius, the frame's own buffer goes on
+ * to hold the fine masks, t->view.fine). Returns mc_imgedge's edge pixel count. */
+uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, unsigned k, uint8_t *codes, uint8_t *grey);
 
 /* printf(MC_TRACK_POSE_LINE, MC_TRACK_POSE_ARGS(k, &t->f)): casts to long so that int32_t (long on
  * arm-none-eabi, int on x86-64) prints the same everywhere. */

@@ -98,7 +98,7 @@ int main(void)
     for (uint32_t i = 0; i < mc_fw_track_count; i++) {
         const uint32_t k = mc_fw_track_first + i;
         const uint32_t c0 = mc_fw_counter_now();
-        const uint32_t edges = mc_track_edges(&tr, mc_fw_track_frames[i], w, 1, NULL);
+        const uint32_t edges = mc_track_edges(&tr, mc_fw_track_frames[i], w, 1, NULL, NULL);
         const uint32_t c1 = mc_fw_counter_now();
         const int rc = mc_filter_step(&tr.f, &tr.view, NULL);
         const uint32_t c2 = mc_fw_counter_now();

@@ -39,6 +39,7 @@
 
 static uint8_t raw[MAX_PIXELS];           /* a frame as read */
 static uint8_t codes[MAX_PIXELS];         /* --overlay: the frame's edge pixels before spreading */
+static uint8_t grey[MAX_PIXELS];          /* --overlay: the frame as tracked */
 static uint8_t rgb[3 * MAX_PIXELS];       /* --overlay: the picture */
 static char prog[64] = "track";
 
@@ -64,15 +65,16 @@ static const char usage[] =
     "  --camera C           ViSP tracker settings XML (its <camera>), or px,py,u0,v0 in pixels\n"
     "  --init P             the first frame's pose: ViSP .pos file, or tx,ty,tz (m),tux,tuy,tuz (rad)\n"
     "  --orientation FILE   3-DOF mode: one rotation vector (tux tuy tuz) a frame, as from an IMU\n"
-    "  --particles N        particles (default 300, at most the bake's --particles)\n"
+    "  --particles N        particles (default 100, at most the bake's --particles)\n"
     "  --fresh F            of them, placed at random each frame to find a lost object (default N/3)\n"
     "  --layers L           weighings a frame, 1..4: each further one draws all N again from the last\n"
-    "                       weights with steps halved (default 1)\n"
+    "                       weights with steps halved and, after the first, --fine-radius (default 3)\n"
     "  --scale K            shrink frames K times (default: the least that fits the bake's --screen)\n"
     "  --shrunk K           the frames were shrunk K times already (a K x K box average, as --scale does): the\n"
     "                       camera is scaled by K, the frames tracked as they are\n"
     "  --threshold T        image edge gradient magnitude, 1..1442 (default 30)\n"
     "  --radius R           pixels an image edge may lie from a model line, 0..8 (default 2)\n"
+    "  --fine-radius R      the same for the layers after the first, below --radius (default 1)\n"
     "  --tolerance B        orientation bins of 22.5 degrees a match may be off, 0..3 (default 1)\n"
     "  --step-t MM          translation step a frame (default 5)\n"
     "  --step-r DEG         rotation step a frame (default 2)\n"
@@ -174,6 +176,7 @@ static int parse(int argc, char **argv, options *o)
         else if (!strcmp(a, "--shrunk")) rc = integer(a, v, 1, 64, &o->shrunk);
         else if (!strcmp(a, "--threshold")) rc = integer(a, v, 1, MC_IMGEDGE_THRESHOLD_MAX, &s->threshold);
         else if (!strcmp(a, "--radius")) rc = integer(a, v, 0, 8, &s->radius);
+        else if (!strcmp(a, "--fine-radius")) rc = integer(a, v, 0, 7, &s->fine_radius);
         else if (!strcmp(a, "--tolerance")) rc = integer(a, v, 0, 3, &s->tolerance);
         else if (!strcmp(a, "--sharpness")) rc = integer(a, v, 1, 64, &s->sharpness);
         else if (!strcmp(a, "--min-visible")) rc = integer(a, v, 0, 100000000, &s->min_visible);
@@ -351,7 +354,7 @@ int main(int argc, char **argv)
             if (got == 0) { rc = fail(1, "%s: no orientation for frame %s", o.orientation, path); break; }
         }
         const double t0 = mc_host_now_ms();
-        mc_track_edges(&tr, raw, fw, (unsigned)K, o.overlay ? codes : NULL);
+        mc_track_edges(&tr, raw, fw, (unsigned)K, o.overlay ? codes : NULL, o.overlay ? grey : NULL);
         const double t1 = mc_host_now_ms();
         if (mc_filter_step(&tr.f, &tr.view, o.orientation ? oq : NULL) != MC_OK) { rc = fail(1, "%s: the filter failed%s", path, ""); break; }
         const double t2 = mc_host_now_ms();
@@ -365,7 +368,7 @@ int main(int argc, char **argv)
             mc_pose pose;
             mc_track_score sc;
             if (mc_pose_set(&pose, f->estimate.q, f->estimate.t) != MC_OK || mc_track_score_pose(&tr.view, &pose, &sc) != MC_OK ||
-                (rc = write_overlay(&o, k, app->edges_frame, w, h, &tr.sd, app->color)))
+                (rc = write_overlay(&o, k, grey, w, h, &tr.sd, app->color)))
                 break;
         }
     }

@@ -23,11 +23,13 @@
  *      fewer than min_visible line pixels are visible;
  *   4b. with layers L > 1, L - 1 more rounds on the same frame: all N particles drawn again from the
  *      weights just found (systematic resampling) and moved by the steps halved each round (step_t
- *      and step_r shifted right by the round's number), no fresh ones, and weighed again (an
- *      annealed search: N L scores, a finer look around the likely poses);
+ *      and step_r shifted right by the round's number), no fresh ones, and weighed again against the
+ *      view's fine masks when it has them (an annealed search: N L scores, a finer look around the
+ *      likely poses with a sharper likelihood: edges within a smaller radius);
  *   5. the estimate: the weighted mean of the translations and of the orientations (each turned to
- *      the hemisphere of the heaviest particle's, then made unit length); its own score gives the
- *      confidence, r of the estimate in Q16 (0 when it shows fewer than min_visible pixels).
+ *      the hemisphere of the heaviest particle's, then made unit length); its own score against the
+ *      view's masks (the coarse ones) gives the confidence, r of the estimate in Q16 (0 when it
+ *      shows fewer than min_visible pixels).
  * Random numbers: a PCG32 stream (rng.h) seeded at init, so the same frames give the same poses on
  * every machine. Memory: the caller's, two arrays of N particles; no heap, no floating point.
  * Work: N L + 1 scores a frame, plus N L for the motion and the resampling. Freestanding.

@@ -52,6 +52,8 @@ typedef struct mc_track_view {
     const uint8_t *masks;       /* the frame's edge masks (imgedge.h mc_imgedge_masks), width x height */
     mc_xvertex *cache;          /* model->vertices entries: the projected vertices */
     uint8_t tolerance;          /* orientation bins a match may be off by */
+    const uint8_t *fine;        /* the same frame's masks spread by a smaller radius, which the particle
+                                   filter's later layers score with (particles.h), or NULL: masks */
 } mc_track_view;
 
 typedef struct mc_track_score {
