@@ -111,34 +111,38 @@ uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h,
     return kept;
 }
 
+/* e |= src over n bytes (two rows of the frame, which never overlap) */
+static void or_row(uint8_t *restrict e, const uint8_t *restrict src, uint32_t n)
+{
+    for (uint32_t x = 0; x < n; x++) e[x] |= src[x];
+}
+
 void mc_imgedge_masks(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch)
 {
     const uint32_t n = (uint32_t)w * h;
     for (uint32_t i = 0; i < n; i++) edges[i] = edges[i] ? (uint8_t)(1u << (edges[i] - 1u)) : 0;
     if (!radius || !n) return;
-    /* across: each row ORed over x - radius .. x + radius, from a copy of it */
+    /* across: each edge pixel of a row (a copy of it) ORed into x - radius .. x + radius; most
+     * pixels are not edges, so the row costs about a read and a write a pixel */
     for (uint32_t y = 0; y < h; y++) {
         uint8_t *e = edges + y * w;
-        for (uint32_t x = 0; x < w; x++) scratch[x] = e[x];
+        for (uint32_t x = 0; x < w; x++) scratch[x] = e[x], e[x] = 0;
         for (uint32_t x = 0; x < w; x++) {
+            const uint8_t m = scratch[x];
+            if (!m) continue;
             const uint32_t a = x > radius ? x - radius : 0, b = x + radius < w ? x + radius : w - 1u;
-            uint8_t m = 0;
-            for (uint32_t k = a; k <= b; k++) m |= scratch[k];
-            e[x] = m;
+            for (uint32_t k = a; k <= b; k++) e[k] |= m;
         }
     }
     /* down: row y from rows y - radius .. y + radius as they were: those above it kept in a ring of
-     * radius + 1 rows of scratch before being overwritten, those below it not yet touched */
+     * radius + 1 rows of scratch before being overwritten, those below it not yet touched; whole
+     * rows ORed in, one source row at a time */
     const uint32_t ring = radius + 1u;
     for (uint32_t y = 0; y < h; y++) {
         uint8_t *e = edges + y * w, *keep = scratch + (y % ring) * w;
         for (uint32_t x = 0; x < w; x++) keep[x] = e[x];
         const uint32_t top = y > radius ? y - radius : 0, bottom = y + radius < h ? y + radius : h - 1u;
-        for (uint32_t x = 0; x < w; x++) {
-            uint8_t m = 0;
-            for (uint32_t k = top; k <= y; k++) m |= scratch[(k % ring) * w + x];
-            for (uint32_t k = y + 1; k <= bottom; k++) m |= edges[k * w + x];
-            e[x] = m;
-        }
+        for (uint32_t k = top; k < y; k++) or_row(e, scratch + (k % ring) * w, w);
+        for (uint32_t k = y + 1; k <= bottom; k++) or_row(e, edges + k * w, w);
     }
 }

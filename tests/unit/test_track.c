@@ -292,7 +292,7 @@ static void run(unsigned w, unsigned h, int poses, uint64_t seed)
         /* the frame's edges: random codes, or the model's own lines at this pose (then matched) */
         const int own = mc_rng_below(&r, 2);
         for (unsigned p = 0; p < w * h; p++) f.edges[p] = (uint8_t)(mc_rng_below(&r, 3) ? 0 : 1u << mc_rng_below(&r, 8));
-        mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, (uint8_t)tol};
+        mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, (uint8_t)tol, 0};
         mc_track_score got;
         if (own) {
             assert_int_equal(mc_track_score_pose(&view, &pose, &got), MC_OK);
@@ -338,7 +338,7 @@ static void convex_run(unsigned w, unsigned h, int poses, uint64_t seed)
         random_pose(&r, &pose, near);
         const unsigned tol = mc_rng_below(&r, 3);
         for (unsigned p = 0; p < w * h; p++) f.edges[p] = (uint8_t)(mc_rng_below(&r, 3) ? 0 : 1u << mc_rng_below(&r, 8));
-        mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, (uint8_t)tol};
+        mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, (uint8_t)tol, 0};
         mc_track_score got;
         assert_int_equal(mc_track_score_pose(&view, &pose, &got), MC_OK);
         int flagged = 0;
@@ -383,7 +383,7 @@ static void test_refusals(void **state)
     mc_pose pose;
     random_pose(&r, &pose, 0);
     mc_track_score s;
-    mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, 1};
+    mc_track_view view = {&m->e, &f.cam, &f.sd, f.edges, cache, 1, 0};
     assert_int_equal(mc_track_score_pose(0, &pose, &s), MC_ERR_ARG);
     assert_int_equal(mc_track_score_pose(&view, 0, &s), MC_ERR_ARG);
     view.cache = 0;
