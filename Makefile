@@ -434,7 +434,7 @@ FW_TRACK_BAKE := $(FW_TRACK_DIR)/cube
 FW_TRACK_ELF := $(FW_TRACK_DIR)/cube-track.elf
 FW_TRACK_HOST := $(FW_TRACK_BAKE)/cube-track
 FW_TRACK_OPTS = --screen $(FW_TRACK_SCREEN) --particles $(FW_TRACK_PARTICLES)
-FW_TRACK_SRC := runtime/front/fw/track_main.c runtime/front/fw/counter.c runtime/front/fw/stack.c \
+FW_TRACK_SRC := runtime/front/fw/track_main.c runtime/front/fw/cmdline.c runtime/front/fw/counter.c runtime/front/fw/stack.c \
   runtime/front/common/track_frame.c runtime/front/track/track_input.c
 FW_TRACK_LDFLAGS = $(subst $(FW_DIR)/$(FW_MODEL).map,$(FW_TRACK_DIR)/cube-track.map,$(FW_LDFLAGS))
 FW_TRACK_QEMU = timeout $(FW_QEMU_TIMEOUT) qemu-system-arm -M $($(BOARD).qemu) -nographic -monitor none

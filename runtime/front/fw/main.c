@@ -25,6 +25,7 @@
 #include <modelc/app.h>
 #include <modelc/modelc.h>
 
+#include "cmdline.h"
 #include "counter.h"
 #include "mark.h"   /* defines MC_FRONT_MARK before frames.h */
 #include "../common/frames.h"
@@ -39,19 +40,10 @@ static int bench;
 
 static void read_cmdline(void)
 {
-    static char cmd[160];
-    if (sys_semihost_get_cmdline(cmd, (int)sizeof cmd) != 0) return;
-    cmd[sizeof cmd - 1] = 0;
-    char *p = cmd;
-    for (int word = 0; *p; word++) {
-        while (*p == ' ') p++;
-        if (!*p) break;
-        char *start = p;
-        while (*p && *p != ' ') p++;
-        if (*p) *p++ = 0;
-        if (word == 1) ppm_path = start;
-        if (word == 2 && strcmp(start, "bench") == 0) bench = 1;
-    }
+    char *w[2];
+    const unsigned n = mc_fw_cmdline(w, 2);
+    if (n >= 1) ppm_path = w[0];
+    if (n >= 2 && strcmp(w[1], "bench") == 0) bench = 1;
 }
 
 #ifndef MC_FW_MESH

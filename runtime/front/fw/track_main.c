@@ -28,6 +28,7 @@
 
 #include "../common/track_frame.h"
 #include "../track/track_input.h"
+#include "cmdline.h"
 #include "counter.h"
 #include "stack.h"
 
@@ -42,18 +43,8 @@ static int bench;
 /* The semihosting command line's words after the program name: "bench" or nothing. */
 static void read_cmdline(void)
 {
-    static char cmd[160];
-    if (sys_semihost_get_cmdline(cmd, (int)sizeof cmd) != 0) return;
-    cmd[sizeof cmd - 1] = 0;
-    char *p = cmd;
-    for (int word = 0; *p; word++) {
-        while (*p == ' ') p++;
-        if (!*p) break;
-        char *start = p;
-        while (*p && *p != ' ') p++;
-        if (*p) *p++ = 0;
-        if (word == 1 && strcmp(start, "bench") == 0) bench = 1;
-    }
+    char *w[1];
+    if (mc_fw_cmdline(w, 1) == 1 && strcmp(w[0], "bench") == 0) bench = 1;
 }
 
 static mc_camera cam;
