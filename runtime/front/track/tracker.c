@@ -13,9 +13,10 @@
  * confidence and score and the time of each stage, as CSV to --out (written whole at the end: a
  * failure leaves no partial file) or standard output.
  * --overlay writes a PNG a frame: the frame dimmed, its edge pixels grey, and the model's visible
- * lines at the estimate coloured by orientation (matched ones bright). --fixed-out writes the
- * estimate's integer fields a frame, the lines the firmware tracker prints (track_frame.h
- * MC_TRACK_POSE_LINE), so that the two compare as text.
+ * lines at the estimate coloured by orientation (matched ones bright), two pixels wide. --fixed-out
+ * writes the estimate's integer fields a frame, the lines the firmware tracker prints
+ * (track_frame.h MC_TRACK_POSE_LINE), so that the two compare as text. An output path that is not a
+ * regular file (/dev/null, a pipe) is written directly.
  *
  * Errors: one line "NAME-track: ..." and exit status 1 (bad data) or 2 (bad usage). All memory is
  * static: the bake's (mc_app_model, sized by --screen and --particles) and this file's frame
@@ -215,11 +216,21 @@ static int write_overlay(const options *o, long k, const uint8_t *frame, unsigne
         uint8_t *p = rgb + 3 * i;
         const uint8_t g = (uint8_t)(frame[i] / 3);
         p[0] = p[1] = p[2] = codes[i] ? 150 : g;
-        const unsigned x = (unsigned)(i % w), y = (unsigned)(i / w);
-        if (mc_sdepth_in_use(sd, x, y)) {
-            bin_colour((unsigned)color[i] - 1u, mc_sdepth_is_matched(sd, x, y), p);
-        }
     }
+    /* the model's line pixels, each also over its right and lower neighbours (where those are not
+     * line pixels themselves), so that one-pixel lines show on a picture of the whole frame */
+    for (unsigned y = 0; y < h; y++)
+        for (unsigned x = 0; x < w; x++) {
+            if (!mc_sdepth_in_use(sd, x, y)) continue;
+            uint8_t c[3];
+            bin_colour((unsigned)color[(size_t)y * w + x] - 1u, mc_sdepth_is_matched(sd, x, y), c);
+            for (unsigned d = 0; d < 3; d++) {
+                const unsigned u = x + (d == 1), v = y + (d == 2);
+                if (u >= w || v >= h || (d && mc_sdepth_in_use(sd, u, v))) continue;
+                uint8_t *p = rgb + 3 * ((size_t)v * w + u);
+                p[0] = c[0], p[1] = c[1], p[2] = c[2];
+            }
+        }
     char path[4096];
     if (snprintf(path, sizeof path, "%s/frame%04ld.png", o->overlay, k) >= (int)sizeof path)
         return fail(1, "--overlay %s: path too long%s", o->overlay, "");
