@@ -1,4 +1,5 @@
-/* The tracker's input readers (runtime/front/track/track_input.h):
+/* Long because every reader's error table shares the helpers that check one message and its place.
+ * The tracker's input readers (runtime/front/track/track_input.h):
  *   - PGM: P5 8-bit and 16-bit, P2, comments anywhere in the header, maxval scaling (rounded to
  *     nearest, halves up), the header-only form; every error kind with its exact message and byte
  *     offset (empty, bad magic, junk, truncated header, zero and huge sizes, maxval, short raster,

@@ -1,6 +1,8 @@
 /* The tracker's input readers (track_input.h). Each format is scanned one byte at a time through
  * stdio (getc is buffered), with the position of the next byte kept alongside, so that every error
- * can name its place; values go straight to the caller's buffers. */
+ * can name its place; values go straight to the caller's buffers.
+ * Long because the four formats share one scanner, one number syntax and one way of naming a place,
+ * which splitting them would repeat. */
 #include "track_input.h"
 
 #include <errno.h>
