@@ -14,6 +14,7 @@
 #include <set>
 
 #include "cgal_mesh.hpp"
+#include "pmesh.hpp"
 
 namespace mc {
 namespace {
@@ -90,38 +91,60 @@ EdgeModel build_edge_model(const Model &m, const std::string &path, const EdgeMo
     std::vector<Point> points;
     points.reserve(m.points.size());
     for (const auto &p : m.points) points.emplace_back(p[0], p[1], p[2]);
-    std::vector<std::array<size_t, 3>> soup;
-    for (const auto &t : m.tris) {
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || degenerate(points[t[0]], points[t[1]], points[t[2]])) {
-            e.dropped_faces++;
-            continue;
-        }
-        soup.push_back({t[0], t[1], t[2]});
-    }
-    // one orientation across every edge two faces share (CGAL copies a vertex where it cannot)
-    const size_t before = points.size();
-    PMP::orient_polygon_soup(points, soup);
-    e.copied_vertices = points.size() - before;
-    Mesh mesh;
-    PMP::polygon_soup_to_polygon_mesh(points, soup, mesh);
-    // the mesh's vertex i is soup point i: the lines below name points by those indices
-    if (mesh.number_of_vertices() != points.size()) throw std::logic_error("CGAL's mesh lost soup points");
-    for (Mesh::Vertex_index v : mesh.vertices())
-        if (mesh.point(v) != points[v.idx()]) throw std::logic_error("CGAL's mesh reordered the soup points");
-
-    e.closed = !soup.empty() && CGAL::is_closed(mesh);
-    if (e.closed) {   // outwards, one connected component at a time (a nested shell would be turned wrong)
-        auto comp = mesh.add_property_map<Mesh::Face_index, size_t>("f:component", 0).first;
-        const size_t n = PMP::connected_components(mesh, comp);
-        std::vector<std::vector<Mesh::Face_index>> faces(n);
-        for (Mesh::Face_index f : mesh.faces()) faces[comp[f]].push_back(f);
-        std::vector<uint8_t> flip(n);
-        for (size_t c = 0; c < n; c++) flip[c] = signed_volume(mesh, faces[c]) < 0;
-        for (Mesh::Face_index f : mesh.faces())
-            if (flip[comp[f]]) {
-                auto &t = soup[f.idx()];
-                std::swap(t[1], t[2]);
+    // the faces with three distinct, non-collinear corners, oriented (outwards when closed)
+    auto orient = [&](std::vector<Point> &pts, std::vector<std::array<size_t, 3>> &soup, Mesh &mesh, size_t &dropped) {
+        std::vector<std::array<size_t, 3>> kept;
+        for (const auto &t : soup) {
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || degenerate(pts[t[0]], pts[t[1]], pts[t[2]])) {
+                dropped++;
+                continue;
             }
+            kept.push_back(t);
+        }
+        soup = std::move(kept);
+        // one orientation across every edge two faces share (CGAL copies a vertex where it cannot)
+        PMP::orient_polygon_soup(pts, soup);
+        PMP::polygon_soup_to_polygon_mesh(pts, soup, mesh);
+        // the mesh's vertex i is soup point i: the lines below name points by those indices
+        if (mesh.number_of_vertices() != pts.size()) throw std::logic_error("CGAL's mesh lost soup points");
+        for (Mesh::Vertex_index v : mesh.vertices())
+            if (mesh.point(v) != pts[v.idx()]) throw std::logic_error("CGAL's mesh reordered the soup points");
+        const bool closed = !soup.empty() && CGAL::is_closed(mesh);
+        if (closed) {   // outwards, one connected component at a time (a nested shell would be turned wrong)
+            auto comp = mesh.add_property_map<Mesh::Face_index, size_t>("f:component", 0).first;
+            const size_t n = PMP::connected_components(mesh, comp);
+            std::vector<std::vector<Mesh::Face_index>> faces(n);
+            for (Mesh::Face_index f : mesh.faces()) faces[comp[f]].push_back(f);
+            std::vector<uint8_t> flip(n);
+            for (size_t c = 0; c < n; c++) flip[c] = signed_volume(mesh, faces[c]) < 0;
+            for (Mesh::Face_index f : mesh.faces())
+                if (flip[comp[f]]) {
+                    auto &t = soup[f.idx()];
+                    std::swap(t[1], t[2]);
+                }
+        }
+        return closed;
+    };
+    std::vector<std::array<size_t, 3>> soup;
+    for (const auto &t : m.tris) soup.push_back({t[0], t[1], t[2]});
+    const size_t before = points.size();
+    Mesh mesh;
+    e.closed = orient(points, soup, mesh, e.dropped_faces);
+    e.copied_vertices = points.size() - before;
+    if (opt.hide_faces > 0 && soup.size() > opt.hide_faces) {
+        // hide behind the decimated mesh: its corners are model points; its own copies go after the full mesh's
+        std::vector<Point> hp(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(before));
+        std::vector<std::array<size_t, 3>> hide = decimated_faces(m, std::max<size_t>(4, opt.hide_faces / 2));
+        Mesh hmesh;
+        size_t hdropped = 0;
+        e.closed = orient(hp, hide, hmesh, hdropped);
+        const size_t offset = points.size();
+        for (size_t i = before; i < hp.size(); i++) points.push_back(hp[i]);
+        for (auto &t : hide)
+            for (auto &c : t)
+                if (c >= before) c += offset - before;
+        e.copied_vertices += hp.size() - before;
+        soup = std::move(hide);
     }
 
     std::set<std::array<uint32_t, 2>> seen;

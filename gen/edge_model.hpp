@@ -13,6 +13,9 @@
 // lies more than a micrometre in front of any face's plane (tested when vertices x faces is at most
 // 10^8) and each line is the edge of exactly two faces, which it then records (line_faces): a
 // tracker then shows exactly the lines with a face towards the camera, with no face pass (track.h).
+// With opt.hide_faces > 0 and more faces than that, the faces (not the lines, still the full mesh's
+// feature edges) are instead the mesh OpenMesh's Decimater leaves at about hide_faces / 2 vertices
+// (pmesh.hpp decimated_faces: half-edge collapses, so original points), oriented and closed as above.
 // A model too large for int32 micrometres (beyond
 // +-2^28 um, 268 m, per axis) or with no line is an InputError without a place.
 #pragma once
@@ -28,6 +31,7 @@ namespace mc {
 struct EdgeModelOptions {
     double unit = 1.0;            // metres per file unit (--unit)
     double crease_angle = 60.0;   // degrees between face normals above which an edge is a line
+    size_t hide_faces = 0;        // 0: every face hides; else the mesh decimated to about this many
 };
 
 struct EdgeModel {

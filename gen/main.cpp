@@ -113,6 +113,9 @@ int main(int argc, char **argv) {
     app.add_option("--crease-angle", pmesh_opt.crease_angle, "--as both, --as edges: degrees between two faces' "
                    "normals above which their edge is drawn as a crease, or tracked")
         ->check(CLI::Range(0.0, 180.0))->capture_default_str();
+    app.add_option("--hide-faces", edge_opt.hide_faces, "--as edges: hide lines behind the mesh decimated to about "
+                   "N faces (OpenMesh's Decimater; the lines stay the full mesh's); 0: every face")
+        ->check(CLI::Range(size_t(0), size_t(1) << 31))->capture_default_str();
     app.add_option("--dump-pmesh-level", dump_pmesh, "N:FILE: write the faces OpenMesh's decimater leaves at N "
                    "vertices (pmesh.hpp dump_decimated), for the tests")
         ->group("");

@@ -317,4 +317,19 @@ void dump_decimated(const Model &m, const GridCube &cube, size_t vertices, std::
     }
 }
 
+std::vector<std::array<size_t, 3>> decimated_faces(const Model &m, size_t vertices) {
+    FullMesh fm;
+    make_mesh(m, fm);
+    decimate(fm, vertices + isolated_vertices(fm.mesh));
+    std::vector<std::array<size_t, 3>> faces;
+    for (const auto &f : fm.mesh.faces()) {
+        if (fm.mesh.status(f).deleted()) continue;
+        std::array<size_t, 3> t;
+        int k = 0;
+        for (const auto &v : fm.mesh.fv_range(f)) t[k++] = static_cast<size_t>(fm.vertex_point[v.idx()]);
+        faces.push_back(t);
+    }
+    return faces;
+}
+
 }  // namespace mc

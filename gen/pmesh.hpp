@@ -69,4 +69,9 @@ PMesh build_pmesh(const Model &m, const GridCube &cube, const PMeshOptions &opt)
 // three times, in the face's order). For tests: level `vertices` of the part must be the same faces.
 void dump_decimated(const Model &m, const GridCube &cube, size_t vertices, std::ostream &out);
 
+// The same faces (the Decimater's mesh at `vertices` vertices, isolated ones not counted) as corners
+// in the model's point indices: half-edge collapses keep the original positions, so they index
+// m.points. In OpenMesh's (consistent) orientation.
+std::vector<std::array<size_t, 3>> decimated_faces(const Model &m, size_t vertices);
+
 }  // namespace mc

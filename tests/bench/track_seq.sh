@@ -111,6 +111,8 @@ synth_bin() {   # NAME: tests/track/synth.c linked with bake NAME
 make -s build/models/fandisk.off
 run "$modelc" build/models/fandisk.off -o "$out" --name fandisk_e --as edges --unit 0.1 -q
 link_track "$out" fandisk_e
+run "$modelc" build/models/fandisk.off -o "$out" --name fandisk_h --as edges --unit 0.1 --hide-faces 2000 -q
+link_track "$out" fandisk_h
 synth_bin cube "$out"
 synth_bin fandisk_e "$out"
 syn_rows=$out/syn_rows.txt
@@ -140,6 +142,14 @@ seq_run "cube, 6-DOF, a jump at 50" c6j "$out/synth_cube" "$track" 100 50 $S -- 
 seq_run "cube, 3-DOF, a jump at 50" c3j "$out/synth_cube" "$track" 100 50 $S -- --search 100 --orientation "$out/c3j/orientation.txt"
 seq_run "fandisk (12,946 faces), 3-DOF, 150 particles, a jump at 30" f3j "$out/synth_fandisk_e" "$out/fandisk_e/fandisk_e-track" 60 30 \
     --start 0,0,0.45,0.4,0.6,0.2 $S -- --search 100 --particles 150 --layers 1 --step-t 3 --orientation "$out/f3j/orientation.txt"
+# the same fandisk frames, hidden by the mesh decimated to about 2,000 faces (--hide-faces 2000)
+run "$out/fandisk_h/fandisk_h-track" --frames "$out/f3j/image%04d.pgm" --camera "$cam2" --init "$out/f3j/init.pos" \
+    --out "$out/f3j/poses_h.csv" --search 100 --particles 150 --layers 1 --step-t 3 --orientation "$out/f3j/orientation.txt"
+hline=$(python3 tests/track/errors.py "$out/f3j/truth.csv" "$out/f3j/poses_h.csv" --jump 30)
+hf() { echo "$hline" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+printf '| the same fandisk frames, hidden by %s faces (--hide-faces 2000) | 60 | %s | %s | %s | %s | %s | %.3f |\n' \
+    "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["faces"])' "$out/fandisk_h/budget.json")" \
+    "$(hf success)" "$(hf tracked_rate)" "$(hf redetect)" "$(hf median_mm)" "$(hf median_deg)" "$(ms_of "$out/f3j/poses_h.csv")" >>"$syn_rows"
 # ViSP on the synthetic cube: its settings with the 320x240 camera
 sed -e "s|<u0>[^<]*</u0>|<u0>169.10184970</u0>|; s|<v0>[^<]*</v0>|<v0>117.00416725</v0>|" \
     -e "s|<px>[^<]*</px>|<px>273.86837875</px>|; s|<py>[^<]*</py>|<py>271.0372029</py>|" "$mbt/cube.xml" >"$out/cube_320.xml"

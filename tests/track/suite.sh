@@ -61,6 +61,24 @@ n60=$(awk 'NR == 1 {print $3}' "$out/fandisk60.dump" 2>/dev/null)
 n30=$(awk 'NR == 1 {print $3}' "$out/fandisk30.dump" 2>/dev/null)
 check "a smaller crease angle tracks more lines ($n30 at 30, $n60 at 60 degrees)" \
     "$([ -n "$n60" ] && [ -n "$n30" ] && [ "$n30" -gt "$n60" ] || echo "$n30 against $n60")"
+# --hide-faces: the same lines (by position), hidden by the mesh decimated to about that many faces, still closed
+why=$(bake fandiskh "$fandisk" --unit 0.1 --hide-faces 2000) && { "$out/fandiskh/dump" >"$out/fandiskh.dump" || why="dump failed"; }
+[ -z "$why" ] && why=$(python3 - "$out/fandisk60.dump" "$out/fandiskh.dump" <<'PYEOF'
+import sys
+def read(p):
+    rows = [l.split() for l in open(p)]
+    v = [tuple(r[1:]) for r in rows if r[0] == "v"]
+    lines = sorted(tuple(sorted((v[int(r[1])], v[int(r[2])]))) for r in rows if r[0] == "l")
+    return rows[0], lines, sum(r[0] == "f" for r in rows)
+(_, full, nf), (head, hid, nh) = read(sys.argv[1]), read(sys.argv[2])
+bad = []
+if hid != full: bad.append("the lines differ from the full bake's")
+if not 1500 <= nh <= 2000: bad.append("%d faces, not about 2000" % nh)
+if head[4] != "1": bad.append("not closed")
+print("; ".join(bad))
+PYEOF
+)
+check "fandisk --hide-faces 2000: the full bake's lines, about 2000 closed hiding faces" "$why"
 why=$(python3 - "$out/fandisk60/budget.json" <<'PYEOF'
 import json, sys
 b = json.load(open(sys.argv[1]))
