@@ -1,6 +1,8 @@
 /* Instruction counting through SysTick: see counter.h. */
 #include "counter.h"
 
+#include <stdio.h>
+
 #define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
 #define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
 #define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
@@ -35,4 +37,12 @@ uint32_t mc_fw_counter_insns(uint32_t start, uint32_t end)
 {
     uint64_t ticks = (end - start) & MASK;
     return (uint32_t)((ticks * insn_per_tick_q16 + 32768u) >> 16);
+}
+
+void mc_fw_counter_start_report(void)
+{
+    mc_fw_counter_start();
+    const uint32_t q = mc_fw_counter_insn_per_tick();
+    printf("bench: %lu.%04lu instructions per SysTick tick (calibrated)\n", (unsigned long)(q >> 16),
+           (unsigned long)(((q & 0xFFFFu) * 10000u) >> 16));
 }

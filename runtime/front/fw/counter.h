@@ -19,5 +19,8 @@ uint32_t mc_fw_counter_now(void);
 uint32_t mc_fw_counter_insn_per_tick(void);
 /* Instructions in a span of ticks (end - start, modulo 2^24), rounded. */
 uint32_t mc_fw_counter_insns(uint32_t start, uint32_t end);
+/* mc_fw_counter_start, then the line "bench: N.NNNN instructions per SysTick tick (calibrated)" on
+ * standard output, which both firmware mains print first when asked to bench. */
+void mc_fw_counter_start_report(void);
 
 #endif

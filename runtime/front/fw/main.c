@@ -99,12 +99,7 @@ int main(void)
 {
     mc_fw_stack_paint();
     read_cmdline();
-    if (bench) {
-        mc_fw_counter_start();
-        printf("bench: %lu.%04lu instructions per SysTick tick (calibrated)\n",
-               (unsigned long)(mc_fw_counter_insn_per_tick() >> 16),
-               (unsigned long)(((mc_fw_counter_insn_per_tick() & 0xFFFFu) * 10000u) >> 16));
-    }
+    if (bench) mc_fw_counter_start_report();
     const mc_model *model = mc_app_model.model;
     const mc_octree *octree = model->octree;
     if (!octree) {
