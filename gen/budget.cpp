@@ -94,6 +94,7 @@ Budget budget_of(const EdgeBakeSize &s) {
     b.depth_buffer = depth_buffer_bytes(s.screen_w, s.screen_h);
     b.runtime_ram = rt::kRuntimeStaticRam;
     b.track = track_ram(s.screen_w, s.screen_h, s.vertices, s.particles).total();
+    b.stack = rt::track_stack_bound();
     return b;
 }
 

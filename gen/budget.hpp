@@ -40,7 +40,7 @@ struct Budget {
         return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache + pmesh_sdepth + track;
     }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
-    size_t stack = 0;                            // bound for mc_octree_render at the model's depth (0: none stated)
+    size_t stack = 0;                            // bound for mc_octree_render at the model's depth, or a tracker's frame
 };
 
 // What a bake emits, as the budget counts it.

@@ -126,16 +126,21 @@ std::string budget_json(const EdgeModel &e, const EmitOptions &opt, const EdgePl
                                        : "static arrays of NAME_app.c for --screen and --particles. ") +
                        "The frame buffers hold the sparse depth buffer's depths and colours. image: what "
                        "--ram-budget checks"}}},
-        {"stack", {{"bound", nullptr}, {"note", "not stated for the tracker yet: --stack-budget is refused"}}},
+        {"stack",
+         {{"bound", bud.stack},
+          {"note", "bytes of stack a tracker's frame uses in the runtime (the image edges, then mc_filter_step), "
+                   "from -fstack-usage (larger of arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -O2 and host gcc -O2) "
+                   "summed over its call graph (gen/runtime_costs.hpp kTrackFrames); add the front end's own"}}},
         {"screen", {opt.screen_w, opt.screen_h}},
         {"emit", opt.lib ? "lib" : "app"},
         {"chunks", chunk_files},
         {"modules", modules},
     };
-    if (opt.limits.flash || opt.limits.ram) {
+    if (opt.limits.flash || opt.limits.ram || opt.limits.stack) {
         nlohmann::json lim = nlohmann::json::object();
         if (opt.limits.flash) lim["flash"] = {{"limit", opt.limits.flash}, {"used", bud.flash()}};
         if (opt.limits.ram) lim["ram"] = {{"limit", opt.limits.ram}, {"used", bud.ram()}};
+        if (opt.limits.stack) lim["stack"] = {{"limit", opt.limits.stack}, {"used", bud.stack}};
         budget["budgets"] = lim;
     }
     return budget.dump(2) + "\n";

@@ -156,7 +156,6 @@ int main(int argc, char **argv) {
         return fail("--fit needs at least one of --flash-budget, --ram-budget, --stack-budget", 2);
     if (as == "edges") {
         if (fit) return fail("--fit: an edge model has no depth or palette to choose (--as edges)", 2);
-        if (limits.stack) return fail("--stack-budget: the tracker's stack bound is not stated yet (--as edges)", 2);
         static const std::map<std::string, double> units = {{"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"um", 1e-6}};
         auto u = units.find(unit);
         char *end = nullptr;

@@ -135,4 +135,91 @@ constexpr size_t stack_bound(int depth) {
 }
 static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is missing from kFrames");
 
+// -fstack-usage of every function of particles.c, track.c, camera.c, raster.c's face pass and
+// imgedge.c that a tracker's frame can reach, measured as kFrames is.
+inline constexpr Frame kTrackFrames[] = {
+    {"mc_filter_step", 208, 288},
+    {"mc_filter_resample", 64, 32},
+    {"move", 80, 112},
+    {"step.part.0", 56, 32},
+    {"score", 80, 112},
+    {"mc_quat_unit", 88, 8},
+    {"mc_pose_set", 96, 80},
+    {"mc_pose_apply", 16, 8},
+    {"mc_track_score_pose", 224, 320},
+    {"mc_sdepth_forget", 56, 56},
+    {"camera_point.isra", 24, 32},
+    {"mc_camera_project", 32, 8},
+    {"image_coord", 8, 8},
+    {"udiv64_wide", 40, 56},
+    {"divlu", 28, 32},
+    {"round_shl", 20, 8},
+    {"mc_camera_clip_segment", 48, 80},
+    {"mc_camera_clip_triangle", 64, 104},
+    {"cut", 56, 24},
+    {"front.isra", 12, 16},
+    {"draw_line", 80, 96},
+    {"mc_imgedge_bin", 24, 8},
+    {"mc_track_line", 128, 56},
+    {"hide", 56, 64},
+    {"mc_raster_slope", 64, 24},
+    {"mc_raster_triangle_hide_offset", 280, 336},
+    {"draw_rows_hide", 280, 368},
+    {"plane_first", 72, 56},
+    {"plane_step.isra", 40, 32},
+    {"lazy_value", 32, 56},
+    {"mc_imgedge", 152, 176},
+    {"thin_row", 24, 24},
+    {"mc_imgedge_masks", 72, 56},
+};
+constexpr size_t track_frame(const char *fn) {
+    for (const Frame &f : kTrackFrames) {
+        const char *a = f.function, *b = fn;
+        while (*a && *a == *b) a++, b++;
+        if (*a == *b) return f.bytes();
+    }
+    return 1u << 30;
+}
+constexpr size_t max3(size_t a, size_t b, size_t c) { return max2(a, max2(b, c)); }
+
+// The call graph of a tracker's frame, each chain taken whole where the calls inside a file are not
+// certain (a bound, not the exact deepest path):
+//   front end -> mc_imgedge -> thin_row | mc_imgedge_bin ; mc_imgedge_masks
+//             -> mc_filter_step -> mc_filter_resample | step | move -> step | mc_quat_unit
+//                  | score -> mc_pose_set -> mc_quat_unit
+//                          | mc_track_score_pose -> mc_sdepth_forget | camera_point -> mc_pose_apply
+//                              | projection: mc_camera_project -> image_coord -> udiv64_wide -> divlu, round_shl
+//                              | mc_camera_clip_segment | mc_camera_clip_triangle -> cut -> projection
+//                              | front | draw_line -> mc_imgedge_bin | mc_track_line
+//                              | hide -> mc_raster_slope | mc_raster_triangle_hide_offset -> draw_rows_hide
+//                                       -> plane_first | plane_step | lazy_value
+// The caller's own frame (the front end's main) comes on top.
+constexpr size_t track_projection() {
+    return track_frame("mc_camera_project") + track_frame("image_coord") + track_frame("udiv64_wide") +
+           track_frame("divlu") + track_frame("round_shl");
+}
+constexpr size_t track_score_pose() {
+    const size_t clip = max2(track_frame("mc_camera_clip_segment"), track_frame("mc_camera_clip_triangle")) +
+                        track_frame("cut") + track_projection();
+    const size_t line = track_frame("draw_line") + max2(track_frame("mc_imgedge_bin"), track_frame("mc_track_line"));
+    const size_t face = track_frame("hide") +
+                        max2(track_frame("mc_raster_slope"),
+                             track_frame("mc_raster_triangle_hide_offset") + track_frame("draw_rows_hide") +
+                                 max3(track_frame("plane_first"), track_frame("plane_step.isra"), track_frame("lazy_value")));
+    return track_frame("mc_track_score_pose") +
+           max3(max3(track_frame("mc_sdepth_forget"), track_frame("camera_point.isra") + track_frame("mc_pose_apply"), clip),
+                max2(track_frame("front.isra"), line), face);
+}
+constexpr size_t track_stack_bound() {
+    const size_t move = track_frame("move") + max2(track_frame("step.part.0"), track_frame("mc_quat_unit"));
+    const size_t filter = track_frame("mc_filter_step") +
+                          max3(max2(track_frame("mc_filter_resample"), track_frame("step.part.0")), move,
+                               track_frame("score") + max2(track_frame("mc_pose_set") + track_frame("mc_quat_unit"),
+                                                           track_score_pose()));
+    const size_t edges = max2(track_frame("mc_imgedge") + max2(track_frame("thin_row"), track_frame("mc_imgedge_bin")),
+                              track_frame("mc_imgedge_masks"));
+    return max2(filter, edges);
+}
+static_assert(track_stack_bound() < (1u << 20), "a function of the tracker's call graph is missing from kTrackFrames");
+
 }  // namespace mc::rt

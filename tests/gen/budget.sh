@@ -162,6 +162,7 @@ import glob, re, subprocess, sys
 kind, d, size = sys.argv[1:]
 src = open("gen/runtime_costs.hpp").read()
 frames = {f: (int(a), int(h)) for f, a, h in re.findall(r'\{"([\w.]+)", (\d+), (\d+)\}', src.split("kFrames[]")[1].split("};")[0])}
+track = {f: (int(a), int(h)) for f, a, h in re.findall(r'\{"([\w.]+)", (\d+), (\d+)\}', src.split("kTrackFrames[]")[1].split("};")[0])}
 col = 0 if kind == "arm" else 1
 bad = []
 for su in glob.glob(d + "/*.su"):
@@ -174,6 +175,11 @@ for su in glob.glob(d + "/*.su"):
                 bad.append("%s: %s bytes, table %d" % (fn, n, frames[fn][col]))
         elif mod == "octree_render":
             bad.append("%s (octree_render.c) missing from kFrames" % fn)
+        if fn in track:
+            if int(n) > track[fn][col]:
+                bad.append("%s: %s bytes, kTrackFrames %d" % (fn, n, track[fn][col]))
+        elif mod in ("particles", "track") and fn not in ("mc_filter_init", "mc_filter_weight"):
+            bad.append("%s (%s.c) missing from kTrackFrames" % (fn, mod))
         if "static" not in qual and "bounded" not in qual:   # bounded: arguments pushed around a call
             bad.append("%s: %s stack" % (fn, qual.strip()))
 if kind == "arm":
@@ -194,7 +200,7 @@ if bad:
 PY
 }
 if measure host gcc; then
-    check "stack table >= host gcc -O2 -fstack-usage for every function, every octree_render.c function listed" tables host "$tmp/su-host" size
+    check "stack tables >= host gcc -O2 -fstack-usage for every function; every octree_render.c function in kFrames, every particles.c and track.c one in kTrackFrames" tables host "$tmp/su-host" size
 else
     nok "host -fstack-usage build of runtime/src"
 fi

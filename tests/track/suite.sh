@@ -117,7 +117,7 @@ bad_bake "a smooth mesh: no line to track" 1 "no edge to track" "$bunny"
 bad_bake "--unit furlong" 2 "--unit furlong" "$fandisk" --unit furlong
 bad_bake "--unit -1" 2 "--unit -1" "$fandisk" --unit -1
 bad_bake "--fit is refused" 2 "--fit" "$fandisk" --flash-budget 1M --fit
-bad_bake "--stack-budget is refused" 2 "--stack-budget" "$fandisk" --stack-budget 4K
+bad_bake "over --stack-budget (the tracker's bound)" 1 "over budget: stack" "$fandisk" --stack-budget 1K
 bad_bake "over --ram-budget" 1 "over budget: ram" "$mbt/cube.cao" --ram-budget 64K
 bad_bake "too large for micrometres" 1 "beyond \+-268 m" "$fandisk" --unit 1000
 
