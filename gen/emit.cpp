@@ -340,13 +340,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         {"chunks", chunk_files},
         {"modules", modules},
     };
-    if (opt.limits.flash || opt.limits.ram || opt.limits.stack) {
-        nlohmann::json lim = nlohmann::json::object();
-        if (opt.limits.flash) lim["flash"] = {{"limit", opt.limits.flash}, {"used", bud.flash()}};
-        if (opt.limits.ram) lim["ram"] = {{"limit", opt.limits.ram}, {"used", bud.ram()}};
-        if (opt.limits.stack) lim["stack"] = {{"limit", opt.limits.stack}, {"used", bud.stack}};
-        budget["budgets"] = lim;
-    }
+    add_limits(budget, opt.limits, bud);
     if (opt.pmesh) {
         const PMesh &pm = *opt.pmesh;
         const size_t splits = pm.split_vertex.size();

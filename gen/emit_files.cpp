@@ -76,6 +76,15 @@ std::string render_header(const std::string &tmpl, const mstch::map &ctx) {
     return mstch::render(template_text(tmpl), ctx, {{"placement", template_text("placement.h")}});
 }
 
+void add_limits(nlohmann::json &budget, const Limits &limits, const Budget &bud) {
+    if (!limits.flash && !limits.ram && !limits.stack) return;
+    nlohmann::json lim = nlohmann::json::object();
+    if (limits.flash) lim["flash"] = {{"limit", limits.flash}, {"used", bud.flash()}};
+    if (limits.ram) lim["ram"] = {{"limit", limits.ram}, {"used", bud.ram()}};
+    if (limits.stack) lim["stack"] = {{"limit", limits.stack}, {"used", bud.stack}};
+    budget["budgets"] = lim;
+}
+
 std::vector<std::vector<const Array *>> data_files(const std::vector<Array> &arrays, size_t file_bytes) {
     std::vector<std::vector<const Array *>> files(1);
     size_t in_file = 0;

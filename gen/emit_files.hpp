@@ -48,6 +48,10 @@ std::vector<std::vector<const Array *>> data_files(const std::vector<Array> &arr
 Files data_file_texts(const EmitOptions &opt, const std::vector<std::vector<const Array *>> &files,
                       nlohmann::json &chunk_files);
 
+// budget.json's "budgets": each limit asked for (--flash-budget, --ram-budget, --stack-budget) and
+// what the bake uses of it; nothing when none was asked for.
+void add_limits(nlohmann::json &budget, const Limits &limits, const Budget &bud);
+
 // Writes every file into parent/name/ as a whole: into a temporary sibling directory first, then
 // swapped in, so that a failure leaves the previous output (or none), never a part.
 void write_directory(const std::filesystem::path &parent, const std::string &name, const Files &out);
