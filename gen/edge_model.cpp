@@ -25,14 +25,6 @@ constexpr double kLimitUm = 268435455.0;   // 2^28 - 1: edges.h's bound
     throw InputError(path, InputError::Where::none, 0, msg);
 }
 
-// No area relative to the triangle's own size (as the readers judge it): hides nothing, and its
-// normal is noise that would make creases of its edges.
-bool degenerate(const Point &a, const Point &b, const Point &c) {
-    const Vector u = b - a, v = c - a, w = c - b;
-    const double longest2 = std::max({u.squared_length(), v.squared_length(), w.squared_length()});
-    return std::sqrt(CGAL::cross_product(u, v).squared_length()) <= 1e-6 * longest2;
-}
-
 // Six times the signed volume a closed set of faces bounds (positive: they face outwards).
 double signed_volume(const Mesh &mesh, const std::vector<Mesh::Face_index> &faces) {
     double v = 0;
@@ -95,7 +87,9 @@ EdgeModel build_edge_model(const Model &m, const std::string &path, const EdgeMo
     auto orient = [&](std::vector<Point> &pts, std::vector<std::array<size_t, 3>> &soup, Mesh &mesh, size_t &dropped) {
         std::vector<std::array<size_t, 3>> kept;
         for (const auto &t : soup) {
-            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || degenerate(pts[t[0]], pts[t[1]], pts[t[2]])) {
+            /* no area (model.hpp zero_area): hides nothing, and its normal is noise that would make creases */
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+                zero_area(m, {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]), static_cast<uint32_t>(t[2])})) {
                 dropped++;
                 continue;
             }

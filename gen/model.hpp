@@ -38,4 +38,8 @@ struct Model {
 // Loads and validates FILE. Throws InputError for anything wrong with it.
 Model load_model(const std::string &path);
 
+// Whether triangle t of m has no area relative to its own size (|u x v| at most 1e-6 of its longest
+// side squared): exact zeros are rare for corners on a line. The readers' rule, and the edge model's.
+bool zero_area(const Model &m, const std::array<uint32_t, 3> &t);
+
 }  // namespace mc

@@ -95,14 +95,17 @@ inline constexpr Frame kFrames[] = {
     {"mc_sin", 0, 8},
     {"mc_cos", 0, 8},
 };
-constexpr size_t frame(const char *fn) {
-    for (const Frame &f : kFrames) {
+// Function fn's frame in table t; unknown: no bound (a compile-time error where used in a constant).
+template <size_t N>
+constexpr size_t frame_in(const Frame (&t)[N], const char *fn) {
+    for (const Frame &f : t) {
         const char *a = f.function, *b = fn;
         while (*a && *a == *b) a++, b++;
         if (*a == *b) return f.bytes();
     }
-    return 1u << 30;   // unknown: no bound (a compile-time error where it is used in a constant)
+    return 1u << 30;
 }
+constexpr size_t frame(const char *fn) { return frame_in(kFrames, fn); }
 
 // The bounded call graph of mc_octree_render drawing at depth d (octree_render.c):
 //   mc_octree_render -> mc_view_clamp
@@ -172,14 +175,7 @@ inline constexpr Frame kTrackFrames[] = {
     {"thin_row", 24, 24},
     {"mc_imgedge_masks", 72, 56},
 };
-constexpr size_t track_frame(const char *fn) {
-    for (const Frame &f : kTrackFrames) {
-        const char *a = f.function, *b = fn;
-        while (*a && *a == *b) a++, b++;
-        if (*a == *b) return f.bytes();
-    }
-    return 1u << 30;
-}
+constexpr size_t track_frame(const char *fn) { return frame_in(kTrackFrames, fn); }
 constexpr size_t max3(size_t a, size_t b, size_t c) { return max2(a, max2(b, c)); }
 
 // The call graph of a tracker's frame, each chain taken whole where the calls inside a file are not

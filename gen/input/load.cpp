@@ -25,7 +25,8 @@ uint64_t check_readable(const std::string &path) {
     return static_cast<uint64_t>(st.st_size);
 }
 
-// Zero area, relative to the triangle's own size: exact zeros are rare for corners on a line.
+}  // namespace
+
 bool zero_area(const Model &m, const std::array<uint32_t, 3> &t) {
     const auto &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
@@ -35,6 +36,8 @@ bool zero_area(const Model &m, const std::array<uint32_t, 3> &t) {
     const double longest2 = std::max({len2(u), len2(v), len2(w)});
     return std::sqrt(x * x + y * y + z * z) <= 1e-6 * longest2;  // |u x v| is twice the area
 }
+
+namespace {
 
 // Whole-model problems (no place): nothing to draw.
 void check_usable(const std::string &path, const Model &m) {

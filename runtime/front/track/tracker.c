@@ -152,7 +152,6 @@ static int parse(int argc, char **argv, options *o)
     mc_track_settings_default(s);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        double d;
         long l;
         int rc = 0;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -190,7 +189,6 @@ static int parse(int argc, char **argv, options *o)
         else if (!strcmp(a, "--far")) rc = number(a, v, 1e-4, 268, &s->far_m);
         else return fail(2, "unknown option %s (see %s --help)", a, prog);
         if (rc) return rc;
-        (void)d;
     }
     if (!o->frames || !o->camera || !o->init) return fail(2, "%s%s", "--frames, --camera and --init are required (see --help)", "");
     if (check_pattern(o->frames)) return fail(2, "--frames %s: expected one integer conversion such as %%04d%s", o->frames, "");
