@@ -10,8 +10,9 @@
  * as the position it scales) and shifted per point; orthographic depth vectors are built already
  * shifted, so the hot loop stores z as it is. */
 
-/* sqrt(3)/2 in Q30, rounded up, for bounding spheres that are never too small */
+/* sqrt(3)/2 in Q30 and Q16, rounded up, for bounding spheres that are never too small */
 #define HALF_SQRT3_Q30 929887697
+#define HALF_SQRT3_Q16 56756
 
 /* Displacement from the centre of a node at one level to that of its child k, as x and y apart and
  * as one packed pair (pos.h). Kept together so that the hot loop reaches all of a level's vectors
@@ -429,6 +430,26 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
     return (radius >> c->zshift) + MC_MAX_DEPTH;   /* one depth unit of room per level's rounding */
 }
 
+unsigned mc_octree_lod_depth(const mc_view *view, uint32_t w, uint32_t h, unsigned depth, uint16_t max_error)
+{
+    if (!max_error || depth <= 1) return depth;
+    const mc_view v = mc_view_clamp(view, w, h);
+    /* node side at level l, pixels: S / 2^l (times eye / dn in perspective); S = zoom * side in Q16.
+     * Wanted: S mag / 2^(16 + l) <= max_error / 16, i.e. 16 S eye <= max_error dn 2^(16 + l) */
+    const uint64_t side = w < h ? w : h;
+    const uint64_t s = (uint64_t)v.zoom * side;                    /* <= 2^30: clamped extent */
+    uint64_t lhs = 16 * s, rhs = (uint64_t)max_error << 17;        /* l = 1 */
+    if (v.projection == MC_PERSPECTIVE) {
+        const int64_t dn = (int64_t)v.eye - HALF_SQRT3_Q16;           /* nearest sphere point, Q16 sides */
+        if (dn < MC_ZOOM_ONE / 64) return depth;
+        lhs *= (uint64_t)v.eye;                                    /* < 2^58; rhs stays < 2^63 */
+        rhs *= (uint64_t)dn;
+    }
+    unsigned l = 1;
+    while (l < depth && lhs > rhs) l++, rhs <<= 1;
+    return l;
+}
+
 int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,
                      const mc_target *t, mc_abort_fn abort, void *user, mc_stats *stats)
 {
@@ -439,6 +460,7 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
 
     ctx c;
     mc_view v = mc_view_clamp(view, t->width, t->height);
+    if (opt) depth = mc_octree_lod_depth(&v, t->width, t->height, depth, opt->max_error);
     mc_splat splat = opt ? opt->splat : MC_SPLAT_DEFAULT;
     if (splat != MC_SPLAT_PIXEL && splat != MC_SPLAT_ZOOM) splat = MC_SPLAT_DEFAULT;
     c.fb = t->color;
@@ -477,6 +499,7 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
         stats->points = c.points;
         stats->polls = c.polls;
         stats->aborted = c.aborted;
+        stats->depth = depth;
     }
     return MC_OK;
 }

@@ -56,7 +56,7 @@ poll() {
 }
 
 screen() { tm capture-pane -p -t "$1" 2>/dev/null; }
-# The status line, e.g. " bunny00 | depth 7/8 | 0.4 ms | 52572 points | zoom 1.00 | q quits, ..."
+# The status line, e.g. " bunny00 | points | depth 7/8 at 100x78 | 0.4 ms | 52572 points | zoom 1.00 | q quits, ..."
 status() { screen "$1" | grep -E ' depth [0-9]+/[0-9]+ ' | tail -n 1; }
 status_field() { status "$1" | sed -nE "s/.* $2 ([0-9.]+).*/\1/p"; }   # field after a word
 depth_shown() { status "$1" | sed -nE 's/.* depth ([0-9]+)\/[0-9]+ .*/\1/p'; }
@@ -129,16 +129,24 @@ auto_turn() {
     fi
 }
 
-# ---- (c) held arrows draw at depth D-1, released at depth D -------------------------------------------
+# ---- (c) held arrows draw one level coarser, released at the fine level -----------------------------
+# The fine level is the level of detail's for the frame size (one pixel; the viewer --png at the size
+# the status line gives draws it too), the coarse one twice that bound: one level coarser.
 shows_depth() { [ "$(depth_shown v)" = "$1" ]; }
 
-# One key stops the automatic turn; once it counts as released the full depth is drawn and stays.
+# One key stops the automatic turn; once it counts as released the fine level is drawn and stays.
 first_key() {
+    local size
     tm send-keys -t v Left
-    if poll 5 shows_depth "$full"; then
-        ok "a key stops the automatic turn and the full depth $full is drawn"
+    size=$(status v | sed -nE 's/.* depth [0-9]+\/[0-9]+ at ([0-9]+x[0-9]+) .*/\1/p')
+    full=$("$viewer" --size "$size" --png "$tmpdir/fine.png" 2>/dev/null | sed -nE 's/.* depth ([0-9]+) .*/\1/p')
+    coarse=$((full > 1 ? full - 1 : 1))
+    if [ -z "$full" ]; then
+        not_ok "a key stops the automatic turn" "no frame size in the status line: '$(status v)'"
+    elif poll 5 shows_depth "$full"; then
+        ok "a key stops the automatic turn and the fine level $full (the viewer's for ${size}) is drawn"
     else
-        not_ok "a key stops the automatic turn" "status after 5 s: '$(status v)' (expected depth $full/$full)"
+        not_ok "a key stops the automatic turn" "status after 5 s: '$(status v)' (expected depth $full)"
     fi
 }
 
@@ -220,8 +228,7 @@ quit_key() {
 
 start_viewer v
 if startup; then
-    full=$(status v | sed -nE 's/.* depth [0-9]+\/([0-9]+) .*/\1/p')
-    coarse=$((full > 1 ? full - 1 : 1))
+    full='' coarse=''
     auto_turn
     first_key
     hold Left

@@ -232,11 +232,31 @@ for m in "${viewers[@]}"; do
         fi
     done
 
+    # level of detail (--error, default one pixel): a zoomed-out view draws the shallower level the
+    # renderer picks, and that frame is the one --error 0 --depth draws at that level
+    lod_why=""
+    if run_viewer "$d/lod" "$v" --zoom 0.25 --yaw 20 --png "$d/lod.png" &&
+        run_viewer "$d/lod-full" "$v" --zoom 0.25 --yaw 20 --error 0 --png "$d/lod-full.png"; then
+        ld=$(sed -nE 's/.* depth ([0-9]+) .*/\1/p' "$d/lod.out")
+        fd=$(sed -nE 's/.* depth ([0-9]+) .*/\1/p' "$d/lod-full.out")
+        if [ -z "$ld" ] || [ -z "$fd" ] || { [ "$ld" -ge "$fd" ] && [ "$fd" -gt 1 ]; }; then
+            lod_why="zoom 0.25 drew depth '$ld', --error 0 depth '$fd'"
+        elif ! run_viewer "$d/lod-exact" "$v" --zoom 0.25 --yaw 20 --error 0 --depth "$ld" --png "$d/lod-exact.png"; then
+            lod_why="--depth $ld: $(oneline <"$d/lod-exact.err")"
+        elif ! cmp -s "$d/lod.png" "$d/lod-exact.png"; then
+            lod_why="the frame differs from --error 0 --depth $ld's"
+        fi
+    else
+        lod_why="exit status $?: $(cat "$d/lod.err" "$d/lod-full.err" | oneline)"
+    fi
+    check "$m: at zoom 0.25 the level of detail draws a shallower level, the same frame as --depth at it" "$lod_why"
+
     # ---- (d) bad options: one line on stderr, nothing on stdout, status 2 -------------------------
     bad_cases=(
         "--bogus" "--zoom 1000" "--depth 99" "--size 99999x1" "--size $((maxw + 1))x$maxh"
         "--size 0x10" "--size 10" "--zoom abc" "--zoom 0" "--depth 0" "--depth 1.5" "--yaw x"
         "--bench 0" "--png" "stray-argument" "--ppm /nonexistent-dir/x.ppm" "--png /nonexistent-dir/x.png"
+        "--error 65" "--error 0.01" "--error -1" "--error px"
     )
     problems=""
     for c in "${bad_cases[@]}"; do

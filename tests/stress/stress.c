@@ -180,7 +180,7 @@ static int abort_after(void *user)
 typedef struct counters {
     uint64_t views, frames_drawn, points, points_checked, ref_on_screen, near_plane_disagreements;
     uint64_t aborted, rejected, persp, guard_fail, pos_fail, order_fail, missing_fail, stats_fail, rc_fail;
-    uint64_t alt_fail, alt_frames;
+    uint64_t alt_fail, alt_frames, lod_fail, lod_views;
     double max_err_ratio;          /* largest |error| / bound seen */
     double max_err_px;             /* largest |error| in pixels, orthographic */
     double max_err_px_persp;       /* largest |error| in pixels, perspective */
@@ -206,9 +206,37 @@ static void describe(char *buf, size_t n, const mc_view *v, const mc_octree_opti
 {
     snprintf(buf, n,
              "view %" PRIu64 ": %ux%u depth %u yaw %" PRId32 " pitch %" PRId32 " roll %" PRId32 " zoom %" PRId32
-             " tx %" PRId32 " ty %" PRId32 " proj %d eye %" PRId32 " splat %d",
+             " tx %" PRId32 " ty %" PRId32 " proj %d eye %" PRId32 " splat %d max_error %u",
              view, w, h, d, v->yaw, v->pitch, v->roll, v->zoom, v->tx, v->ty, (int)v->projection, v->eye,
-             (int)opt->splat);
+             (int)opt->splat, (unsigned)opt->max_error);
+}
+
+/* The level of detail's rule (octree_render.h, mc_octree_lod_depth) in double precision: the least
+ * level whose node side on screen is at most max_error / 16 pixels, magnified in perspective by
+ * eye / (eye - sqrt(3)/2). The runtime rounds sqrt(3)/2 up to Q16, so [*lo, *hi] spans the levels
+ * for the exact radius and that one (equal but at near ties). */
+static unsigned lod_rule(const mc_view *cv, unsigned w, unsigned h, unsigned d, unsigned max_error, double radius)
+{
+    if (!max_error || d <= 1) return d;
+    double mag = 1;
+    if (cv->projection == MC_PERSPECTIVE) {
+        const double eye = cv->eye / 65536.0, dn = eye - radius;
+        if (dn < 1.0 / 64) return d;
+        mag = eye / dn;
+    }
+    const double side = cv->zoom / 65536.0 * (w < h ? w : h) * mag;
+    for (unsigned l = 1; l < d; l++)
+        if (ldexp(side, -(int)l) <= max_error / 16.0) return l;
+    return d;
+}
+
+static void lod_ref(const mc_view *v, unsigned w, unsigned h, unsigned d, unsigned max_error, unsigned *lo,
+                    unsigned *hi)
+{
+    const mc_view cv = mc_view_clamp(v, w, h);
+    const unsigned a = lod_rule(&cv, w, h, d, max_error, sqrt(3) / 2);
+    const unsigned b = lod_rule(&cv, w, h, d, max_error, 56756 / 65536.0);
+    *lo = a < b ? a : b, *hi = a < b ? b : a;
 }
 
 static void one_view(const mc_octree *scene, counters *k)
@@ -251,6 +279,13 @@ static void one_view(const mc_octree *scene, counters *k)
     }
     mc_octree_options opt;
     opt.splat = (mc_splat)(int)rnd_below(4);   /* default, pixel, zoom, and one out of range */
+    /* the level of detail: off half the time, else a bound from 1/16 to 64 pixels or the extremes */
+    switch (rnd_below(8)) {
+    case 0: opt.max_error = 1; break;
+    case 1: opt.max_error = 0xFFFF; break;
+    case 2: case 3: opt.max_error = (uint16_t)lround(exp2(rnd_unit() * 10)); break;
+    default: opt.max_error = 0; break;
+    }
 
     unsigned w, h;
     switch (rnd_below(16)) {
@@ -289,7 +324,7 @@ static void one_view(const mc_octree *scene, counters *k)
     abort_state ab = {0, rnd_below(64)};
     int use_abort = rnd_below(8) == 0;
     int repeat = rnd_below(16) == 0 ? 2 : 1;   /* sometimes draw twice without clearing */
-    mc_stats st = {0, 0, 0};
+    mc_stats st = {0, 0, 0, 0};
     for (int r = 0; r < repeat; r++) {
         n_fixed = 0;
         int rc = mc_octree_render(scene, &v, d, &opt, &t, use_abort ? abort_after : NULL, &ab, &st);
@@ -297,6 +332,17 @@ static void one_view(const mc_octree *scene, counters *k)
         g = guards_check(n);
         if (g >= 0) fail(&k->guard_fail, "mc_octree_render changed guard element %ld: %s", g, what);
         if (st.points != n_fixed) fail(&k->stats_fail, "stats.points %" PRIu32 " but %zu points plotted: %s", st.points, n_fixed, what);
+    }
+    /* 6: the level of detail draws the level the double-precision rule picks; the reference then
+     * walks that level */
+    {
+        unsigned lo, hi;
+        lod_ref(&v, w, h, d, opt.max_error, &lo, &hi);
+        if (st.depth < lo || st.depth > hi)
+            fail(&k->lod_fail, "drew depth %" PRIu32 ", the rule gives %u..%u (max_error %u): %s", st.depth, lo, hi,
+                 (unsigned)opt.max_error, what);
+        k->lod_views += opt.max_error != 0;
+        d = st.depth;
     }
     k->frames_drawn += (uint64_t)repeat;
 #if STRESS_ALT
@@ -448,6 +494,8 @@ int main(int argc, char **argv)
     REPORT(!k.missing_fail, "every leaf clearly on screen is drawn", k.missing_fail);
     REPORT(!k.stats_fail, "mc_stats.points equals the points plotted", k.stats_fail);
     REPORT(!k.rc_fail, "mc_octree_render returns MC_OK, and MC_ERR_SIZE for targets over MC_TARGET_MAX", k.rc_fail);
+    REPORT(!k.lod_fail && k.lod_views > 0, "the level of detail (max_error) draws the level the double-precision rule picks",
+           k.lod_fail);
 #if STRESS_ALT
     REPORT(!k.alt_fail && k.alt_frames == k.views,
            STRESS_ALT_FORM " draws byte-identical colour and depth buffers", k.alt_fail);
@@ -465,5 +513,6 @@ int main(int argc, char **argv)
     printf("# max error: orthographic %.3e px (bound at d=%u, S=240: %.3e px), perspective %.3e px; largest error/bound %.3f\n",
            k.max_err_px, (unsigned)scene->depth, b240, k.max_err_px_persp, k.max_err_ratio);
     printf("# seconds %.1f (%.1f us per view)\n", secs, secs * 1e6 / (double)(views ? views : 1));
-    return (k.guard_fail | k.order_fail | k.pos_fail | k.missing_fail | k.stats_fail | k.rc_fail | k.alt_fail) ? 1 : 0;
+    return (k.guard_fail | k.order_fail | k.pos_fail | k.missing_fail | k.stats_fail | k.rc_fail | k.alt_fail |
+            k.lod_fail) ? 1 : 0;
 }

@@ -45,7 +45,7 @@ build() {
     local prog=$1
     shift
     # shellcheck disable=SC2068
-    gcc -std=c99 "$@" "${ALT[@]}" -Dmc_octree_render=mc_octree_render_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
+    gcc -std=c99 "$@" "${ALT[@]}" -Dmc_octree_render=mc_octree_render_alt -Dmc_octree_lod_depth=mc_octree_lod_depth_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
         -Iruntime/include -c -o "$prog.alt.o" runtime/src/octree_render.c >"$prog.log" 2>&1 || return 1
     # shellcheck disable=SC2068
     gcc -std=c99 "$@" -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \

@@ -12,6 +12,7 @@
  */
 #define _GNU_SOURCE
 #include <inttypes.h>
+#include <math.h>
 #include <setjmp.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -346,8 +347,8 @@ static void test_clamp(void **state)
     mc_view c = mc_view_clamp(&d, S, S);
     assert_memory_equal(&c, &d, sizeof d);
     if (MC_COORD_LIMIT / 2 >= 320) {   /* the viewer's default frame at the default MC_FRAC_BITS */
-        c = mc_view_clamp(&d, 320, 240);
-        assert_memory_equal(&c, &d, sizeof d);
+            c = mc_view_clamp(&d, 320, 240);
+            assert_memory_equal(&c, &d, sizeof d);
     }
     d.zoom = MC_ZOOM_MIN;
     d.tx = -MC_COORD_LIMIT / 4;
@@ -680,6 +681,71 @@ static void on_crash(int sig)
     else raise(sig);
 }
 
+/* The level of detail's rule (mc_octree_lod_depth) against the same rule in double precision: the
+ * least level whose node side, S / 2^l pixels (S = zoom times the shorter side, in perspective times
+ * eye / (eye - sqrt(3)/2)), is at most max_error / 16. The runtime rounds sqrt(3)/2 up to Q16, which
+ * can only make it one level finer, at near ties: both radii bracket what it may pick. Exact ties
+ * (the side equal to the bound) take the level, as the promise says "at most". */
+static unsigned lod_rule(const mc_view *v, unsigned w, unsigned h, unsigned d, unsigned err, double radius)
+{
+    const mc_view cv = mc_view_clamp(v, w, h);
+    if (!err || d <= 1) return d;
+    double mag = 1;
+    if (cv.projection == MC_PERSPECTIVE) {
+        const double eye = cv.eye / 65536.0;
+        if (eye - radius < 1.0 / 64) return d;
+        mag = eye / (eye - radius);
+    }
+    const double side = cv.zoom / 65536.0 * (w < h ? w : h) * mag;
+    for (unsigned l = 1; l < d; l++)
+        if (ldexp(side, -(int)l) <= err / 16.0) return l;
+    return d;
+}
+
+static void test_lod_depth(void **state)
+{
+    (void)state;
+    mc_view v = mc_view_default();
+    /* exact ties and the ends: 256 pixels, zoom 1: a level-8 node is one pixel (where the format
+     * holds such extents unclamped: not at MC_FRAC_BITS 24) */
+    if (MC_COORD_LIMIT / 2 >= 320) {
+    assert_int_equal(mc_octree_lod_depth(&v, 256, 256, 10, MC_LOD_PIXEL), 8);
+    assert_int_equal(mc_octree_lod_depth(&v, 256, 300, 10, 2 * MC_LOD_PIXEL), 7);
+    assert_int_equal(mc_octree_lod_depth(&v, 257, 300, 10, MC_LOD_PIXEL), 9);
+    assert_int_equal(mc_octree_lod_depth(&v, 256, 256, 6, MC_LOD_PIXEL), 6); /* not deeper */
+    assert_int_equal(mc_octree_lod_depth(&v, 256, 256, 10, 0), 10);              /* off */
+    assert_int_equal(mc_octree_lod_depth(&v, 256, 256, 10, 0xFFFF), 1); /* level 1 at most */
+    v.zoom = MC_ZOOM_ONE / 4;
+    assert_int_equal(mc_octree_lod_depth(&v, 320, 240, 8, MC_LOD_PIXEL), 6); /* 60 px: 0.94 at 6 */
+    /* the sphere within 1/64 of a side of the eye */
+        v.zoom = MC_ZOOM_ONE, v.projection = MC_PERSPECTIVE, v.eye = 56756 + 1023;
+    assert_int_equal(mc_octree_lod_depth(&v, 320, 240, 8, 0xFFFF), 8);
+    v.eye = 2 * MC_ZOOM_ONE;                       /* 240 * 2 / (2 - 0.866) = 423.3 px: 0.83 at 9 */
+    assert_int_equal(mc_octree_lod_depth(&v, 320, 240, 12, MC_LOD_PIXEL), 9);
+    }
+    /* random views */
+    unsigned fails = 0, finer = 0;
+    for (int i = 0; i < 200000; i++) {
+        v = mc_view_default();
+        v.zoom = (int32_t)lround(MC_ZOOM_ONE * exp2((double)rnd(1 << 20) / (1 << 20) * 14 - 7));
+        v.projection = rnd(2) ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
+        v.eye = rnd(8) ? (int32_t)lround(MC_ZOOM_ONE * exp2((double)rnd(1 << 20) / (1 << 20) * 12 - 4))
+                       : (int32_t)(56756 + 1024 - 8 + rnd(16));   /* near the eye's threshold */
+        const unsigned w = 1 + rnd(MC_TARGET_MAX), h = 1 + rnd(MC_TARGET_MAX), d = 1 + rnd(MC_MAX_DEPTH);
+        const unsigned err = rnd(4) ? 1 + rnd(1024) : 16u << rnd(6);   /* powers of two: exact ties */
+        const unsigned got = mc_octree_lod_depth(&v, w, h, d, (uint16_t)err);
+        const unsigned a = lod_rule(&v, w, h, d, err, sqrt(3) / 2), b = lod_rule(&v, w, h, d, err, 56756 / 65536.0);
+        if (got != a && got != b) {
+            if (!fails++)
+                print_message("zoom %d %ux%u depth %u err %u proj %d eye %d: %u, the rule %u..%u\n", (int)v.zoom, w, h,
+                              d, err, (int)v.projection, (int)v.eye, got, a, b);
+        }
+        finer += got != a;
+    }
+    assert_int_equal(fails, 0);
+    assert_true(finer < 200);   /* the rounded radius decides only near ties */
+}
+
 static void test_render_random(void **state)
 {
     (void)state;
@@ -936,6 +1002,7 @@ int main(void)
         cmocka_unit_test(test_finish_hand),
         cmocka_unit_test(test_finish_random),
         cmocka_unit_test(test_render_random),
+        cmocka_unit_test(test_lod_depth),
     };
     return cmocka_run_group_tests_name("view", tests, NULL, NULL);
 }

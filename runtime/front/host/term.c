@@ -6,9 +6,11 @@
  * sent with one write, so the terminal never shows half a frame and the heap is never touched.
  *
  * Rendering follows the source paper's viewer: while the view moves (a key held, or the automatic
- * turn before the first key) the model is drawn one octree level coarser, with one-pixel holes
- * closed; once it stops, one frame at full depth is drawn, given up as soon as a key arrives (the
- * renderer's abort poll), and then the viewer sleeps until the next key. Rotation speed is measured
+ * turn before the first key) the model is drawn coarser, at twice the level-of-detail error bound
+ * (one level coarser than the viewer's; with the bound off, one octree level coarser than full
+ * depth), with one-pixel holes closed; once it stops, one frame at the viewer's bound is drawn,
+ * given up as soon as a key arrives (the renderer's abort poll), and then the viewer sleeps until
+ * the next key. Rotation speed is measured
  * in time, not frames, so it is the same on a slow machine or a slow terminal.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -64,7 +66,8 @@ typedef struct term_state {
     double yaw, pitch;  /* angle units, fractional so slow frames lose nothing */
     double zoom;
     int auto_turn;      /* until the first key */
-    int fine_needed;    /* the screen does not show the current view at full depth */
+    int fine_needed;    /* the screen does not show the current view at the fine level */
+    uint16_t fine_error;   /* the viewer's level-of-detail bound (mc_octree_options.max_error) */
     int quit;
     key_hold keys[KEY_COUNT];
     layout lay;
@@ -176,9 +179,9 @@ static void put_status(const term_state *s)
     const char *keys = mc_host_scene_has_mesh(sc) ? "q quits, arrows turn, +/- zoom, m mode, [ ] detail, r resets"
                                                   : "q quits, arrows turn, +/- zoom, r resets";
     int n = sc->mode == MC_HOST_POINTS
-                ? snprintf(line, sizeof line, " %s | points | depth %u/%u | %.1f ms | %lu points | zoom %.2f | %s",
-                           s->app->model->name, s->drawn_depth, (unsigned)s->octree->depth, s->frame_ms,
-                           (unsigned long)s->points, s->zoom, keys)
+                ? snprintf(line, sizeof line, " %s | points | depth %u/%u at %ux%u | %.1f ms | %lu points | zoom %.2f | %s",
+                           s->app->model->name, s->drawn_depth, (unsigned)s->octree->depth, (unsigned)s->lay.w,
+                           (unsigned)s->lay.h, s->frame_ms, (unsigned long)s->points, s->zoom, keys)
                 : snprintf(line, sizeof line, " %s | %s | %u/%u vertices | %.1f ms | %lu faces | zoom %.2f | %s",
                            s->app->model->name, mc_host_mode_name(sc->mode), (unsigned)sc->lod.level,
                            (unsigned)sc->lod.pm->vertices, s->frame_ms, (unsigned long)s->points, s->zoom, keys);
@@ -221,7 +224,7 @@ static int draw(term_state *s, unsigned depth, mc_abort_fn abort)
     double t0 = now_s();
     if (t.width > 0 && t.height > 0 && mc_host_scene_draw(s->scene, &v, depth, abort, &t, &drawn) == 1) return 0;
     s->frame_ms = (now_s() - t0) * 1e3;
-    s->drawn_depth = depth;
+    s->drawn_depth = s->scene->mode == MC_HOST_POINTS ? s->scene->drawn_depth : depth;
     s->points = drawn;
     mc_tio_begin();
     put_frame(&t, mc_host_scene_palette(s->scene), &s->lay);
@@ -346,16 +349,20 @@ static void resize(term_state *s)
  * Returns -1 when the loop should end. */
 static int step(term_state *s, double *prev)
 {
-    unsigned full = s->octree->depth, coarse = full > 1 ? full - 1u : 1u;
+    const unsigned full = s->octree->depth;
+    const unsigned coarse = s->fine_error ? full : full > 1 ? full - 1u : 1u;
+    const uint32_t coarse_error = 2u * s->fine_error;
     double now = now_s();
     if (read_keys(s, now) < 0 || s->quit) return -1;
     advance(s, *prev, now);
     *prev = now;
     if (moving(s, now)) {
+        s->scene->opt.max_error = (uint16_t)(coarse_error < 0xFFFFu ? coarse_error : 0xFFFFu);
         if (draw(s, coarse, NULL) < 0) return -1;
         s->fine_needed = 1;
         pace(now);
     } else if (s->fine_needed) {
+        s->scene->opt.max_error = s->fine_error;
         int r = draw(s, full, input_waiting);
         if (r < 0) return -1;
         if (r > 0) s->fine_needed = 0;
@@ -378,6 +385,7 @@ int mc_host_interactive(mc_host_scene *scene, mc_view start)
     s.app = app;
     s.octree = app->model->octree;
     s.scene = scene;
+    s.fine_error = scene->opt.max_error;
     s.start = start;
     reset_view(&s);
     s.auto_turn = 1;

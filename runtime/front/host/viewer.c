@@ -2,7 +2,7 @@
  *
  *   NAME-view [--png FILE | --ppm FILE] [--yaw D --pitch D --roll D --zoom Z --depth N --size WxH
  *              --perspective --fill none|pixel|scanline --no-finish --splat 1|zoom
- *              --mode points|shaded|lines|shaded+lines --lod N]
+ *              --error PX --mode points|shaded|lines|shaded+lines --lod N]
  *   NAME-view --bench N [...]
  *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
  *   NAME-view            interactive, when stdout is a terminal
@@ -47,7 +47,9 @@ static void usage(FILE *f)
             "  --pitch DEG     rotation about the horizontal axis (default 0)\n"
             "  --roll DEG      rotation about the view axis (default 0)\n"
             "  --zoom Z        1 = the model's bounding cube spans the shorter side (default 1)\n"
-            "  --depth N       octree depth to draw, 1..%d (default %d)\n"
+            "  --depth N       octree depth to draw at most, 1..%d (default %d)\n"
+            "  --error PX      level of detail: draw the shallowest level whose nodes span at most PX\n"
+            "                  pixels on screen, 1/16..64, or 0 for --depth itself (default 1)\n"
             "  --size WxH      frame size, at most %ux%u (default 320x240)\n"
             "  --perspective   perspective projection, eye 2 cube sides away (default orthographic)\n"
             "  --fill MODE     hole filling after rendering: none, pixel (one-pixel holes) or scanline\n"
@@ -109,7 +111,7 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
     if (s->target_ms > 0) printf("target %.3f ms: %d of %d frames after the first 20 within 10 %%\n", s->target_ms, in, settled);
     const char *what = s->mode == MC_HOST_POINTS ? "points" : "faces";
     if (s->mode == MC_HOST_POINTS)
-        printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, depth, t->width, t->height,
+        printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, s->drawn_depth, t->width, t->height,
                frames, s->fill == MC_FILL_NONE ? " no-finish" : "");
     else
         printf("model %s mode %s lod %u of %u vertices size %ux%u frames %d\n", mc_app_model.model->name,
@@ -162,7 +164,7 @@ int main(int argc, char **argv)
     unsigned depth = octree->depth, w = 320, h = 240;
     int perspective = 0, check = 0, sized = 0;
     mc_fill fill = MC_FILL_DEFAULT;
-    mc_octree_options opt = {MC_SPLAT_DEFAULT};
+    mc_octree_options opt = {MC_SPLAT_DEFAULT, MC_LOD_PIXEL};
     mc_host_mode mode = MC_HOST_POINTS;
     const char *lod_arg = NULL;
     double target_ms = 1000.0 / 60;
@@ -176,7 +178,8 @@ int main(int argc, char **argv)
         {"perspective", no_argument, 0, 'e'}, {"checksums", no_argument, 0, 'c'},
         {"help", no_argument, 0, 'h'}, {"fill", required_argument, 0, 'f'},
         {"splat", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'm'},
-        {"lod", required_argument, 0, 'l'}, {"target-ms", required_argument, 0, 't'}, {0, 0, 0, 0}};
+        {"lod", required_argument, 0, 'l'}, {"target-ms", required_argument, 0, 't'},
+        {"error", required_argument, 0, 'E'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -216,6 +219,11 @@ int main(int argc, char **argv)
             else return die("--splat expects 1 or zoom", optarg);
             break;
         case 'e': perspective = 1; break;
+        case 'E':
+            if (parse_double(optarg, 0, 64, &dv) || (dv > 0 && dv < 1.0 / 16))
+                return die("--error expects 0 or 1/16..64 pixels", optarg);
+            opt.max_error = (uint16_t)lround(dv * MC_LOD_PIXEL);
+            break;
         case 'm':
             if (mc_host_mode_parse(optarg, &mode)) return die("--mode expects points, shaded, lines or shaded+lines", optarg);
             break;
@@ -272,7 +280,7 @@ int main(int argc, char **argv)
     if (png && mc_host_write_png(png, rgb_buffer, (int)w, (int)h)) return die("cannot write PNG", png);
     if (ppm && mc_host_write_ppm(ppm, rgb_buffer, (int)w, (int)h)) return die(strerror(errno), ppm);
     if (mode == MC_HOST_POINTS)
-        printf("model %s depth %u size %ux%u points %u ms %.3f\n", model->name, depth, w, h, drawn, ms);
+        printf("model %s depth %u size %ux%u points %u ms %.3f\n", model->name, scene.drawn_depth, w, h, drawn, ms);
     else
         printf("model %s mode %s lod %u of %u vertices, %u faces size %ux%u faces drawn %u ms %.3f\n", model->name,
                mc_host_mode_name(mode), scene.lod.level, model->pmesh->vertices, scene.lod.faces, w, h, drawn, ms);

@@ -35,13 +35,31 @@ typedef enum mc_splat { MC_SPLAT_DEFAULT = 0, MC_SPLAT_PIXEL = 1, MC_SPLAT_ZOOM 
 /* How the octree is drawn, beside the camera (mc_view). A NULL pointer, or a zeroed struct, means
  * the defaults. */
 typedef struct mc_octree_options {
-    mc_splat splat;   /* leaf footprint */
+    mc_splat splat;       /* leaf footprint */
+    uint16_t max_error;   /* screen-space level of detail, Q4 pixels (16 = one pixel): draw the
+                           * shallowest level whose nodes span at most this on screen, never deeper
+                           * than the depth asked (mc_octree_lod_depth); 0: the depth asked */
 } mc_octree_options;
 
-/* Draws octree at depth `depth` (1..octree->depth) seen through view into t, on top of what t holds
- * (call mc_clear first for a fresh frame). opt, abort and stats may be NULL. abort is polled every
+/* One fixed-point pixel of max_error. */
+#define MC_LOD_PIXEL 16
+
+/* The level mc_octree_render draws for `depth` asked and a max_error (Q4 pixels) on a w x h target:
+ * depth itself when max_error is 0; otherwise the least level l >= 1 (at most depth) whose node side
+ * on screen, S / 2^l with S = zoom * min(w, h) the cube's side in pixels, is at most max_error / 16,
+ * in perspective magnified by eye / (eye - sqrt(3)/2), the most any point of the model's bounding
+ * sphere is (depth itself when the sphere reaches within 1/64 of a cube side of the eye). Exact in
+ * integers, after mc_view_clamp. In orthographic every node of a level spans the same on screen, so
+ * this is the level where a node first covers at most the bound; in perspective it is where the
+ * nearest node does, and farther ones are finer than they need. */
+unsigned mc_octree_lod_depth(const mc_view *view, uint32_t w, uint32_t h, unsigned depth, uint16_t max_error);
+
+/* Draws octree at depth `depth` (1..octree->depth; with opt->max_error, at mc_octree_lod_depth's
+ * level) seen through view into t, on top of what t holds (call mc_clear first for a fresh frame).
+ * Drawing at a level reads only that level's colours and the masks above it (octree.h). opt, abort
+ * and stats may be NULL. abort is polled every
  * time the walk enters a node at depth min(MC_ABORT_LEVEL, depth - 3) (depth 0, once, when depth
- * <= 3); stats->points counts the leaves that landed on the target.
+ * <= 3); stats->points counts the leaves that landed on the target, stats->depth the level drawn.
  * Returns MC_OK, or MC_ERR_ARG for NULL pointers, MC_ERR_DEPTH for a depth the octree does not
  * have, MC_ERR_SIZE for a target larger than MC_TARGET_MAX on a side or empty. */
 int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,
