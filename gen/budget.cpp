@@ -45,6 +45,7 @@ Budget budget_of(const BakeSize &s) {
     Budget b;
     b.masks = s.masks;
     b.colors = s.colors;
+    b.cones = s.cones;
     b.palette = s.palette;
     b.descriptors = descriptor_bytes(s);
     b.pmesh = s.pmesh;

@@ -24,12 +24,13 @@ size_t parse_size(const std::string &option, const std::string &text);
 
 struct Budget {
     size_t masks = 0, colors = 0, palette = 0;   // bytes of model data
+    size_t cones = 0;                            // bytes of the octree's normal cones (0: none)
     size_t pmesh = 0;                            // bytes of the progressive mesh's arrays (0: no mesh part)
     size_t edges = 0;                            // bytes of the edge model's arrays (0: no edge part)
     size_t descriptors = 0;                      // chunk lists, levels, octree, pmesh, model, name (32-bit layout)
     size_t code = 0;                             // runtime modules + libgcc helpers
     size_t flash() const { return data() + descriptors + code; }
-    size_t data() const { return masks + colors + palette + pmesh + edges; }
+    size_t data() const { return masks + colors + palette + cones + pmesh + edges; }
     size_t color_buffer = 0, depth_buffer = 0, runtime_ram = 0;
     size_t pmesh_lod = 0;                        // the mesh's level-of-detail state (its ancestor map)
     size_t pmesh_facing = 0;                     // the line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES)
@@ -47,6 +48,7 @@ struct Budget {
 struct BakeSize {
     int depth = 0;
     size_t masks = 0, colors = 0, palette = 0;   // bytes of the model's arrays
+    size_t cones = 0;                            // and of its normal cones
     size_t chunk_entries = 0;                    // entries of every chunk list, sentinels included
     size_t name_bytes = 0;                       // the model's name as a C string, NUL included
     int screen_w = 0, screen_h = 0;              // the frame the buffers are sized for

@@ -1,5 +1,6 @@
 // Emission: see emit.hpp.
 #include "emit.hpp"
+#include "cones.hpp"
 #include "emit_files.hpp"
 #include "runtime_costs.hpp"
 #include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
@@ -45,7 +46,7 @@ struct Plan {
     mstch::array lists, levels;
     nlohmann::json budget_arrays = nlohmann::json::object();
     std::vector<uint8_t> palette;   // RGB triplets
-    size_t mask_bytes = 0, color_bytes = 0, chunk_entries = 0;
+    size_t mask_bytes = 0, color_bytes = 0, cone_bytes = 0, chunk_entries = 0;
     // the mesh part (pmesh.h): its arrays' bytes, chunk lists and layout
     std::vector<std::vector<uint8_t>> pm_bytes;   // kPmArrays
     std::vector<uint8_t> pm_palette;              // RGB triplets
@@ -122,7 +123,14 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         if (l > 0 && !mono)
             colors = add_stream(t.colors[l], &t.cousins[l], "c", l, "palette indices"),
             p.color_bytes += t.colors[l].size();
-        p.levels.push_back(mstch::map{{"nodes", std::to_string(t.nodes(l))}, {"masks", masks}, {"colors", colors}});
+        std::string cones = "0";
+        if (l < static_cast<int>(t.cones.size()) && !t.cones[l].empty()) {
+            const std::vector<uint8_t> records(t.cones[l].size() / kConeBytes, kConeBytes);   // whole records a chunk
+            cones = add_stream(t.cones[l], &records, "k", l, "normal cones");
+            p.cone_bytes += t.cones[l].size();
+        }
+        p.levels.push_back(
+            mstch::map{{"nodes", std::to_string(t.nodes(l))}, {"masks", masks}, {"colors", colors}, {"cones", cones}});
     }
     for (const auto &c : t.palette) p.palette.insert(p.palette.end(), c.begin(), c.end());
     p.budget_arrays["mc_" + name + "_palette"] = p.palette.size();
@@ -153,6 +161,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
     s.depth = t.depth;
     s.masks = p.mask_bytes;
     s.colors = p.color_bytes;
+    s.cones = p.cone_bytes;
     s.palette = p.palette.size();
     s.chunk_entries = p.chunk_entries;
     s.name_bytes = opt.name.size() + 1;
@@ -307,6 +316,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
          {{"arrays", plan.budget_arrays},
           {"masks", mask_bytes},
           {"colors", color_bytes},
+          {"cones", plan.cone_bytes},
           {"palette", palette.size()},
           {"total", data_bytes},
           {"descriptors", bud.descriptors},

@@ -71,6 +71,7 @@ FitChoice fit(const Voxels &voxels, const std::vector<uint8_t> &keep, const Emit
             }
             Octree t = cut_octree(levels, d, p);
             if (!keep.empty()) t = prune_octree(t, voxels, keep);
+            if (request.cones) add_cones(t, *request.cones);
             Budget b = budget_of(t, emit);
             std::string over = over_budget(b, limits);
             if (!over.empty()) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 #include "budget.hpp"
+#include "cones.hpp"
 #include "emit.hpp"
 #include "octree.hpp"
 #include "voxel.hpp"
@@ -25,6 +26,7 @@ struct FitRequest {
     int max_palette = 256;    // --palette
     int min_palette = 16;     // --min-palette
     std::string screen;       // --screen as given, for the messages
+    const ConeSource *cones = nullptr;   // normal cones for each candidate (cones.hpp), or none
 };
 
 struct FitChoice {

@@ -14,6 +14,7 @@
 #include <regex>
 
 #include "budget.hpp"
+#include "cones.hpp"
 #include "edge_model.hpp"
 #include "emit.hpp"
 #include "fit.hpp"
@@ -57,6 +58,7 @@ int main(int argc, char **argv) {
     std::string views = "all";
     std::string dump_reference;  // hidden: tests and benchmarks only
     std::string as = "points";
+    std::string cull = "on";
     std::string dump_pmesh;       // hidden: tests only, N:FILE
     mc::PMeshOptions pmesh_opt;
     mc::EdgeModelOptions edge_opt;
@@ -122,6 +124,9 @@ int main(int argc, char **argv) {
     app.add_option("--dump-reference", dump_reference, "write the normalised original model for the tests' "
                    "mesh reference renderer (runtime/ref/mesh_ref.h)")
         ->group("");
+    app.add_option("--cull", cull, "normal cones so the renderer skips subtrees whose surface all faces away: on "
+                   "(closed meshes; made only where every edge has two faces, nothing self-intersects) or off")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress output even on a terminal");
     app.set_version_flag("--version", "modelc 0.1");
 
@@ -216,15 +221,25 @@ int main(int argc, char **argv) {
             keep = mc::visible_cells(model, voxels, mc::view_directions(view_spec), progress, pruned);
             emit.budget_extra.emplace_back("pruning", mc::pruning_json(view_spec, pruned));
         }
+        mc::ConeSource cones;
+        if (cull == "on") {
+            progress.step("normal cones");
+            cones = mc::cone_source(model, cube);
+        } else {
+            cones.why = "--cull off";
+        }
+        emit.budget_extra.emplace_back("cones", cones.impl ? std::string("{\"made\": true}")
+                                                           : "{\"made\": false, \"why_not\": \"" + cones.why + "\"}");
         progress.step("building octree");
         mc::Octree tree;
         if (!fit) {
             tree = mc::build_octree(voxels, palette);
             if (!keep.empty()) tree = mc::prune_octree(tree, voxels, keep);
+            mc::add_cones(tree, cones);
             std::string over = mc::over_budget(mc::budget_of(tree, emit), limits);
             if (!over.empty()) throw mc::BudgetError("over budget: " + over);
         } else {
-            mc::FitChoice choice = mc::fit(voxels, keep, emit, {palette, min_palette, screen});
+            mc::FitChoice choice = mc::fit(voxels, keep, emit, {palette, min_palette, screen, &cones});
             tree = std::move(choice.tree);
             emit.screen_w = choice.screen_w, emit.screen_h = choice.screen_h;
             emit.fit_note = choice.note;

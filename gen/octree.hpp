@@ -19,6 +19,9 @@ struct Octree {
     // each node at level l-2, or the whole of level 1 (the colours a node two levels up reads).
     std::vector<std::vector<uint8_t>> siblings, cousins;
     std::vector<std::array<uint8_t, 3>> palette;
+    // cones[l]: normal cones of the nodes at level l (cones.hpp, octree.h), 7 bytes each; empty
+    // where the bake has none
+    std::vector<std::vector<uint8_t>> cones;
     size_t nodes(int level) const { return level == 0 ? 1 : colors[level].size(); }
 };
 

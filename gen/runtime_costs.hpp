@@ -36,7 +36,7 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 62492, 5672, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 63768, 6948, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
@@ -63,9 +63,9 @@ inline constexpr size_t kLibgccDivision = 960;
 inline constexpr size_t kRuntimeStaticRam = 0;
 
 // Sizes of the descriptors on a 32-bit target (chunk.h, octree.h, model.h; sizeof with
-// arm-none-eabi-gcc): mc_chunk {pointer, uint32}, mc_octree_level {uint32, 2 pointers}, mc_octree
+// arm-none-eabi-gcc): mc_chunk {pointer, uint32}, mc_octree_level {uint32, 3 pointers}, mc_octree
 // {uint8, uint16, 2 pointers}, mc_model {4 int64, 4 pointers, uint8, padded to 8}.
-inline constexpr size_t kChunkBytes = 8, kLevelBytes = 12, kOctreeBytes = 12, kModelBytes = 56;
+inline constexpr size_t kChunkBytes = 8, kLevelBytes = 16, kOctreeBytes = 12, kModelBytes = 56;
 // mc_pmesh {5 uint32, 4 uint8, uint16, int16, 7 pointers} on a 32-bit target.
 inline constexpr size_t kPmeshBytes = 56;
 // mc_edges {3 uint32, 4 uint8, 4 pointers}, mc_particle {7 int32, 3 uint32}, mc_xvertex on a 32-bit target.
@@ -79,7 +79,9 @@ struct Frame {
     constexpr size_t bytes() const { return arm > host ? arm : host; }
 };
 inline constexpr Frame kFrames[] = {
-    {"mc_octree_render", 2480, 2656},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_octree_render", 2520, 2736},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_octree_lod_depth", 56, 80},
+    {"culled", 24, 24},
     {"visit", 96, 128},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 72},
@@ -109,27 +111,29 @@ constexpr size_t frame(const char *fn) { return frame_in(kFrames, fn); }
 
 // The bounded call graph of mc_octree_render drawing at depth d (octree_render.c):
 //   mc_octree_render -> mc_view_clamp
+//             -> mc_octree_lod_depth -> mc_view_clamp
 //             -> [setup_vectors] -> mc_view_rotation -> matmul | mc_cos -> mc_sin ; mc_mul_shift64
+//             -> [setup_cones] -> mc_view_rotation
 //             -> classify
 //             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit recurses
 //                only into children at levels <= d-3, visit_inside likewise), then the deepest of
 //                  draw_inside
 //                  draw_checked -> [leaves] -> leaves_perspective -> mc_mul_shift64 | draw_square
 //                                           | leaves_clipped -> draw_square
-//                  classify, [skip_subtree]
+//                  classify, [skip_subtree], culled (a leaf: it skips a culled subtree inline)
 //                  [poll_abort] -> the abort callback (the caller's code: add its own stack)
 // [bracketed] functions are inlined into their callers. The bound is mc_octree_render's frame plus
 // the deepest of those paths. mc_clear and mc_finish_* are called by the front end beside it,
 // never inside it, and their frames are smaller than the walk's.
 constexpr size_t max2(size_t a, size_t b) { return a > b ? a : b; }
 constexpr size_t stack_setup() {
-    return max2(frame("mc_view_clamp"),
+    return max2(frame("mc_octree_lod_depth") + frame("mc_view_clamp"),
                 frame("mc_view_rotation") + max2(frame("matmul.constprop"), frame("mc_cos") + frame("mc_sin")));
 }
 constexpr size_t stack_tail() {
     const size_t leaves = max2(frame("leaves_perspective") + max2(frame("mc_mul_shift64"), frame("draw_square")),
                                frame("leaves_clipped") + frame("draw_square"));
-    return max2(frame("draw_inside"), max2(frame("draw_checked") + leaves, frame("classify")));
+    return max2(max2(frame("draw_inside"), frame("culled")), max2(frame("draw_checked") + leaves, frame("classify")));
 }
 constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }
 constexpr int walk_frames(int depth) { return depth > 3 ? depth - 2 : 1; }

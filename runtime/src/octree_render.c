@@ -49,7 +49,17 @@ typedef struct ctx {
     void *user;
     uint32_t points, polls;
     int aborted;
+    /* back-facing subtrees (octree_render.h, mc_cull): the cones of level cone_level, NO_CONES when
+     * none are used this frame */
+    mc_cursor cone;
+    unsigned cone_level;
+    int32_t cone_w[3];                   /* unit vector towards the viewer, model axes, Q14 */
+    int32_t cone_spread;                 /* perspective: sin of the eye's spread over the sphere, Q14 */
+    uint32_t culled;
 } ctx;
+
+#define NO_CONES (MC_MAX_DEPTH + 1u)
+#define CONE_BYTES 7   /* octree.h */
 
 /* Steps over the subtree of one node at level l without drawing it: reads the masks of levels
  * l..d-1 inside the subtree only to count how far each cursor must move. */
@@ -57,6 +67,7 @@ static void skip_subtree(ctx *c, unsigned l)
 {
     uint32_t n = 1;
     for (unsigned lev = l; lev < c->d; lev++) {
+        if (lev == c->cone_level) mc_cursor_skip(&c->cone, CONE_BYTES * n);
         uint32_t children = 0;
         for (uint32_t i = 0; i < n; i++) {
             if (c->mask[lev].p == c->mask[lev].end) mc_cursor_refill(&c->mask[lev]);
@@ -296,6 +307,30 @@ static void draw_checked(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_
     }
 }
 
+/* Whether the node at c->cone_level (= d - 3) being entered is skipped as back-facing (octree.h's
+ * test, a . w < -s, with w rounded to Q14: the product is off by at most half the axis's l1 norm,
+ * and in perspective the cone widened by the eye's spread: sin(theta + alpha) <= sin theta + sin
+ * alpha, and |a| <= its l1 norm). Steps over its subtree when it is (its own mask, its children's,
+ * the record's n2 masks and n3 colours); else over its record. */
+static inline int culled(ctx *c, unsigned l)
+{
+    if (c->cone.p >= c->cone.end) mc_cursor_refill(&c->cone);
+    const uint8_t *k = c->cone.p;
+    /* int8 fields, sign-extended without implementation-defined conversions */
+    const int32_t ax = (int32_t)k[0] - ((k[0] & 0x80) << 1), ay = (int32_t)k[1] - ((k[1] & 0x80) << 1);
+    const int32_t az = (int32_t)k[2] - ((k[2] & 0x80) << 1);
+    const int32_t dot = ax * c->cone_w[0] + ay * c->cone_w[1] + az * c->cone_w[2];   /* |dot| < 2^23 */
+    const int32_t l1 = (ax < 0 ? -ax : ax) + (ay < 0 ? -ay : ay) + (az < 0 ? -az : az);
+    c->cone.p += CONE_BYTES;
+    if (dot >= -((int32_t)k[3] * 16384 + l1 * c->cone_spread + l1)) return 0;
+    const unsigned m = *mc_cursor_take(&c->mask[l], 1);
+    mc_cursor_skip(&c->mask[l + 1], mc_popcount8(m));
+    mc_cursor_skip(&c->mask[l + 2], k[4]);
+    mc_cursor_skip(&c->color, (uint32_t)k[5] | (uint32_t)k[6] << 8);
+    c->culled++;
+    return 1;
+}
+
 /* Polls the abort callback; non-zero when the frame is to be given up. */
 static int poll_abort(ctx *c)
 {
@@ -309,6 +344,7 @@ static int poll_abort(ctx *c)
 static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    if (l == c->cone_level && culled(c, l)) return;
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
@@ -332,6 +368,7 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    if (l == c->cone_level && culled(c, l)) return;
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
     if (l + 2 >= c->d) {                                 /* d <= 2: the root draws everything */
         draw_checked(c, l, m, x, y, z);
@@ -430,6 +467,25 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
     return (radius >> c->zshift) + MC_MAX_DEPTH;   /* one depth unit of room per level's rounding */
 }
 
+/* Culling (octree_render.h, mc_cull): the cones of level d-3 and the direction towards the viewer,
+ * the rotation's third row (screen z points at the viewer). */
+static void setup_cones(ctx *c, const mc_octree *o, const mc_view *v, mc_cull cull)
+{
+    c->cone_level = NO_CONES;
+    c->culled = 0;
+    if (cull == MC_CULL_OFF || c->d < 4 || !o->levels[c->d - 3].cones) return;
+    int32_t r[3][3];
+    mc_view_rotation(v, r);
+    for (int j = 0; j < 3; j++) c->cone_w[j] = (int32_t)mc_round_shift(r[2][j], 16);   /* Q30 -> Q14 */
+    c->cone_spread = 0;
+    if (c->perspective) {
+        if (v->eye <= HALF_SQRT3_Q16) return;   /* the eye inside the sphere: any direction */
+        c->cone_spread = (int32_t)(((int64_t)HALF_SQRT3_Q16 << 14) / v->eye) + 1;
+    }
+    mc_cursor_init(&c->cone, o->levels[c->d - 3].cones);
+    c->cone_level = c->d - 3;
+}
+
 unsigned mc_octree_lod_depth(const mc_view *view, uint32_t w, uint32_t h, unsigned depth, uint16_t max_error)
 {
     if (!max_error || depth <= 1) return depth;
@@ -480,6 +536,7 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
     if (octree->levels[depth].colors) mc_cursor_init(&c.color, octree->levels[depth].colors);
     else mc_cursor_init_zeros(&c.color);
     const int32_t zroot = setup_vectors(&c, &v, splat);
+    setup_cones(&c, octree, &v, opt ? opt->cull : MC_CULL_DEFAULT);
     c.poll_level = depth >= MC_ABORT_LEVEL + 3 ? MC_ABORT_LEVEL : depth >= 3 ? depth - 3 : 0;
 
     /* the root's centre: the screen centre plus translation (orthographic), or the view axis
@@ -500,6 +557,7 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
         stats->polls = c.polls;
         stats->aborted = c.aborted;
         stats->depth = depth;
+        stats->culled = c.culled;
     }
     return MC_OK;
 }

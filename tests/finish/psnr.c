@@ -91,7 +91,7 @@ int main(int argc, char **argv)
         mc_ref_render(&REF_SCENE, &v, REF_SCENE.depth, &rt, ref_z);
         double all[2][3];
         for (size_t si = 0; si < sizeof splats / sizeof splats[0]; si++) {
-            const mc_octree_options opt = {splats[si].splat};
+            const mc_octree_options opt = {splats[si].splat, 0, MC_CULL_DEFAULT};
             double p[3];
             for (size_t fi = 0; fi < sizeof fills / sizeof fills[0]; fi++) {
                 double ms[101];
@@ -139,7 +139,7 @@ int main(int argc, char **argv)
                ok ? "ok" : "not ok", TEST_MODEL.name, views[vi].name, all[1][2], best);
         failed += !ok;
         if (views[vi].zoom <= 1) {   /* leaves under a pixel: both splats draw the same image */
-            const mc_octree_options pixel = {MC_SPLAT_PIXEL}, zoom = {MC_SPLAT_ZOOM};
+            const mc_octree_options pixel = {MC_SPLAT_PIXEL, 0, MC_CULL_DEFAULT}, zoom = {MC_SPLAT_ZOOM, 0, MC_CULL_DEFAULT};
             mc_clear(&t);
             mc_octree_render(&TEST_SCENE, &v, TEST_SCENE.depth, &pixel, &t, NULL, NULL, NULL);
             memcpy(ref_color, color, sizeof color);

@@ -118,7 +118,7 @@ static const uint8_t one_mask[1] = {0x01}, one_color[1] = {5};
 static const mc_chunk mask_chunks[2] = {{one_mask, 1}, {0, 0}};
 static const mc_chunk color_chunks[2] = {{one_color, 1}, {0, 0}};
 static const uint8_t palette[3 * 8] = {0};
-static const mc_octree_level one_levels[2] = {{1, mask_chunks, NULL}, {1, NULL, color_chunks}};
+static const mc_octree_level one_levels[2] = {{1, mask_chunks, NULL, NULL}, {1, NULL, color_chunks, NULL}};
 static const mc_octree one_leaf = {1, 8, palette, one_levels};
 
 static int drawn_pixels(void)
@@ -265,7 +265,7 @@ int main(void)
         int side = fp[i].want_side > MC_SPLAT_MAX ? MC_SPLAT_MAX : fp[i].want_side;
         mc_view v = mc_view_default();
         v.zoom = fp[i].zoom;
-        const mc_octree_options zoom = {MC_SPLAT_ZOOM}, pixel = {MC_SPLAT_PIXEL};
+        const mc_octree_options zoom = {MC_SPLAT_ZOOM, 0, MC_CULL_DEFAULT}, pixel = {MC_SPLAT_PIXEL, 0, MC_CULL_DEFAULT};
         mc_clear(&ft);
         mc_stats st;
         mc_octree_render(&one_leaf, &v, 1, &zoom, &ft, NULL, NULL, &st);

@@ -111,6 +111,27 @@ check "quiet when stderr is not a terminal" test ! -s "$tmp/stderr.txt"
 script -qec "$modelc build/models/bunny00.off -o $tmp/p --depth 9" /dev/null >"$tmp/tty.txt" 2>&1
 check "progress on a terminal for steps over a second" grep -q 'modelc: [a-z ]* *[0-9]*%\|modelc: [a-z ]* done' "$tmp/tty.txt"
 
+# normal cones (gen/cones.hpp): made for a closed, non-self-intersecting mesh, each holding the
+# outward normal of every face its node's cube meets (tests/gen/cones_check.py, in double precision,
+# independently of CGAL), counted in budget.json; none for an open mesh, a point set or --cull off
+"$modelc" build/models/bunny00.off -o "$tmp/cones" --depth 6 -q
+check "cones of bunny00 (closed) at depth 6 hold every face normal of their cubes; subtree counts right" \
+    python3 tests/gen/cones_check.py build/models/bunny00.off "$tmp/cones/bunny00" bunny00
+"$modelc" build/models/head.off -o "$tmp/cones" --depth 6 -q
+"$modelc" build/models/kitten.xyz -o "$tmp/cones" --depth 6 -q
+"$modelc" build/models/bunny00.off -o "$tmp/cones" --name nocull --depth 6 --cull off -q
+check "budget.json: cones made for bunny00 (their bytes in flash, 7 a node of levels 1..D-3); not for head (open), kitten (points), --cull off" \
+    python3 - "$tmp/cones" <<'PY'
+import json, sys
+b = {n: json.load(open("%s/%s/budget.json" % (sys.argv[1], n))) for n in ("bunny00", "head", "kitten", "nocull")}
+assert b["bunny00"]["cones"] == {"made": True}, b["bunny00"]["cones"]
+nodes = sum(b["bunny00"]["points_per_level"][1:6 - 2])
+assert b["bunny00"]["flash"]["cones"] == 7 * nodes, (b["bunny00"]["flash"]["cones"], nodes)
+for n, why in (("head", "not closed"), ("kitten", "point set"), ("nocull", "--cull off")):
+    assert not b[n]["cones"]["made"] and why in b[n]["cones"]["why_not"], (n, b[n]["cones"])
+    assert b[n]["flash"]["cones"] == 0, n
+PY
+
 # bad options: one line, exit 2, no output
 "$modelc" build/models/nefertiti.off -o "$tmp/bad" --depth 13 2>"$tmp/e.txt"
 st=$?

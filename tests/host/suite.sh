@@ -251,12 +251,53 @@ for m in "${viewers[@]}"; do
     fi
     check "$m: at zoom 0.25 the level of detail draws a shallower level, the same frame as --depth at it" "$lod_why"
 
+    # back-facing subtrees (--cull, on by default where the bake has normal cones: closed meshes):
+    # skipped nodes only where cones were made; without hole filling, the frame changes where the far
+    # side showed through gaps of the front surface (background with culling) and, at most 0.2 % of
+    # the model's pixels, where a back cell's centre lay nearer than the front cell's (the surfaces
+    # within a leaf of each other: a leaf is drawn at its cell's centre, not on the surface)
+    made=$(python3 -c 'import json,sys; print(int(json.load(open(sys.argv[1])).get("cones", {}).get("made", False)))' \
+        "build/$m/budget.json" 2>/dev/null)
+    cull_why=""
+    skipped=$("$v" --bench 3 --yaw 40 2>/dev/null | sed -n 's/^back-facing nodes skipped per frame: //p')
+    if [ -z "$made" ] || [ -z "$skipped" ]; then
+        cull_why="no cones entry in budget.json ('$made') or no skipped count from --bench ('$skipped')"
+    elif { [ "$made" = 1 ] && [ "$skipped" = 0 ]; } || { [ "$made" = 0 ] && [ "$skipped" != 0 ]; }; then
+        cull_why="cones made: $made, nodes skipped per frame: $skipped"
+    else
+        for view in "--yaw 40 --pitch 20" "--yaw 200 --pitch -30 --zoom 1.5"; do
+            # shellcheck disable=SC2086
+            if run_viewer "$d/cull-on" "$v" $view --no-finish --ppm "$d/cull-on.ppm" &&
+                run_viewer "$d/cull-off" "$v" $view --no-finish --cull off --ppm "$d/cull-off.ppm"; then
+                cull_why+=$(python3 - "$d/cull-on.ppm" "$d/cull-off.ppm" "$view" <<'PY'
+import sys
+def px(f):
+    b = open(f, "rb").read()
+    hdr = b.split(b"\n", 3)
+    return hdr[3]
+a, b = px(sys.argv[1]), px(sys.argv[2])
+bg = bytes((24, 24, 32))
+model = sum(1 for i in range(0, len(b), 3) if b[i:i + 3] != bg)
+diff = [i for i in range(0, len(b), 3) if a[i:i + 3] != b[i:i + 3]]
+gaps = sum(1 for i in diff if a[i:i + 3] == bg)
+print("# %s: %d of %d model pixels differ, %d of them gaps" % (sys.argv[3], len(diff), model, gaps), file=sys.stderr)
+if not model or (len(diff) - gaps) * 500 > model:
+    print("%s: %d of %d model pixels differ, %d not gaps; " % (sys.argv[3], len(diff), model, len(diff) - gaps))
+PY
+                )
+            else
+                cull_why+="$view: exit status $?: $(cat "$d/cull-on.err" "$d/cull-off.err" | oneline); "
+            fi
+        done
+    fi
+    check "$m: --cull skips back-facing nodes only where the bake has cones (made: ${made:-?}); the frame changes at gaps and under 0.2 % elsewhere" "$cull_why"
+
     # ---- (d) bad options: one line on stderr, nothing on stdout, status 2 -------------------------
     bad_cases=(
         "--bogus" "--zoom 1000" "--depth 99" "--size 99999x1" "--size $((maxw + 1))x$maxh"
         "--size 0x10" "--size 10" "--zoom abc" "--zoom 0" "--depth 0" "--depth 1.5" "--yaw x"
         "--bench 0" "--png" "stray-argument" "--ppm /nonexistent-dir/x.ppm" "--png /nonexistent-dir/x.png"
-        "--error 65" "--error 0.01" "--error -1" "--error px"
+        "--error 65" "--error 0.01" "--error -1" "--error px" "--cull maybe"
     )
     problems=""
     for c in "${bad_cases[@]}"; do

@@ -100,7 +100,8 @@ static int run_case(const view_case *vc)
     v.yaw = angle(vc->yaw), v.pitch = angle(vc->pitch), v.roll = angle(vc->roll);
     v.zoom = (int32_t)lround(vc->zoom * MC_ZOOM_ONE);
     v.projection = vc->perspective ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
-    const mc_octree_options opt = {MC_SPLAT_PIXEL};   /* one pixel per leaf, as the reference image draws */
+    /* one pixel per leaf and every leaf, as the reference image draws */
+    const mc_octree_options opt = {MC_SPLAT_PIXEL, 0, MC_CULL_OFF};
     const char *name = mc_app_model.model->name;
     unsigned depth = scene->depth - (unsigned)vc->coarser;
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)vc->w, (uint16_t)vc->h};

@@ -175,6 +175,7 @@ static void tree_finish(tree *t, int split)
         t->cchunks[l] = l > 0 ? make_chunks(t->color[l], t->nodes[l], t, l, split) : NULL;
         t->levels[l].masks = t->mchunks[l];
         t->levels[l].colors = t->cchunks[l];
+        t->levels[l].cones = NULL;   /* no normal cones: every leaf drawn */
         if (l > 0)
             for (uint32_t i = 0; i < t->nodes[l]; i++) t->colors_at[l][t->color[l][i] >> 3] |= 1u << (t->color[l][i] & 7);
     }

@@ -31,6 +31,7 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
     s->mode = mode;
     s->opt = *opt;
     s->drawn_depth = 0;
+    s->culled = 0;
     s->fill = fill;
     if (mc_host_scene_has_mesh(s)) {
         mc_pmesh_lod_init(&s->lod, app->model->pmesh, app->pmesh_anc);
@@ -49,11 +50,12 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
                        uint32_t *drawn)
 {
     if (s->mode == MC_HOST_POINTS) {
-        mc_stats st = {0, 0, 0, 0};
+        mc_stats st = {0, 0, 0, 0, 0};
         mc_clear(t);
         int rc = mc_octree_render(s->app->model->octree, v, depth, &s->opt, t, abort, NULL, &st);
         if (st.aborted) return 1;
         s->drawn_depth = st.depth;
+        s->culled = st.culled;
         mc_finish(t, s->fill);
         *drawn = st.points;
         return rc;

@@ -36,6 +36,7 @@ typedef struct mc_host_scene {
     mc_host_mode mode;
     mc_octree_options opt;   /* points */
     unsigned drawn_depth;    /* points: the level the last frame drew (opt.max_error may draw shallower) */
+    uint32_t culled;         /* points: the back-facing nodes it skipped (opt.cull) */
     mc_fill fill;            /* points */
     mc_pmesh_lod lod;        /* the mesh part's level of detail (when the model has one) */
     double target_ms;        /* > 0: automatic level of detail for this frame time */

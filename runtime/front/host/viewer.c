@@ -2,7 +2,7 @@
  *
  *   NAME-view [--png FILE | --ppm FILE] [--yaw D --pitch D --roll D --zoom Z --depth N --size WxH
  *              --perspective --fill none|pixel|scanline --no-finish --splat 1|zoom
- *              --error PX --mode points|shaded|lines|shaded+lines --lod N]
+ *              --error PX --cull on|off --mode points|shaded|lines|shaded+lines --lod N]
  *   NAME-view --bench N [...]
  *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
  *   NAME-view            interactive, when stdout is a terminal
@@ -50,6 +50,8 @@ static void usage(FILE *f)
             "  --depth N       octree depth to draw at most, 1..%d (default %d)\n"
             "  --error PX      level of detail: draw the shallowest level whose nodes span at most PX\n"
             "                  pixels on screen, 1/16..64, or 0 for --depth itself (default 1)\n"
+            "  --cull on|off   skip subtrees whose surface all faces away, where the bake has normal cones\n"
+            "                  (closed meshes; default on)\n"
             "  --size WxH      frame size, at most %ux%u (default 320x240)\n"
             "  --perspective   perspective projection, eye 2 cube sides away (default orthographic)\n"
             "  --fill MODE     hole filling after rendering: none, pixel (one-pixel holes) or scanline\n"
@@ -94,7 +96,7 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
 {
     static double ms[100000];
     if (frames > 100000) frames = 100000;
-    uint64_t drawn = 0;
+    uint64_t drawn = 0, culled = 0;
     int32_t yaw0 = v.yaw;
     for (int i = 0; i < frames; i++) {
         v.yaw = yaw0 + (int32_t)((int64_t)MC_ANGLE_FULL * i / frames);
@@ -103,6 +105,7 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
         mc_host_scene_draw(s, &v, depth, NULL, t, &n);
         ms[i] = mc_host_now_ms() - t0;
         drawn += n;
+        culled += s->culled;
     }
     int in = 0, settled = 0;   /* frames the automatic level of detail held within 10 %, after 20 */
     for (int i = 20; i < frames; i++, settled++) in += fabs(ms[i] - s->target_ms) <= 0.1 * s->target_ms;
@@ -118,6 +121,7 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
                mc_host_mode_name(s->mode), s->lod.level, s->lod.pm->vertices, t->width, t->height, frames);
     printf("ms per frame (median): %.3f\n", median);
     printf("%s drawn per frame: %.0f\n", what, mean);
+    if (s->mode == MC_HOST_POINTS) printf("back-facing nodes skipped per frame: %.0f\n", (double)culled / frames);
     printf("M%s/s: %.2f\n", what, mean / median / 1e3);
     return 0;
 }
@@ -164,7 +168,7 @@ int main(int argc, char **argv)
     unsigned depth = octree->depth, w = 320, h = 240;
     int perspective = 0, check = 0, sized = 0;
     mc_fill fill = MC_FILL_DEFAULT;
-    mc_octree_options opt = {MC_SPLAT_DEFAULT, MC_LOD_PIXEL};
+    mc_octree_options opt = {MC_SPLAT_DEFAULT, MC_LOD_PIXEL, MC_CULL_DEFAULT};
     mc_host_mode mode = MC_HOST_POINTS;
     const char *lod_arg = NULL;
     double target_ms = 1000.0 / 60;
@@ -179,7 +183,7 @@ int main(int argc, char **argv)
         {"help", no_argument, 0, 'h'}, {"fill", required_argument, 0, 'f'},
         {"splat", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'm'},
         {"lod", required_argument, 0, 'l'}, {"target-ms", required_argument, 0, 't'},
-        {"error", required_argument, 0, 'E'}, {0, 0, 0, 0}};
+        {"error", required_argument, 0, 'E'}, {"cull", required_argument, 0, 'C'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -219,6 +223,11 @@ int main(int argc, char **argv)
             else return die("--splat expects 1 or zoom", optarg);
             break;
         case 'e': perspective = 1; break;
+        case 'C':
+            if (!strcmp(optarg, "on")) opt.cull = MC_CULL_DEFAULT;
+            else if (!strcmp(optarg, "off")) opt.cull = MC_CULL_OFF;
+            else return die("--cull expects on or off", optarg);
+            break;
         case 'E':
             if (parse_double(optarg, 0, 64, &dv) || (dv > 0 && dv < 1.0 / 16))
                 return die("--error expects 0 or 1/16..64 pixels", optarg);

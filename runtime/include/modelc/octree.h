@@ -15,6 +15,15 @@
  * renderer may cross them: mask chunks between sibling groups (the children of one node), colour
  * chunks between cousin groups (the grandchildren of one node), so the renderer checks for the end
  * of a chunk once per group instead of once per byte.
+ *
+ * Normal cones (optional, levels 1..D-3, one 7-byte record per node in the level's order): int8
+ * ax, ay, az, an axis about 127 long; uint8 s >= sin(theta) |a| rounded up, theta the largest angle
+ * between the axis and the outward normal of any face the node's cube meets (so of any surface its
+ * leaves sample), s = 255 where the normals span more than a half-space; then uint8 n2 and uint16
+ * n3 (little-endian), the nodes of its subtree two and three levels below it (at most 64 and 512),
+ * so that a walk drawing three levels below it steps over the subtree in constant time. A view
+ * direction w (unit, towards the viewer, in model axes) sees only the backs of the node's surface
+ * when a . w < -s. Chunks hold whole records.
  */
 #ifndef MODELC_OCTREE_H
 #define MODELC_OCTREE_H
@@ -28,6 +37,7 @@ typedef struct mc_octree_level {
     const mc_chunk *masks;   /* child masks, one byte per node; NULL at the deepest level */
     const mc_chunk *colors;  /* palette index per node; NULL at level 0, and at every level of a
                               * monochrome octree (palette_size 1): every node is entry 0 */
+    const mc_chunk *cones;   /* normal cone per node, 7 bytes (above); NULL where the bake has none */
 } mc_octree_level;
 
 typedef struct mc_octree {

@@ -32,6 +32,19 @@
  * Other values are taken as MC_SPLAT_DEFAULT. */
 typedef enum mc_splat { MC_SPLAT_DEFAULT = 0, MC_SPLAT_PIXEL = 1, MC_SPLAT_ZOOM = 2 } mc_splat;
 
+/* Back-facing subtrees, where the bake has normal cones (octree.h; the generator makes them for
+ * closed meshes only):
+ *   MC_CULL_DEFAULT (0, what zeroed options hold): a node at level d-3 (d the level drawn, d >= 4)
+ *     whose cone faces wholly away from the viewer is skipped, its data stepped over. In
+ *     perspective the cone must face away from every direction in which the eye sees the model's
+ *     bounding sphere (sin of that spread: sqrt(3)/2 / eye), so fewer nodes go. On a closed surface a
+ *     back-facing point is hidden behind the surface in front of it; the frame changes where the
+ *     far side showed through gaps between front leaves, and where a back leaf's cell centre lay
+ *     nearer than the front one's (surfaces within a leaf of each other; tests/host measures both).
+ *   MC_CULL_OFF: every leaf is drawn (the source paper's walk, and the reference renderer's).
+ * Other values are taken as MC_CULL_DEFAULT. */
+typedef enum mc_cull { MC_CULL_DEFAULT = 0, MC_CULL_OFF = 1 } mc_cull;
+
 /* How the octree is drawn, beside the camera (mc_view). A NULL pointer, or a zeroed struct, means
  * the defaults. */
 typedef struct mc_octree_options {
@@ -39,6 +52,7 @@ typedef struct mc_octree_options {
     uint16_t max_error;   /* screen-space level of detail, Q4 pixels (16 = one pixel): draw the
                            * shallowest level whose nodes span at most this on screen, never deeper
                            * than the depth asked (mc_octree_lod_depth); 0: the depth asked */
+    mc_cull cull;         /* back-facing subtrees */
 } mc_octree_options;
 
 /* One fixed-point pixel of max_error. */
@@ -59,7 +73,8 @@ unsigned mc_octree_lod_depth(const mc_view *view, uint32_t w, uint32_t h, unsign
  * Drawing at a level reads only that level's colours and the masks above it (octree.h). opt, abort
  * and stats may be NULL. abort is polled every
  * time the walk enters a node at depth min(MC_ABORT_LEVEL, depth - 3) (depth 0, once, when depth
- * <= 3); stats->points counts the leaves that landed on the target, stats->depth the level drawn.
+ * <= 3); stats->points counts the leaves that landed on the target, stats->depth the level drawn,
+ * stats->culled the back-facing nodes skipped.
  * Returns MC_OK, or MC_ERR_ARG for NULL pointers, MC_ERR_DEPTH for a depth the octree does not
  * have, MC_ERR_SIZE for a target larger than MC_TARGET_MAX on a side or empty. */
 int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned depth, const mc_octree_options *opt,

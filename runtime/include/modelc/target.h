@@ -41,6 +41,7 @@ typedef struct mc_stats {
     uint32_t polls;    /* abort polls made */
     int aborted;       /* the frame was given up: the target holds a partial image */
     uint32_t depth;    /* the level drawn (octree_render.h: the level of detail may draw shallower) */
+    uint32_t culled;   /* back-facing nodes skipped (octree_render.h, mc_cull) */
 } mc_stats;
 
 /* Empties the target: every depth MC_DEPTH_EMPTY, every colour 0. */
