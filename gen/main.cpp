@@ -70,6 +70,10 @@ int main(int argc, char **argv) {
         ->check(CLI::Range(1, MC_MAX_DEPTH))->capture_default_str();
     app.add_option("--spacing", vox.spacing, "mesh sampling grid spacing, in cells")
         ->check(CLI::Range(0.05, 1.0))->capture_default_str();
+    std::string point_fill = "auto";
+    app.add_option("--point-fill", point_fill, "point sets sparser than the grid (CGAL's average spacing 0.3 cells "
+                   "or more): auto fills in the surface between the points (gen/point_fill.hpp); off: one cell per point")
+        ->check(CLI::IsMember({"auto", "off"}))->capture_default_str();
     app.add_option("--palette", palette, "most palette entries")->check(CLI::Range(1, 256))->capture_default_str();
     app.add_option("--chunk-bytes", emit.chunk_bytes, "most bytes in one generated array")
         ->check(CLI::Range(64, 1 << 30))->capture_default_str();
@@ -211,7 +215,9 @@ int main(int argc, char **argv) {
                 if (!f) throw std::runtime_error("--dump-pmesh-level " + dump_pmesh + ": cannot write");
             }
         }
+        vox.point_fill = point_fill == "auto";
         mc::Voxels voxels = mc::voxelize(model, cube, input, vox, progress);
+        if (!model.is_mesh) emit.budget_extra.emplace_back("point_fill", voxels.fill.json());
         if (!dump_reference.empty()) mc::dump_reference(model, voxels, dump_reference);
         // --views: the cells to keep, whatever depth and palette the octree gets (empty: keep all)
         std::vector<uint8_t> keep;

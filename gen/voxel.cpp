@@ -139,27 +139,40 @@ void voxelize_mesh(const Model &m, const std::string &file, const Grid &grid, co
     }
 }
 
-void voxelize_points(const Model &m, const Grid &grid, Progress &progress,
-                     std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples) {
+void voxelize_points(const Model &m, const GridCube &cube, const Grid &grid, const VoxelOptions &opt,
+                     Progress &progress, std::unordered_map<uint64_t, Cell> &cells, uint64_t &samples,
+                     std::vector<FilledCell> &filled, PointFill &fill) {
     // Without colours, shade by normals: the file's, or PCA estimates (point_normals).
     if (m.colors.empty() && m.normals.empty()) progress.step("estimating normals");
     const std::vector<std::array<double, 3>> normals = point_normals(m);
     progress.step("voxelizing");
+    std::vector<std::array<double, 3>> colors(m.points.size());
     for (size_t i = 0; i < m.points.size(); i++) {
         const auto &p = m.points[i];
         Cell &c = cells[grid.code(p[0], p[1], p[2])];
         if (!m.colors.empty()) {
-            for (int a = 0; a < 3; a++) c.extra[a] += m.colors[i][a];
+            for (int a = 0; a < 3; a++) colors[i][a] = m.colors[i][a];
         } else {
             double g = 255.0 * frontal_light(Vector(normals[i][0], normals[i][1], normals[i][2]));
-            for (int a = 0; a < 3; a++) c.extra[a] += g;
+            colors[i] = {g, g, g};
         }
+        for (int a = 0; a < 3; a++) c.extra[a] += colors[i][a];
         c.count++;
         samples++;
         if ((i & 0xFFFF) == 0) progress.update(static_cast<double>(i), static_cast<double>(m.points.size()));
     }
     for (auto &kv : cells)
         for (int a = 0; a < 3; a++) kv.second.extra[a] /= kv.second.count;
+    // sparse for the grid: the surface between the points (point_fill.hpp)
+    fill.enabled = opt.point_fill;
+    std::vector<uint64_t> occupied;
+    if (fill.enabled) {
+        progress.step("filling between points");
+        occupied.reserve(cells.size());
+        for (const auto &kv : cells) occupied.push_back(kv.first);
+        std::sort(occupied.begin(), occupied.end());
+    }
+    filled = fill_points(m, colors, normals, cube, opt.depth, occupied, fill, progress);
 }
 
 }  // namespace
@@ -186,12 +199,13 @@ Voxels voxelize(const Model &model, const GridCube &cube, const std::string &fil
     out.depth = opt.depth;
     out.origin = grid.origin();
     out.cell = grid.cell();
+    std::vector<FilledCell> filled;   // point sets: cells between sparse points, ascending
     if (model.is_mesh)
         voxelize_mesh(model, file, grid, opt, progress, cells, out.samples);
     else
-        voxelize_points(model, grid, progress, cells, out.samples);
+        voxelize_points(model, cube, grid, opt, progress, cells, out.samples, filled, out.fill);
     if (cells.empty()) throw InputError(file, InputError::Where::none, 0, "no sample landed in the grid");
-    out.codes.reserve(cells.size());
+    out.codes.reserve(cells.size() + filled.size());
     for (const auto &kv : cells) out.codes.push_back(kv.first);
     std::sort(out.codes.begin(), out.codes.end());  // hash order is not deterministic across libraries
     out.rgb.reserve(out.codes.size());
@@ -199,6 +213,21 @@ Voxels voxelize(const Model &model, const GridCube &cube, const std::string &fil
         const Cell &cell = cells.at(c);
         out.rgb.push_back({cell.extra[0], cell.extra[1], cell.extra[2]});
         if (model.is_mesh) out.surface.push_back({cell.at[0], cell.at[1], cell.at[2]});
+    }
+    if (!filled.empty()) {   // merged in code order: both lists are ascending and disjoint
+        std::vector<uint64_t> codes;
+        std::vector<std::array<double, 3>> rgb;
+        codes.reserve(out.codes.size() + filled.size());
+        rgb.reserve(codes.capacity());
+        size_t i = 0, j = 0;
+        while (i < out.codes.size() || j < filled.size()) {
+            if (j == filled.size() || (i < out.codes.size() && out.codes[i] < filled[j].code))
+                codes.push_back(out.codes[i]), rgb.push_back(out.rgb[i]), i++;
+            else
+                codes.push_back(filled[j].code), rgb.push_back(filled[j].rgb), j++;
+        }
+        out.codes = std::move(codes);
+        out.rgb = std::move(rgb);
     }
     return out;
 }

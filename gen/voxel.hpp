@@ -5,6 +5,7 @@
 #include <vector>
 #include "model.hpp"
 #include "normalize.hpp"
+#include "point_fill.hpp"
 #include "progress.hpp"
 
 namespace mc {
@@ -12,6 +13,7 @@ namespace mc {
 struct VoxelOptions {
     int depth = 8;            // grid of 2^depth cells per side
     double spacing = 0.5;     // mesh sampling grid spacing, in cells
+    bool point_fill = true;   // point sets: fill the surface between sparse points (point_fill.hpp)
 };
 
 struct Voxels {
@@ -24,6 +26,7 @@ struct Voxels {
     // meshes: one point on the surface per cell (the surface point nearest its samples' centroid),
     // where visibility rays start; empty for point sets
     std::vector<std::array<double, 3>> surface;
+    PointFill fill;                   // point sets: what point_fill.hpp added
     // The grid cube the cells divide (origin and cell are all it takes).
     GridCube cube() const {
         GridCube c;

@@ -30,6 +30,7 @@ suites=(
     tests/gen/clip.sh         # near-plane and guard-band clipping in whole frames: eye inside, magnified, random views
     tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
     tests/render/suite.sh     # renders against the double-precision reference
+    tests/points/suite.sh     # sparse point sets filled at bake time: closed surfaces, under 2 % background or far side
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
