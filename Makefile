@@ -15,6 +15,7 @@
 #   make bench-track             the tracker: time and error on synthetic and ViSP's real cube sequences, beside ViSP (make deps-bench)
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
+#   make bench-views             the point renderer at every view (zoom, size, perspective, deeper bakes), level of detail on and off, beside Mesa
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -205,6 +206,7 @@ test:
 
 bench: $(MODELC) models
 	@tests/bench/run.sh
+	@tests/bench/views.sh
 
 # run time against error: depth 5..10, MC_FRAC_BITS 8..24, the float build (tests/accuracy/pos_single.h) and
 # exact double-precision positions against the mesh reference: tests/bench/accuracy.{csv,png} and a RESULTS.md section (tests/accuracy/bench.sh)
@@ -253,6 +255,13 @@ bench-lod-auto: $(MODELC) models
 .PHONY: bench-lod-error
 bench-lod-error: $(MODELC) models
 	@tests/bench/lod_error.sh
+
+# the point renderer at every view: zoom 0.25, 640x480, perspective, the depth-9 and depth-10 bakes, with the
+# screen-space level of detail on and off; instructions per frame and per drawn leaf, ms beside Mesa llvmpipe
+# on one thread, PSNR against the mesh reference (a RESULTS.md section; make bench runs it too, after run.sh)
+.PHONY: bench-views
+bench-views: $(MODELC) models
+	@tests/bench/views.sh
 
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models

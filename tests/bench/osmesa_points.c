@@ -9,6 +9,7 @@
  *
  *   osmesa_points [--frames N] [--size WxH] [--views K] [--ppm FILE] [--mask FILE]
  *                 [--image-yaw U] [--ply FILE] [--ply-rgb FILE] [--no-bench]
+ *                 [--zoom Z] [--perspective] [--footprint]
  *
  * --frames N   time N frames of one full turn (yaw = i * 4096 / N modelc angle units, as the viewer's
  *              --bench does): glClear + glDrawArrays + glFinish each, print the median wall-clock time
@@ -20,6 +21,16 @@
  * --mask FILE  write that frame's coverage (255 = drawn) as a binary PGM
  * --ply FILE   write the cells' integer coordinates as an ASCII PLY point cloud (for draco_encoder);
  *              --ply-rgb FILE the same with the palette colours
+ * --zoom Z     modelc's zoom: the cube's side spans Z times the shorter screen side (default 1)
+ * --perspective  modelc's perspective (xform.h): the eye 2 cube sides from the model's centre (the default
+ *              mc_view eye), screen x = w/2 + S eye q.x / (eye - q.z) with S = zoom * min(w, h), likewise y;
+ *              glFrustum with its near and far planes at the model's bounding sphere
+ * --footprint  point size = modelc's zoom footprint (MC_SPLAT_ZOOM, octree_render.h) of the bake's leaves:
+ *              s = ceil(leaf side on screen), 1..16 pixels, once per frame in orthographic (glPointSize), per
+ *              point in perspective (a GLSL 1.20 vertex shader writing gl_PointSize = ceil(side * eye / d)
+ *              from the point's eye-space distance); prints "point size: ..."
+ * Without these three the program draws and prints exactly what it did before they existed (one-pixel
+ * points, zoom 1, orthographic).
  * Run with LP_NUM_THREADS=0 to keep llvmpipe on one thread.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -28,6 +39,7 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +51,9 @@
 #include "timing.h"   /* runtime/front/host: clocks, medians */
 
 #define ANGLE_FULL 4096
+#define EYE 2.0            /* mc_view_default's eye distance, cube sides */
+#define HALF_SQRT3 0.8660254037844386
+#define SPLAT_MAX 16       /* config.h MC_SPLAT_MAX */
 
 typedef struct vertex {
     float x, y, z;
@@ -47,6 +62,11 @@ typedef struct vertex {
 
 static int w = 320, h = 240;
 static GLsizei npoints;
+static double zoom = 1;
+static int perspective;
+
+/* S: pixels per cube side (modelc's zoom * min(w, h)) */
+static double cube_pixels(void) { return zoom * (w < h ? w : h); }
 
 /* One frame of the turn at `yaw_units` (modelc angle units): what is timed. */
 static void draw_frame(int32_t yaw_units)
@@ -54,7 +74,8 @@ static void draw_frame(int32_t yaw_units)
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glMatrixMode(GL_MODELVIEW);
     glLoadIdentity();
-    double s = (w < h ? w : h);          /* zoom 1: cube side = shorter screen side, in pixels */
+    double s = cube_pixels();            /* the cube's side in pixels: zoom * shorter screen side */
+    if (perspective) glTranslated(0, 0, -s * EYE);   /* the eye EYE cube sides from the centre */
     glScaled(s, s, s);
     /* R = Rz(roll) * Rx(pitch) * Ry(yaw); roll = pitch = 0 here */
     glRotated(0.0, 0, 0, 1);
@@ -109,14 +130,57 @@ static int write_ply(const char *path, const bench_cell *cells, uint32_t n, cons
     return fclose(f);
 }
 
+/* --footprint in perspective: each point's size from its eye-space distance d (pixels, as the modelview
+ * above scales): modelc's leaf side at magnification eye / dist, rounded up, 1..SPLAT_MAX. */
+static int footprint_shader(double leaf_px)
+{
+    static const char *vs =
+        "#version 120\n"
+        "uniform float k;  /* leaf side at the model's centre (pixels) * S * eye */\n"
+        "void main() {\n"
+        "    vec4 e = gl_ModelViewMatrix * gl_Vertex;\n"
+        "    gl_Position = gl_ProjectionMatrix * e;\n"
+        "    gl_FrontColor = gl_Color;\n"
+        "    gl_PointSize = clamp(ceil(k / -e.z - 1e-4), 1.0, 16.0);  /* SPLAT_MAX */\n"
+        "}\n";
+    static const char *fs = "#version 120\nvoid main() { gl_FragColor = gl_Color; }\n";
+    GLuint prog = glCreateProgram();
+    const char *src[2] = {vs, fs};
+    const GLenum kinds[2] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER};
+    for (int i = 0; i < 2; i++) {
+        GLuint sh = glCreateShader(kinds[i]);
+        GLint ok = 0;
+        glShaderSource(sh, 1, &src[i], NULL);
+        glCompileShader(sh);
+        glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            char log[512];
+            glGetShaderInfoLog(sh, sizeof log, NULL, log);
+            fprintf(stderr, "osmesa_points: shader: %s\n", log);
+            return -1;
+        }
+        glAttachShader(prog, sh);
+    }
+    GLint ok = 0;
+    glLinkProgram(prog);
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) { fprintf(stderr, "osmesa_points: shader program does not link\n"); return -1; }
+    glUseProgram(prog);
+    glUniform1f(glGetUniformLocation(prog, "k"), (GLfloat)(leaf_px * cube_pixels() * EYE));
+    glEnable(GL_VERTEX_PROGRAM_POINT_SIZE);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    int frames = 200, views = 20, bench = 1;
+    int frames = 200, views = 20, bench = 1, footprint = 0;
     long image_yaw = 0;
     const char *ppm = NULL, *mask = NULL, *ply = NULL, *ply_rgb = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--no-bench")) { bench = 0; continue; }
+        if (!strcmp(a, "--perspective")) { perspective = 1; continue; }
+        if (!strcmp(a, "--footprint")) { footprint = 1; continue; }
         if (!v) { fprintf(stderr, "osmesa_points: %s needs a value\n", a); return 2; }
         i++;
         if (!strcmp(a, "--frames")) frames = atoi(v);
@@ -127,6 +191,7 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--image-yaw")) image_yaw = atol(v);
         else if (!strcmp(a, "--ply")) ply = v;
         else if (!strcmp(a, "--ply-rgb")) ply_rgb = v;
+        else if (!strcmp(a, "--zoom")) { zoom = atof(v); if (!(zoom >= 1.0 / 64 && zoom <= 64)) return 2; }
         else { fprintf(stderr, "osmesa_points: unknown option %s\n", a); return 2; }
     }
     if (frames < 1 || views < 0 || w < 1 || h < 1 || w > 4096 || h > 4096) return 2;
@@ -176,13 +241,33 @@ int main(int argc, char **argv)
     glLoadIdentity();
     /* pixels, origin at the screen centre (GL window y up; images are flipped on output);
      * eye-space z in [-s, s] covers the bounding sphere, nearer (larger z) = smaller depth */
-    double s = (w < h ? w : h);
-    glOrtho(-w / 2.0, w / 2.0, -h / 2.0, h / 2.0, -s, s);
+    double s = cube_pixels();
+    if (perspective) {
+        /* x_window = w/2 + f x_e / d with f = S eye (pixels) and d = -z_e: the frustum's half width at
+         * the near plane n is n (w/2) / f; n and f bound the sphere (eye -+ sqrt(3)/2 cube sides) */
+        double f = s * EYE, n = s * (EYE - HALF_SQRT3) * 0.99, fa = s * (EYE + HALF_SQRT3) * 1.01;
+        glFrustum(-n * w / 2.0 / f, n * w / 2.0 / f, -n * h / 2.0 / f, n * h / 2.0 / f, n, fa);
+    } else {
+        glOrtho(-w / 2.0, w / 2.0, -h / 2.0, h / 2.0, -s, s);
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_POINT_SMOOTH);
     glDisable(GL_DITHER);
     glPointSize(1.0f);
+    if (footprint) {
+        /* modelc's zoom footprint of a leaf of the bake's depth: its side S / 2^D pixels, rounded up */
+        double leaf = s / (double)(1u << scene->depth);
+        if (perspective) {
+            if (footprint_shader(leaf)) return 1;
+            printf("point size: per point, ceil(%.4f * eye / distance) pixels, 1..%d\n", leaf, SPLAT_MAX);
+        } else {
+            double size = ceil(leaf - 1e-9);
+            size = size < 1 ? 1 : size > SPLAT_MAX ? SPLAT_MAX : size;
+            glPointSize((GLfloat)size);
+            printf("point size: %.0f\n", size);
+        }
+    }
     glClearColor(0, 0, 0, 0);
     glClearDepth(1.0);
 
