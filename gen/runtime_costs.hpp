@@ -36,7 +36,7 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 63768, 6948, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 65280, 8460, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
@@ -79,17 +79,18 @@ struct Frame {
     constexpr size_t bytes() const { return arm > host ? arm : host; }
 };
 inline constexpr Frame kFrames[] = {
-    {"mc_octree_render", 2520, 2736},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_octree_render", 2520, 2752},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
     {"mc_octree_lod_depth", 56, 80},
     {"culled", 24, 24},
     {"visit", 96, 128},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 72},
+    {"draw_inside_squares", 144, 120},
     {"draw_checked", 64, 80},
     {"leaves_perspective", 80, 128},
     {"leaves_clipped", 56, 72},
     {"draw_square", 28, 16},
-    {"classify", 8, 8},
+    {"classify", 16, 8},
     {"mc_mul_shift64", 24, 8},
     {"mc_view_clamp", 24, 8},
     {"mc_view_rotation", 176, 272},
@@ -117,7 +118,7 @@ constexpr size_t frame(const char *fn) { return frame_in(kFrames, fn); }
 //             -> classify
 //             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit recurses
 //                only into children at levels <= d-3, visit_inside likewise), then the deepest of
-//                  draw_inside
+//                  draw_inside, draw_inside_squares (footprints over a pixel)
 //                  draw_checked -> [leaves] -> leaves_perspective -> mc_mul_shift64 | draw_square
 //                                           | leaves_clipped -> draw_square
 //                  classify, [skip_subtree], culled (a leaf: it skips a culled subtree inline)
@@ -133,7 +134,8 @@ constexpr size_t stack_setup() {
 constexpr size_t stack_tail() {
     const size_t leaves = max2(frame("leaves_perspective") + max2(frame("mc_mul_shift64"), frame("draw_square")),
                                frame("leaves_clipped") + frame("draw_square"));
-    return max2(max2(frame("draw_inside"), frame("culled")), max2(frame("draw_checked") + leaves, frame("classify")));
+    return max2(max2(max2(frame("draw_inside"), frame("draw_inside_squares")), frame("culled")),
+                max2(frame("draw_checked") + leaves, frame("classify")));
 }
 constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }
 constexpr int walk_frames(int depth) { return depth > 3 ? depth - 2 : 1; }

@@ -41,6 +41,7 @@ typedef struct ctx {
     int perspective;
     int inside;                          /* 0: every node drawn with checks (perspective, splats) */
     int32_t splat;                       /* orthographic footprint side, pixels (1: one pixel) */
+    mc_pos square_margin;                /* how far its squares reach past the leaves, Q F (0: none) */
     mc_pos_wide leaf_side;               /* perspective zoom splats: leaf side at magnification 1,
                                           * Q F pixels; 0: one pixel per leaf */
     mc_pos cx, cy;                       /* perspective: screen centre plus translation, Q F */
@@ -278,13 +279,96 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
 #undef lz
 }
 
+/* draw_inside for footprints of s > 1 pixels (MC_SPLAT_ZOOM, orthographic; c->splat): each leaf an
+ * s x s square with no clipping, since the reach then holds the squares too (setup_vectors). The
+ * square's top-left pixel is the leaf's centre less (s - 1) / 2 pixels, as draw_square has it; that
+ * offset is folded into the node's centre once. s is a constant where the caller is inlined for 2. */
+/* The squares' depth test: the branch (the four pixels of a leaf mostly win or lose together, and
+ * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
+#define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
+/* Test hook: 1 draws every footprint above one pixel through the clipped path, so a test can
+ * compare the two (tests/stress: the other form of the renderer). */
+#ifndef MC_TEST_CLIPPED_SQUARES
+#define MC_TEST_CLIPPED_SQUARES 0
+#endif
+MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z,
+                                     const int32_t s)
+{
+    const levelvec *restrict L = &c->v[l3];
+    uint8_t *restrict fb = c->fb;
+    uint16_t *restrict zb = c->zb;
+    const intptr_t w = c->w;
+    const mc_pos half = POS_HALF_PIXELS(s - 1);
+    xy = POS2_ADD(xy, POS2(-half, -half));
+    mc_cursor *const mc = &c->mask[l3 + 2];
+    const uint8_t *mp = mc->p, *mend = mc->end;
+    const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;
+    uint32_t points = 0;
+    for (; m; m &= m - 1) {
+        const unsigned k3 = mc_ctz(m);
+        const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);
+        const mc_pos zz2 = z + L[0].z[k3];
+        unsigned m2 = *masks2++;
+        if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }
+        const uint8_t *masks1 = mp;
+        mp += mc_popcount8(m2);
+        if (col >= cend) {
+            points += (uint32_t)(col - first);
+            c->color.p = col;
+            mc_cursor_refill(&c->color);
+            col = first = c->color.p;
+            cend = c->color.end;
+        }
+        for (; m2; m2 &= m2 - 1) {
+            const unsigned k2 = mc_ctz(m2);
+            const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);
+            const mc_pos pz = zz2 + L[1].z[k2];
+            for (unsigned cm = *masks1++; cm; cm &= cm - 1, col++) {
+                const unsigned j = mc_ctz(cm);
+                const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);
+                const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);
+                const uint16_t depth = (uint16_t)(pz + L[2].z[j]);
+                MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);
+                if (s == 2) {   /* written out: the loops below are not unrolled at -O2 */
+                    SQUARE_TEST(i, depth, col) SQUARE_TEST(i + 1, depth, col)
+                    SQUARE_TEST(i + w, depth, col) SQUARE_TEST(i + w + 1, depth, col)
+                } else {
+                    for (int32_t dy = 0; dy < s; dy++)
+                        for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, col)
+                }
+            }
+        }
+    }
+    points += (uint32_t)(col - first);   /* every leaf here is on screen */
+    mc->p = mp;
+    c->color.p = col;
+    c->points += points;
+}
+
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void draw_inside_squares(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
+{
+    if (c->splat == 2) inside_squares(c, l3, m, masks2, xy, z, 2);   /* 640x480 at depth 8: the common one */
+    else inside_squares(c, l3, m, masks2, xy, z, c->splat);
+}
+
+/* The children of a level d-3 node wholly on screen: one pixel or squares a leaf. */
+static inline void draw_level3(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
+{
+    if (c->splat > 1) draw_inside_squares(c, l3, m, masks2, xy, z);
+    else draw_inside(c, l3, m, masks2, xy, z);
+}
+
 /* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen (or drawn with
  * checks anyway: c->inside is 0), 1 wholly on screen, -1 wholly off screen (orthographic only). */
 static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l)
 {
     const mc_pos rx = c->reach_x[l], ry = c->reach_y[l];
-    if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;
-    return c->inside && x - rx >= 0 && y - ry >= 0 && x + rx < c->wf && y + ry < c->hf;
+    if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;   /* by the leaves' centres */
+    const mc_pos sx = rx + c->square_margin, sy = ry + c->square_margin;            /* and their squares */
+    return c->inside && x - sx >= 0 && y - sy >= 0 && x + sx < c->wf && y + sy < c->hf;
 }
 
 /* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
@@ -349,7 +433,7 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
     if (l + 3 == c->d) {
-        draw_inside(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), xy, z);
+        draw_level3(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), xy, z);
         return;
     }
     for (; m; m &= m - 1) {
@@ -383,7 +467,7 @@ static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
             skip_subtree(c, l + 1);
         } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
             const uint8_t *cm = mc_cursor_take(&c->mask[l + 1], 1);
-            if (where > 0) draw_inside(c, l, 1u << k, cm, POS2(x, y), z);
+            if (where > 0) draw_level3(c, l, 1u << k, cm, POS2(x, y), z);
             else draw_checked(c, l + 1, *cm, cx, cy, cz);
         } else if (where > 0) {
             visit_inside(c, l + 1, POS2(cx, cy), cz);
@@ -453,7 +537,11 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
         if (c->perspective) c->leaf_side = leaf;
         else c->splat = pos_footprint(leaf);
     }
-    c->inside = !c->perspective && c->splat == 1;
+    /* wholly on screen: a node's leaves, and with footprints their squares, which reach (s - 1) / 2
+     * pixels to the top and left of the leaf's centre and s / 2 to the bottom and right (plus one
+     * pixel for the floor of the corner) */
+    c->inside = !c->perspective && (c->splat == 1 || !MC_TEST_CLIPPED_SQUARES);
+    c->square_margin = c->splat > 1 ? POS_HALF_PIXELS(c->splat) + POS_PIXELS(1) : 0;
 #if MC_DEPTH_SELECT
     /* draw_inside needs a pixel outside the reach of each level d-3 node (spare_pixel): on targets
      * so small that a node's reach spans both their width and height, every node is checked */

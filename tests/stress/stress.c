@@ -392,7 +392,7 @@ static void one_view(const mc_octree *scene, counters *k)
         if (memcmp(at.color, t.color, n) || memcmp(at.depth, t.depth, n * sizeof at.depth[0])) {
             size_t p = 0;
             while (p < n && at.color[p] == t.color[p] && at.depth[p] == t.depth[p]) p++;
-            fail(&k->alt_fail, STRESS_ALT_FORM " differs at pixel %zu (%zu, %zu): %s", p, p % w, p / w, what);
+            fail(&k->alt_fail, STRESS_ALT_FORM " differs at pixel %zu (%zu, %zu): colour %u, depth %u there, %u, %u here: %s", p, p % w, p / w, at.color[p], at.depth[p], t.color[p], t.depth[p], what);
         }
         k->alt_frames++;
     }

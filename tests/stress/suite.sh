@@ -45,14 +45,14 @@ build() {
     local prog=$1
     shift
     # shellcheck disable=SC2068
-    gcc -std=c99 "$@" "${ALT[@]}" -Dmc_octree_render=mc_octree_render_alt -Dmc_octree_lod_depth=mc_octree_lod_depth_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
+    gcc -std=c99 "$@" "${ALT[@]}" -DMC_TEST_CLIPPED_SQUARES=1 -Dmc_octree_render=mc_octree_render_alt -Dmc_octree_lod_depth=mc_octree_lod_depth_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
         -Iruntime/include -c -o "$prog.alt.o" runtime/src/octree_render.c >"$prog.log" 2>&1 || return 1
     # shellcheck disable=SC2068
     gcc -std=c99 "$@" -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
         -Iruntime/include -c -o "$prog.alt-target.o" runtime/src/target.c >>"$prog.log" 2>&1 || return 1
     # shellcheck disable=SC2068
     gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" "${LEAVES[@]}" -DMC_DEPTH_SELECT=1 -DSTRESS_ALT=1 \
-        "-DSTRESS_ALT_FORM=\"$ALT_NAME\"" -Wall -Wextra -Werror \
+        "-DSTRESS_ALT_FORM=\"$ALT_NAME; footprints over a pixel through the clipped path\"" -Wall -Wextra -Werror \
         -Iruntime/include -Iruntime/ref '-DMC_PLOT_HOOK(fx,fy,c)=stress_point(fx,fy,c)' -include tests/stress/hook.h \
         -o "$prog" tests/stress/stress.c runtime/ref/ref.c runtime/src/*.c "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
 }

@@ -5,8 +5,9 @@
  * level above the drawn one sets pixels directly instead of recursing (the paper's Algorithm 2),
  * its children visited by walking the set bits of the mask. Each drawn leaf is one pixel (or a
  * footprint, mc_splat), depth tested. Subtrees whose bounding sphere lies wholly off screen are
- * skipped (their data is stepped over, not decoded); subtrees wholly on screen are drawn without
- * per-point bounds checks.
+ * skipped (their data is stepped over, not decoded); subtrees wholly on screen, their leaves'
+ * footprints included, are drawn without per-point bounds checks (one pixel, or one unclipped
+ * square, a leaf).
  *
  * No heap, no floating point, no recursion deeper than the drawn depth (at most MC_MAX_DEPTH frames
  * of the renderer's internal node function). Buffers belong to the caller; while mc_octree_render
