@@ -27,4 +27,7 @@ Mesh to_cgal(const Model &m);
 // estimates from each point's 12 nearest neighbours (CGAL); empty when it has colours and no normals.
 std::vector<std::array<double, 3>> point_normals(const Model &m);
 
+// CGAL's PCA normal estimate from each point's 12 nearest neighbours (unoriented).
+std::vector<std::array<double, 3>> pca_normals(const Model &m);
+
 }  // namespace mc

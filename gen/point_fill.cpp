@@ -25,21 +25,6 @@ std::vector<Point> cgal_points(const Model &m) {
     return pts;
 }
 
-// PCA normals from 12 neighbours, as point_normals estimates them for shading (cgal_mesh.cpp).
-std::vector<std::array<double, 3>> pca_normals(const Model &m) {
-    std::vector<std::pair<Point, Vector>> pts;
-    pts.reserve(m.points.size());
-    for (const auto &p : m.points) pts.emplace_back(Point(p[0], p[1], p[2]), Vector(0, 0, 0));
-    CGAL::pca_estimate_normals<CGAL::Sequential_tag>(
-        pts, 12,
-        CGAL::parameters::point_map(CGAL::First_of_pair_property_map<std::pair<Point, Vector>>())
-            .normal_map(CGAL::Second_of_pair_property_map<std::pair<Point, Vector>>()));
-    std::vector<std::array<double, 3>> n;
-    n.reserve(pts.size());
-    for (const auto &pn : pts) n.push_back({pn.second.x(), pn.second.y(), pn.second.z()});
-    return n;
-}
-
 // Each point's distance to its k-th nearest other point (a duplicate counts, at distance 0), model
 // units; 0 for a set of at most k points.
 std::vector<double> kth_neighbour(const Model &m, unsigned k) {

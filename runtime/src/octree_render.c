@@ -218,12 +218,48 @@ static intptr_t spare_pixel(const ctx *c, unsigned l, mc_pos2 xy)
 }
 #endif
 
+/* The walk draw_inside and draw_inside_squares share: the level d-2 children (mask m) of a level d-3
+ * node centred at (xy, z), each one's level d-1 children's mask cm with its centre (pxy, pz), LEAF_BODY
+ * drawing their leaves and moving col past their colours. Masks of level d-1 come one sibling group
+ * per d-2 node and colours one cousin group per d-2 node, each from one chunk (octree.h). Everything
+ * the loops touch is in locals, so nothing is reloaded after each pixel store: the two cursors too,
+ * written back before a refill and at the end (a colour store may alias any field of *c). */
+#define WALK_LEVEL3(LEAF_BODY)                                                                     \
+    mc_cursor *const mc = &c->mask[l3 + 2];                                                        \
+    const uint8_t *mp = mc->p, *mend = mc->end;                                                    \
+    const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;                           \
+    uint32_t points = 0;                                                                           \
+    for (; m; m &= m - 1) {                                                                        \
+        const unsigned k3 = mc_ctz(m);                                                             \
+        const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);                                             \
+        const mc_pos zz2 = z + L[0].z[k3];                                                         \
+        unsigned m2 = *masks2++;                                                                   \
+        if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }          \
+        const uint8_t *masks1 = mp;                                                                \
+        mp += mc_popcount8(m2);                                                                    \
+        if (col >= cend) {                                                                         \
+            points += (uint32_t)(col - first);                                                     \
+            c->color.p = col;                                                                      \
+            mc_cursor_refill(&c->color);                                                           \
+            col = first = c->color.p;                                                              \
+            cend = c->color.end;                                                                   \
+        }                                                                                          \
+        for (; m2; m2 &= m2 - 1) {                                                                 \
+            const unsigned k2 = mc_ctz(m2);                                                        \
+            const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);                                        \
+            const mc_pos pz = zz2 + L[1].z[k2];                                                    \
+            const unsigned cm = *masks1++;                                                         \
+            LEAF_BODY                                                                              \
+        }                                                                                          \
+    }                                                                                              \
+    points += (uint32_t)(col - first); /* every leaf here is on screen */                          \
+    mc->p = mp;                                                                                    \
+    c->color.p = col;                                                                              \
+    c->points += points;
+
 /* Nodes at level d-2 wholly on screen, orthographic: the children of one node at level d-3 whose
- * mask is m (or just one of them: m = its child bit). Masks of level d-1 come one sibling group per
- * d-2 node and colours one cousin group per d-2 node, each from one chunk (octree.h). Everything the
- * loops touch is in locals, so nothing is reloaded after each pixel store: the two cursors too,
- * written back before a refill and at the end (a colour store may alias any field of *c). Not
- * inlined: there is one copy of the leaf code however many callers. */
+ * mask is m (or just one of them: m = its child bit), through WALK_LEVEL3. Not inlined: there is
+ * one copy of the leaf code however many callers. */
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((noinline))
 #endif
@@ -240,37 +276,7 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
     const uint16_t spare_depth = zb[spare];
     const uint8_t spare_color = fb[spare];
 #endif
-    mc_cursor *const mc = &c->mask[l3 + 2];
-    const uint8_t *mp = mc->p, *mend = mc->end;
-    const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;
-    uint32_t points = 0;
-    for (; m; m &= m - 1) {
-        const unsigned k3 = mc_ctz(m);
-        const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);
-        const mc_pos zz2 = z + L[0].z[k3];
-        unsigned m2 = *masks2++;
-        if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }
-        const uint8_t *masks1 = mp;
-        mp += mc_popcount8(m2);
-        if (col >= cend) {
-            points += (uint32_t)(col - first);
-            c->color.p = col;
-            mc_cursor_refill(&c->color);
-            col = first = c->color.p;
-            cend = c->color.end;
-        }
-        for (; m2; m2 &= m2 - 1) {
-            const unsigned k2 = mc_ctz(m2);
-            const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);
-            const mc_pos pz = zz2 + L[1].z[k2];
-            const unsigned cm = *masks1++;
-            DRAW_LEAVES(cm)
-        }
-    }
-    points += (uint32_t)(col - first);   /* every leaf here is on screen */
-    mc->p = mp;
-    c->color.p = col;
-    c->points += points;
+    WALK_LEVEL3(DRAW_LEAVES(cm))
 #if MC_DEPTH_SELECT
     zb[spare] = spare_depth;
     fb[spare] = spare_color;
@@ -300,49 +306,24 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     const intptr_t w = c->w;
     const mc_pos half = POS_HALF_PIXELS(s - 1);
     xy = POS2_ADD(xy, POS2(-half, -half));
-    mc_cursor *const mc = &c->mask[l3 + 2];
-    const uint8_t *mp = mc->p, *mend = mc->end;
-    const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;
-    uint32_t points = 0;
-    for (; m; m &= m - 1) {
-        const unsigned k3 = mc_ctz(m);
-        const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);
-        const mc_pos zz2 = z + L[0].z[k3];
-        unsigned m2 = *masks2++;
-        if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }
-        const uint8_t *masks1 = mp;
-        mp += mc_popcount8(m2);
-        if (col >= cend) {
-            points += (uint32_t)(col - first);
-            c->color.p = col;
-            mc_cursor_refill(&c->color);
-            col = first = c->color.p;
-            cend = c->color.end;
-        }
-        for (; m2; m2 &= m2 - 1) {
-            const unsigned k2 = mc_ctz(m2);
-            const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);
-            const mc_pos pz = zz2 + L[1].z[k2];
-            for (unsigned cm = *masks1++; cm; cm &= cm - 1, col++) {
-                const unsigned j = mc_ctz(cm);
-                const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);
-                const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);
-                const uint16_t depth = (uint16_t)(pz + L[2].z[j]);
-                MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);
-                if (s == 2) {   /* written out: the loops below are not unrolled at -O2 */
-                    SQUARE_TEST(i, depth, col) SQUARE_TEST(i + 1, depth, col)
-                    SQUARE_TEST(i + w, depth, col) SQUARE_TEST(i + w + 1, depth, col)
-                } else {
-                    for (int32_t dy = 0; dy < s; dy++)
-                        for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, col)
-                }
-            }
-        }
+    /* each leaf a square; for s = 2 written out (the loops are not unrolled at -O2) */
+#define SQUARE_LEAVES                                                                              \
+    for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
+        const unsigned j = mc_ctz(lm);                                                             \
+        const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                               \
+        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
+        const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
+        MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
+        if (s == 2) {                                                                              \
+            SQUARE_TEST(i, depth, col) SQUARE_TEST(i + 1, depth, col)                              \
+            SQUARE_TEST(i + w, depth, col) SQUARE_TEST(i + w + 1, depth, col)                      \
+        } else {                                                                                   \
+            for (int32_t dy = 0; dy < s; dy++)                                                     \
+                for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, col)        \
+        }                                                                                          \
     }
-    points += (uint32_t)(col - first);   /* every leaf here is on screen */
-    mc->p = mp;
-    c->color.p = col;
-    c->points += points;
+    WALK_LEVEL3(SQUARE_LEAVES)
+#undef SQUARE_LEAVES
 }
 
 #if defined(__GNUC__) || defined(__clang__)
