@@ -114,7 +114,6 @@ constexpr size_t frame(const char *fn) { return frame_in(kFrames, fn); }
 //   mc_octree_render -> mc_view_clamp
 //             -> mc_octree_lod_depth -> mc_view_clamp
 //             -> [setup_vectors] -> mc_view_rotation -> matmul | mc_cos -> mc_sin ; mc_mul_shift64
-//             -> [setup_cones] -> mc_view_rotation
 //             -> classify
 //             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit recurses
 //                only into children at levels <= d-3, visit_inside likewise), then the deepest of

@@ -1,4 +1,9 @@
-/* Point-octree renderer: see modelc/octree_render.h for what it promises. */
+/* Point-octree renderer: see modelc/octree_render.h for what it promises.
+ *
+ * Long because the walk is one concern with several hot paths (one pixel a leaf, unclipped squares,
+ * clipped and perspective leaves, culled subtrees) that share the walk's context and cursors; split
+ * into files, each path would need that context exported and the compiler could no longer inline
+ * them into the walk. */
 #include "modelc/octree_render.h"
 #include "modelc/bits.h"
 #include "modelc/chunk.h"
@@ -467,6 +472,8 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
 {
     int32_t r[3][3];
     mc_view_rotation(v, r);
+    /* towards the viewer in model axes, for the cones (setup_cones): the third row, Q30 -> Q14 */
+    for (int j = 0; j < 3; j++) c->cone_w[j] = (int32_t)mc_round_shift(r[2][j], 16);
     uint32_t side = (uint32_t)(c->w < c->h ? c->w : c->h);
     int64_t scale = (int64_t)v->zoom * side;       /* pixels per cube side, Q16 */
     const int32_t radius = (int32_t)mc_mul_shift64(scale, HALF_SQRT3_Q30, 30 + 16 - F) + 2 * MC_MAX_DEPTH;
@@ -536,16 +543,13 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
     return (radius >> c->zshift) + MC_MAX_DEPTH;   /* one depth unit of room per level's rounding */
 }
 
-/* Culling (octree_render.h, mc_cull): the cones of level d-3 and the direction towards the viewer,
- * the rotation's third row (screen z points at the viewer). */
+/* Culling (octree_render.h, mc_cull): the cones of level d-3; the direction towards the viewer,
+ * the rotation's third row (screen z points at the viewer), is setup_vectors'. */
 static void setup_cones(ctx *c, const mc_octree *o, const mc_view *v, mc_cull cull)
 {
     c->cone_level = NO_CONES;
     c->culled = 0;
     if (cull == MC_CULL_OFF || c->d < 4 || !o->levels[c->d - 3].cones) return;
-    int32_t r[3][3];
-    mc_view_rotation(v, r);
-    for (int j = 0; j < 3; j++) c->cone_w[j] = (int32_t)mc_round_shift(r[2][j], 16);   /* Q30 -> Q14 */
     c->cone_spread = 0;
     if (c->perspective) {
         if (v->eye <= HALF_SQRT3_Q16) return;   /* the eye inside the sphere: any direction */

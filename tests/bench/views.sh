@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # make bench-views: the point renderer at every view, with its screen-space level of detail on and off,
-# side by side with Mesa llvmpipe on one thread in the same run (issue 11: "pay for what the screen
-# shows, at every view"). Writes the "views" section of tests/bench/RESULTS.md (or of the file given as
+# side by side with Mesa llvmpipe on one thread in the same run: what each view costs against what its
+# pixels need. Writes the "views" section of tests/bench/RESULTS.md (or of the file given as
 # $1) through tests/bench/section.sh.
 #
 # bunny00 baked at depths 8, 9 and 10 (build/bench/views/bNN, as `modelc MODEL -o build/bench/views
@@ -421,7 +421,7 @@ for d in depths:
         A(f"| depth {d} | {lod} | {p['depth']} | {p['psnr']:.2f} | {p['worst']:.2f} | {100 * p['cov']:.2f} % | {irf} |")
 A("")
 
-# issue 11's figures, each computed from the rows above
+# the renderer's targets for these views, each computed from the rows above
 ok = lambda c: "**meets**" if c else "**misses**"
 A("Issue 11's figures (level of detail on, the viewer's default):")
 A("")

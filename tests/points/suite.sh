@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sparse point sets render as surfaces (issue 11; gen/point_fill.hpp fills the surface between the
+# Sparse point sets render as surfaces (gen/point_fill.hpp fills the surface between the
 # points at bake time). For each point set, baked at depth 8 and drawn by the runtime as the viewers
 # draw it (mc_octree_render, default splat, no hole filling) at 320x240, zoom 1, in nine views (yaw
 # 0 to 315 by 45 degrees, and pitch 60), tests/points/cover.c counts the pixels inside the mesh
