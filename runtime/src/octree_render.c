@@ -44,13 +44,20 @@ typedef struct ctx {
     unsigned zshift;                     /* depth buffer value = z >> zshift (see the top) */
     unsigned poll_level;                 /* level at which the abort callback is polled */
     int perspective;
-    int inside;                          /* 0: every node drawn with checks (perspective, splats) */
+    int exact;                           /* perspective leaves projected one by one (leaves()) */
+    int inside;                          /* 0: every node drawn with checks (small targets, splats) */
     int32_t splat;                       /* orthographic footprint side, pixels (1: one pixel) */
     mc_pos square_margin;                /* how far its squares reach past the leaves, Q F (0: none) */
     mc_pos_wide leaf_side;               /* perspective zoom splats: leaf side at magnification 1,
                                           * Q F pixels; 0: one pixel per leaf */
     mc_pos cx, cy;                       /* perspective: screen centre plus translation, Q F */
     mc_pos_wide eye, near;               /* perspective: eye distance and near plane, Q F pixels */
+    /* perspective, drawn level d >= 3: the exact vectors of levels d-3..d-1 (Q F, z too). v[d-3..d-1]
+     * hold each linear frame's instead, with z in depth-buffer units (linear_frame) */
+    levelvec pv[3];
+    mc_pos ball[2];                      /* how far a level d-3 / d-2 node's leaves lie from its centre */
+    mc_pos basis[2][3][3];               /* the step to a child along model axis j at levels d-3 and
+                                          * d-2, as the exact vectors are: [level][j][x, y, z], Q F */
     mc_abort_fn abort;
     void *user;
     uint32_t points, polls;
@@ -65,6 +72,9 @@ typedef struct ctx {
 } ctx;
 
 #define NO_CONES (MC_MAX_DEPTH + 1u)
+/* Perspective depths in depth-buffer units are offset by this: a linear frame's leaves sum three
+ * rounded depth vectors to a floored centre (linear_frame), and never go below 0. */
+#define FRAME_DEPTH_ROOM 3
 #define CONE_BYTES 7   /* octree.h */
 
 /* Steps over the subtree of one node at level l without drawing it: reads the masks of levels
@@ -108,10 +118,12 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
-    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos2 *v = c->v[l].xy;
+    const mc_pos *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
         unsigned k = mc_ctz(m);
-        mc_pos fx = x + vx[k], fy = y + vy[k];
+        const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
+        mc_pos fx = POS2_X(p), fy = POS2_Y(p);
         int32_t px = pos_floor(fx), py = pos_floor(fy);
         if ((uint32_t)px >= (uint32_t)c->w || (uint32_t)py >= (uint32_t)c->h) continue;
         uint16_t depth = (uint16_t)(z + vz[k]);
@@ -126,13 +138,13 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
     }
 }
 
-/* Leaves of one level d-1 node in perspective: each point divides by its own distance (exact, not
- * linearised, so it lands where the reference renderer, runtime/ref, puts it). Points nearer than the near plane
- * (1/64 cube side in front of the eye) are not drawn. */
-static void leaves_perspective(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
+/* Leaves of one level d-1 node in perspective, lv its exact vectors: each point divides by its own
+ * distance (exact, not linearised, so it lands where the reference renderer, runtime/ref, puts it).
+ * Points nearer than the near plane (1/64 cube side in front of the eye) are not drawn. */
+static void leaves_perspective(ctx *c, const levelvec *lv, unsigned m, mc_pos x, mc_pos y, mc_pos z,
+                               const uint8_t *col)
 {
-    const unsigned l = c->d - 1;
-    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos *vx = lv->x, *vy = lv->y, *vz = lv->z;
     for (; m; m &= m - 1, col++) {
         unsigned k = mc_ctz(m);
         mc_pos zk = z + vz[k];
@@ -143,7 +155,7 @@ static void leaves_perspective(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z,
         if (!pos_place(c->cx, pos_magnify(x + vx[k], q), c->wf, &fx) ||
             !pos_place(c->cy, pos_magnify(y + vy[k], q), c->hf, &fy)) continue;
         int32_t i = pos_floor(fy) * c->w + pos_floor(fx);
-        uint16_t depth = pos_depth(zk, c->zshift);
+        uint16_t depth = (uint16_t)(pos_depth(zk, c->zshift) + FRAME_DEPTH_ROOM);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
         if (c->leaf_side) {                               /* zoom splats: the leaf's side here */
@@ -154,10 +166,11 @@ static void leaves_perspective(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z,
     }
 }
 
-/* One node at level d-1 that may reach off screen, or any node in perspective or with footprints. */
+/* One node at level d-1 that may reach off screen, or any with footprints, or one projected leaf by
+ * leaf. */
 static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
-    if (c->perspective) leaves_perspective(c, m, x, y, z, col);
+    if (c->exact) leaves_perspective(c, &c->v[c->d - 1], m, x, y, z, col);
     else leaves_clipped(c, m, x, y, z, col);
 }
 
@@ -361,7 +374,8 @@ static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l)
  * with checks: it may reach off screen, or the projection is perspective. */
 static void draw_checked(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
 {
-    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos2 *v = c->v[l].xy;
+    const mc_pos *vz = c->v[l].z;
     if (l + 1 == c->d) {                                 /* only when d = 1: the root's leaves */
         leaves(c, m, x, y, z, mc_cursor_take(&c->color, mc_popcount8(m)));
         return;
@@ -373,7 +387,8 @@ static void draw_checked(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_
         unsigned cm = *masks++;
         const uint8_t *col = c->color.p;
         c->color.p += mc_popcount8(cm);
-        leaves(c, cm, x + vx[k], y + vy[k], z + vz[k], col);
+        const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
+        leaves(c, cm, POS2_X(p), POS2_Y(p), z + vz[k], col);
     }
 }
 
@@ -429,26 +444,32 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
     }
 }
 
-/* Visits one node at level l < d whose centre is at (x, y, z) and which may reach off screen (or
- * any node in perspective). Children wholly off screen are stepped over, children wholly on screen
+/* Visits one node at level l < d whose centre is at (x, y, z) and which may reach off screen (or,
+ * in perspective, any node above level d-3, whose children are not classified: persp_node projects
+ * level d-3). Children wholly off screen are stepped over, children wholly on screen
  * go to visit_inside / draw_inside, the rest are visited here. The last levels are drawn without
  * further calls (the paper's Algorithm 2, taken two levels further).
  * The abort callback is polled on entering a node at level MC_ABORT_LEVEL, or at level d-3 when
  * that is shallower (small depths), below which the walk makes no calls. */
-static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
+static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z);
+static void persp_node(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z);
+
+/* The children (mask m, already read) of a node at level l <= d-3 centred at (x, y, z); see visit. */
+static void visit_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
 {
-    if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    if (l == c->cone_level && culled(c, l)) return;
-    unsigned m = *mc_cursor_take(&c->mask[l], 1);
-    if (l + 2 >= c->d) {                                 /* d <= 2: the root draws everything */
-        draw_checked(c, l, m, x, y, z);
-        return;
-    }
-    const mc_pos *vx = c->v[l].x, *vy = c->v[l].y, *vz = c->v[l].z;
+    const mc_pos2 *v = c->v[l].xy;
+    const mc_pos *vz = c->v[l].z;
     for (; m; m &= m - 1) {
         unsigned k = mc_ctz(m);
-        mc_pos cx = x + vx[k], cy = y + vy[k], cz = z + vz[k];
-        int where = c->perspective ? 0 : classify(c, cx, cy, l + 1);
+        const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
+        mc_pos cx = POS2_X(p), cy = POS2_Y(p), cz = z + vz[k];
+        if (c->perspective && l + 3 < c->d) {            /* above the linear frames: nothing projected */
+            if (l + 4 == c->d) persp_node(c, l + 1, cx, cy, cz);
+            else visit(c, l + 1, cx, cy, cz);
+            if (c->aborted) return;
+            continue;
+        }
+        int where = classify(c, cx, cy, l + 1);
         if (where < 0) {
             skip_subtree(c, l + 1);
         } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
@@ -459,6 +480,136 @@ static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
             visit_inside(c, l + 1, POS2(cx, cy), cz);
         } else {
             visit(c, l + 1, cx, cy, cz);
+        }
+        if (c->aborted) return;
+    }
+}
+
+static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
+{
+    if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    if (l == c->cone_level && culled(c, l)) return;
+    unsigned m = *mc_cursor_take(&c->mask[l], 1);
+    if (l + 2 >= c->d) {                                 /* d <= 2: the root draws everything */
+        draw_checked(c, l, m, x, y, z);
+        return;
+    }
+    visit_children(c, l, m, x, y, z);
+}
+
+/* Perspective (d >= 3): sets up the first-order projection about the centre (x, y, z) of a node at
+ * level l0 = d-3 or d-2 (exact coordinates: x, y from the view axis, z with the +radius offset, Q F)
+ * when pos_linear_ok bounds its error for every leaf below by MC_LINEAR_ERROR / 256 pixel: the
+ * vectors of levels l0..d-1 in c->v (z in depth-buffer units, set once a frame), their reaches,
+ * the node's footprint and whether it may go the unchecked way. The node is then drawn as an
+ * orthographic one centred at (*sx, *sy, *sz). Returns 0 where the bound fails, the node reaches
+ * the near plane, or its numbers would leave the coordinate range. */
+static int linear_frame(ctx *c, unsigned l0, mc_pos x, mc_pos y, mc_pos z, mc_pos *sx, mc_pos *sy, mc_pos *sz)
+{
+    const unsigned b = c->d - 3;
+    const mc_pos r = c->ball[l0 - b];
+    const mc_pos_wide dist = c->eye + z - c->radius;
+    if (MC_LINEAR_ERROR == 0 || dist - r < c->near) return 0;
+    const mc_pos_mag q = pos_magnification(c->eye, dist);
+    mc_pos_mag gx, gy;
+    if (!pos_linear_setup(x, y, q, dist, &gx, &gy)) return 0;
+    const mc_pos_wide ox = pos_project(x, q), oy = pos_project(y, q);
+    const mc_pos_wide lim = POS_PIXELS(MC_COORD_LIMIT / 4);
+    if (ox <= -lim || ox >= lim || oy <= -lim || oy >= lim) return 0;
+    const mc_pos_wide aox = ox < 0 ? -ox : ox, aoy = oy < 0 ? -oy : oy;
+    if (!pos_linear_ok(r, aox > aoy ? aox : aoy, c->eye, dist, MC_LINEAR_ERROR)) return 0;
+    /* level l0's vectors are +-A +-B +-C, the images of the model axes' steps (c->basis), so the
+     * largest |x| is |Ax| + |Bx| + |Cx|; each level below halves them exactly (pos_linear_step) */
+    mc_pos(*const bs)[3] = c->basis[l0 - b];
+    const mc_pos ax = pos_linear_step(bs[0][0], bs[0][2], q, gx), bx = pos_linear_step(bs[1][0], bs[1][2], q, gx);
+    const mc_pos cx = pos_linear_step(bs[2][0], bs[2][2], q, gx), ay = pos_linear_step(bs[0][1], bs[0][2], q, gy);
+    const mc_pos by = pos_linear_step(bs[1][1], bs[1][2], q, gy), cy = pos_linear_step(bs[2][1], bs[2][2], q, gy);
+    const mc_pos2 a2 = POS2(2 * ax, 2 * ay), b2 = POS2(2 * bx, 2 * by), c2 = POS2(2 * cx, 2 * cy);
+    mc_pos2 t[8];
+    t[0] = POS2(-ax - bx - cx, -ay - by - cy);
+    t[1] = POS2_ADD(t[0], a2);
+    t[2] = POS2_ADD(t[0], b2);
+    t[3] = POS2_ADD(t[1], b2);
+    t[4] = POS2_ADD(t[0], c2);
+    t[5] = POS2_ADD(t[1], c2);
+    t[6] = POS2_ADD(t[2], c2);
+    t[7] = POS2_ADD(t[3], c2);
+    mc_pos mx = (ax < 0 ? -ax : ax) + (bx < 0 ? -bx : bx) + (cx < 0 ? -cx : cx);
+    mc_pos my = (ay < 0 ? -ay : ay) + (by < 0 ? -by : by) + (cy < 0 ? -cy : cy);
+    mc_pos rx = c->reach_x[c->d], ry = c->reach_y[c->d];
+    for (unsigned l = c->d; l-- > l0;) {                 /* level l0 + h: halved h times */
+        const unsigned h = l - l0;
+        mc_pos2 *xy = c->v[l].xy;
+        if (h == 0) for (int k = 0; k < 8; k++) xy[k] = t[k];
+        else if (h == 1) for (int k = 0; k < 8; k++) xy[k] = POS2_HALF(t[k]);
+        else for (int k = 0; k < 8; k++) xy[k] = POS2_HALF(POS2_HALF(t[k]));
+        c->reach_x[l] = rx = rx + (h == 0 ? mx : h == 1 ? mx / 2 : mx / 4);
+        c->reach_y[l] = ry = ry + (h == 0 ? my : h == 1 ? my / 2 : my / 4);
+    }
+    if (rx >= lim || ry >= lim) return 0;
+    c->reach_x[b] = c->reach_x[l0];                      /* a level d-2 frame: spare_pixel's reach */
+    c->reach_y[b] = c->reach_y[l0];
+    const int32_t s = c->leaf_side ? pos_footprint(pos_project((mc_pos)c->leaf_side, q)) : 1;
+    c->splat = s;
+    c->square_margin = s > 1 ? POS_HALF_PIXELS(s) + POS_PIXELS(1) : 0;
+    c->inside = s == 1 || !MC_TEST_CLIPPED_SQUARES;
+#if MC_DEPTH_SELECT
+    if (2 * ((mc_pos_wide)rx + POS_PIXELS(1)) >= (mc_pos_wide)c->wf &&
+        2 * ((mc_pos_wide)ry + POS_PIXELS(1)) >= (mc_pos_wide)c->hf) c->inside = 0;   /* see setup_vectors */
+#endif
+    *sx = c->cx + (mc_pos)ox;
+    *sy = c->cy + (mc_pos)oy;
+    *sz = pos_depth_units(z, c->zshift) + FRAME_DEPTH_ROOM;
+    return 1;
+}
+
+/* Perspective: a level d-2 node no linear frame holds, projected leaf by leaf (c->pv). */
+static void exact_level2(ctx *c, mc_pos x, mc_pos y, mc_pos z)
+{
+    const unsigned l = c->d - 2;
+    unsigned m = *mc_cursor_take(&c->mask[l], 1);
+    const uint8_t *masks = mc_cursor_take(&c->mask[l + 1], mc_popcount8(m));
+    if (c->color.p >= c->color.end) mc_cursor_refill(&c->color);
+    const levelvec *p = &c->pv[1];
+    for (; m; m &= m - 1) {
+        unsigned k = mc_ctz(m);
+        unsigned cm = *masks++;
+        const uint8_t *col = c->color.p;
+        c->color.p += mc_popcount8(cm);
+        leaves_perspective(c, &c->pv[2], cm, x + p->x[k], y + p->y[k], z + p->z[k], col);
+    }
+}
+
+/* Perspective: a node at level d-3 (exact coordinates, as linear_frame's). Drawn through one linear
+ * frame where the bound holds, else each child through its own frame, else leaf by leaf. */
+static void persp_node(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
+{
+    if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    mc_pos sx, sy, sz;
+    if (linear_frame(c, l, x, y, z, &sx, &sy, &sz)) {
+        int where = classify(c, sx, sy, l);
+        if (where < 0) {
+            skip_subtree(c, l);
+            return;
+        }
+        if (l == c->cone_level && culled(c, l)) return;
+        unsigned m = *mc_cursor_take(&c->mask[l], 1);
+        if (where > 0) draw_level3(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), POS2(sx, sy), sz);
+        else visit_children(c, l, m, sx, sy, sz);
+        return;
+    }
+    if (l == c->cone_level && culled(c, l)) return;
+    unsigned m = *mc_cursor_take(&c->mask[l], 1);
+    const levelvec *p = &c->pv[0];
+    for (; m; m &= m - 1) {
+        unsigned k = mc_ctz(m);
+        mc_pos cx = x + p->x[k], cy = y + p->y[k], cz = z + p->z[k];
+        if (linear_frame(c, l + 1, cx, cy, cz, &sx, &sy, &sz)) {
+            /* the child as the only child of a node at its own centre: a zero vector k at level l */
+            c->v[l].xy[k] = POS2(0, 0);
+            visit_children(c, l, 1u << k, sx, sy, sz - c->v[l].z[k]);
+        } else {
+            exact_level2(c, cx, cy, cz);
         }
         if (c->aborted) return;
     }
@@ -493,9 +644,17 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
             const int sh = 30 + 16 + (int)l + 2;          /* Q30 rotation * Q16 scale * 2^-(l+2) */
             v->x[k] = (mc_pos)pos_units(ex, scale, sh - POS_FRAC);
             v->y[k] = (mc_pos)-pos_units(ey, scale, sh - POS_FRAC);
-            v->z[k] = (mc_pos)-(c->perspective ? pos_units(ez, scale, sh - POS_FRAC)
-                                               : pos_units(ez, scale, sh - F + (int)c->zshift));
+            v->z[k] = (mc_pos)-pos_units(ez, scale, sh - F + (int)c->zshift);
             v->xy[k] = POS2(v->x[k], v->y[k]);
+            /* perspective: Q F depths above the linear frames, and exact vectors beside theirs */
+            const mc_pos zq = (mc_pos)-pos_units(ez, scale, sh - POS_FRAC);
+            if (c->perspective && (l + 3 < c->d || c->d < 3)) v->z[k] = zq;
+            if (c->perspective && l + 3 >= c->d && c->d >= 3) {
+                levelvec *p = &c->pv[l + 3 - c->d];
+                p->x[k] = v->x[k];
+                p->y[k] = v->y[k];
+                p->z[k] = zq;
+            }
         }
     }
     c->reach_x[c->d] = c->reach_y[c->d] = 0;
@@ -513,6 +672,17 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
     for (unsigned l = 0; l <= c->d; l++) {     /* nothing to add unless sums round (pos.h) */
         c->reach_x[l] += POS_REACH_SLACK;
         c->reach_y[l] += POS_REACH_SLACK;
+    }
+    /* perspective, linear frames: the model axes' steps at levels d-3 and d-2 (a child's vector is
+     * their sum with signs, setup_vectors' sx, sy, sz), and a level l node's leaves lie within sqrt(3)/2 (S 2^-l - S 2^-d) of
+     * its centre, plus the rounding of the d - l vectors that reach them */
+    for (unsigned i = 0; i < 2 && c->d >= 3; i++) {
+        const unsigned l = c->d - 3 + i;
+        for (int j = 0; j < 3; j++)
+            for (int a = 0; a < 3; a++)
+                c->basis[i][j][a] = (mc_pos)(a ? -1 : 1) * (mc_pos)pos_units(r[a][j], scale, 30 + 16 + (int)l + 2 - POS_FRAC);
+        c->ball[i] = (mc_pos)(pos_units((int64_t)HALF_SQRT3_Q16 * ((1 << (c->d - l)) - 1), scale, 32 + (int)c->d - POS_FRAC) +
+                              pos_units(c->d + 2, 1, F - POS_FRAC));
     }
     c->eye = pos_units(v->eye, scale, 32 - POS_FRAC);              /* Q16 sides * Q16 px */
     c->near = pos_units(scale, 1, 16 + 6 - POS_FRAC);               /* 1/64 cube side */
@@ -600,6 +770,7 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
     c.hf = POS_PIXELS(c.h);
     c.d = depth;
     c.perspective = v.projection == MC_PERSPECTIVE;
+    c.exact = c.perspective && depth < 3;
     c.abort = abort;
     c.user = user;
     c.points = c.polls = 0;
@@ -618,7 +789,8 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
     if (c.perspective) {
         c.cx = centre_x;
         c.cy = centre_y;
-        visit(&c, 0, 0, 0, c.radius);
+        if (depth == 3) persp_node(&c, 0, 0, 0, c.radius);
+        else visit(&c, 0, 0, 0, c.radius);
     } else {
         int where = classify(&c, centre_x, centre_y, 0);
         mc_pos z = (mc_pos)zroot;

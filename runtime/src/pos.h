@@ -86,6 +86,59 @@ static inline int pos_place(mc_pos centre, mc_pos_wide offset, mc_pos size, mc_p
     return 1;
 }
 
+/* Perspective, linearised about a node's centre (octree_render.c, linear_frame). A leaf at x + dx,
+ * dist + dz from the eye lands at q x + q (dx - x dz / dist), q = eye / dist, to first order:
+ * g = q x / dist is the slope of the second term. Both stay below 2^31 (Q24), so that the products
+ * in pos_linear fit 64 bits; 0 where they would not (the node is then projected leaf by leaf). */
+static inline int pos_linear_setup(mc_pos x, mc_pos y, mc_pos_mag q, mc_pos_wide dist, mc_pos_mag *gx, mc_pos_mag *gy)
+{
+    const int64_t lim = (int64_t)1 << 31;
+    if (q >= lim) return 0;
+    *gx = ((int64_t)x * q) / dist;
+    *gy = ((int64_t)y * q) / dist;
+    return *gx > -lim && *gx < lim && *gy > -lim && *gy < lim;
+}
+
+/* q x rounded, for |x| < 2^31 and 0 < q < 2^31 (pos_linear_setup's range): a linear frame's
+ * centre, without pos_magnify's general product. */
+static inline mc_pos_wide pos_project(mc_pos x, mc_pos_mag q) { return ((int64_t)x * q + ((int64_t)1 << 23)) >> 24; }
+
+/* The linearised image of one displacement (v across, vz away from the eye), rounded to Q F. */
+static inline mc_pos pos_linear(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g)
+{
+    return (mc_pos)(((int64_t)v * q - (int64_t)vz * g + ((int64_t)1 << 23)) >> 24);   /* to nearest, half-way up */
+}
+
+/* Whether the first-order projection about a node's centre is within eps / 256 pixel of the exact one
+ * for every point within r of that centre (all Q F pixels; o: the centre's offset from the view
+ * axis on screen, the larger axis; dist > 0). The error on one axis is
+ *     q dz (x dz / dist - dx) / (dist + dz)
+ * (exact minus first order), at most r^2 (|o| + eye / 2) / (dist (dist - r)) with |dx|, |dz| <= r
+ * and |x| / dist = |o| / eye. Evaluated in Q4 pixels, every rounding towards failing the test:
+ *     8 r^2 (2 o + eye) <= eps dist (dist - r)   (r, o, eye rounded up, dist down). */
+static inline int pos_linear_ok(mc_pos r, mc_pos_wide o, mc_pos_wide eye, mc_pos_wide dist, int32_t eps)
+{
+    const int s = F - 4;
+    const int64_t up = ((int64_t)1 << s) - 1;
+    const int64_t r4 = ((int64_t)r + up) >> s, o4 = (o + up) >> s, e4 = (eye + up) >> s, d4 = dist >> s;
+    const int64_t dr = d4 - r4;
+    if (dr <= 0) return 0;
+    const int64_t t = (8 * r4 * r4 + dr - 1) / dr;     /* r4 < 2^20: no overflow */
+    return t <= ((int64_t)eps * d4) / (2 * o4 + e4 + 1);
+}
+
+/* pos_linear rounded to a multiple of 4 units (2 units off at most, 2^-(F-1) pixel), so that the
+ * two levels below a linear frame's top halve its vectors exactly (POS2_HALF). */
+static inline mc_pos pos_linear_step(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g)
+{
+    return (mc_pos)((((int64_t)v * q - (int64_t)vz * g + ((int64_t)1 << 25)) >> 26) * 4);
+}
+/* Half of a packed pair whose halves are both even: exact (an arithmetic shift, as pos_floor's). */
+#define POS2_HALF(p) ((p) >> 1)
+
+/* Perspective: a depth kept as a position (Q F pixels) in depth-buffer units, as a position. */
+static inline mc_pos pos_depth_units(mc_pos z, unsigned zshift) { return z >> zshift; }
+
 /* Perspective: the depth-buffer value of a depth kept as a position (Q F pixels). */
 static inline uint16_t pos_depth(mc_pos z, unsigned zshift) { return (uint16_t)((uint32_t)z >> zshift); }
 

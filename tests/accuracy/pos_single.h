@@ -66,6 +66,26 @@ static inline int pos_place(mc_pos centre, mc_pos_wide offset, mc_pos size, mc_p
     return *out >= 0 && *out < size;
 }
 
+/* perspective linearised about a node's centre (pos.h): no range to guard in float */
+static inline int pos_linear_setup(mc_pos x, mc_pos y, mc_pos_mag q, mc_pos_wide dist, mc_pos_mag *gx, mc_pos_mag *gy)
+{
+    *gx = x * q / dist;
+    *gy = y * q / dist;
+    return 1;
+}
+static inline mc_pos pos_linear(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g) { return v * q - vz * g; }
+static inline int pos_linear_ok(mc_pos r, mc_pos_wide o, mc_pos_wide eye, mc_pos_wide dist, int32_t eps)
+{
+    return dist > r && r * r * (o + eye * 0.5f) <= (float)eps / 256.0f * dist * (dist - r);
+}
+static inline mc_pos_wide pos_project(mc_pos x, mc_pos_mag q) { return x * q; }
+static inline mc_pos pos_linear_step(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g) { return v * q - vz * g; }
+#define POS2_HALF(p) ((mc_pos2){(p).x * 0.5f, (p).y * 0.5f})
+static inline mc_pos pos_depth_units(mc_pos z, unsigned zshift)
+{
+    return z * ((float)(1u << MC_FRAC_BITS) / (float)(1u << zshift));
+}
+
 /* depth-buffer units are the fixed build's, 2^(F - zshift) per pixel, so both resolve depth alike */
 static inline uint16_t pos_depth(mc_pos z, unsigned zshift)
 {

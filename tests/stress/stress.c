@@ -60,6 +60,13 @@
  *   front of the eye, where dist is smallest): the division cannot be more exact than the depth it
  *   divides by. A point within that depth error of the near plane may be drawn by one renderer and
  *   not the other; that is allowed, and checked to be the reason.
+ *   At drawn depth 3 and more, most perspective leaves come through linear frames (octree_render.c,
+ *   config.h MC_LINEAR_ERROR): the node's centre is projected as above and its leaves through the
+ *   first-order expansion, whose error pos_linear_ok bounds by MC_LINEAR_ERROR / 256 pixel. The bound
+ *   is then twice the one above (evaluated at the leaf, not the centre), plus that error, plus the
+ *   frame vectors' rounding (26 half units: three axis steps rounded to 4 units over levels halving
+ *   them, and the centre; and 24 half units times the magnification, each step rounded before it is
+ *   magnified) and S * 2^-22 for the slope's truncation.
  *
  *   The float build (-DMC_FLOAT=1, config.h) is held to its own format. Its positions are float
  *   sums whose magnitudes stay below M = max(w, h) + |tx| + |ty| + 2 S (+ eye S in perspective), where
@@ -420,6 +427,15 @@ static void one_view(const mc_octree *scene, counters *k)
     const double qrel = ldexp(1, -24);
 #endif
     k->persp += persp;
+    /* perspective at d >= 3: linear frames (octree_render.c, config.h MC_LINEAR_ERROR) add their stated
+     * error and their vectors' rounding (three levels, three rounded basis terms each, one more for the
+     * centre); the centre carries the exact path's errors at a point within the node, hence twice */
+    const double lin = persp && d >= 3 && MC_LINEAR_ERROR ? MC_LINEAR_ERROR / 256.0 + 26 * u + S * ldexp(1, -22) : 0;
+    const double lin_factor = lin > 0 ? 2 : 1;
+    /* ... and the rounding of the frame's three axis steps, magnified (at most 12 roundings a
+     * leaf: three steps over three levels, halved twice, and the centre's; the node's magnification
+     * within twice the leaf's) */
+#define LIN_STEPS(mag) (lin > 0 ? 24 * (mag) * u : 0)
 
     /* 2: each drawn point is the next matching leaf of the reference, within the bound */
     static unsigned char matched[MAX_PTS];
@@ -458,7 +474,7 @@ static void one_view(const mc_octree *scene, counters *k)
             if (dpx <= 0) dpx = ldexp(1, -30);
             double bx = xx * qrel + xx * u / dpx + ox * (b_ortho + u) / dpx + mag * b_ortho + u;
             double by = yy * qrel + yy * u / dpx + oy * (b_ortho + u) / dpx + mag * b_ortho + u;
-            bound = bx > by ? bx : by;
+            bound = (bx > by ? bx : by) * lin_factor + lin + LIN_STEPS(mag);
         }
         double ex = fabs(fx - p->sx), ey = fabs(fy - p->sy), e = ex > ey ? ex : ey;
         k->points_checked++;
@@ -486,7 +502,8 @@ static void one_view(const mc_octree *scene, counters *k)
                 if ((dist - 1.0 / 64) * S <= b_ortho + u + qrel * S) { k->near_plane_disagreements++; continue; }
                 double mag = eye / dist;
                 double dpx = dist * S - b_ortho - u;
-                margin = (fabs(p->sx - cx) + fabs(p->sy - cy)) * ((b_ortho + u) / dpx + qrel) + mag * b_ortho + 2 * u;
+                margin = ((fabs(p->sx - cx) + fabs(p->sy - cy)) * ((b_ortho + u) / dpx + qrel) + mag * b_ortho + 2 * u) *
+                         lin_factor + lin + LIN_STEPS(mag);
             }
             if (p->sx < margin || p->sy < margin || p->sx >= w - margin || p->sy >= h - margin) continue;
             fail(&k->missing_fail, "leaf %zu on screen at (%.6f, %.6f) was not drawn: %s", r, p->sx, p->sy, what);

@@ -102,6 +102,21 @@
 #error "MC_SPLAT_MAX must be in 1..64"
 #endif
 
+/* MC_LINEAR_ERROR: perspective projection, in 1/256 pixel. The renderer projects the centre of each
+ * node three levels above the drawn one exactly (one division) and its leaves through the
+ * projection's first-order expansion about that centre (additions only, like orthographic views),
+ * where a bound computed per node shows the expansion puts every leaf within MC_LINEAR_ERROR / 256
+ * pixel of its exact projection; where it does not (nodes near the eye, or near the near plane) it
+ * tries each child, then divides per leaf. 16 (default): 1/16 pixel, below what a pixel grid shows
+ * (tests/render and tests/stress measure it against double precision). 0: a division per leaf, the
+ * exact projection everywhere. */
+#ifndef MC_LINEAR_ERROR
+#define MC_LINEAR_ERROR 16
+#endif
+#if MC_LINEAR_ERROR < 0 || MC_LINEAR_ERROR > 256
+#error "MC_LINEAR_ERROR must be in 0..256 (1/256 pixel; 0: exact perspective per leaf)"
+#endif
+
 /* MC_FILL_REACH: how far (pixels) the scanline hole filler (finish.h, MC_FILL_SCANLINE) looks along
  * a row, a column and the two diagonals for a drawn pixel: holes up to MC_FILL_REACH pixels across
  * are closed. 1 closes only what the four-neighbour criterion sees; 3 (default) closes the holes of
