@@ -124,6 +124,13 @@ OctreeLevels build_levels(const Voxels &v) {
     std::vector<std::array<double, 3>> sum(v.rgb);    // colour sums of the leaves under each node
     std::vector<double> count(v.codes.size(), 1.0);
     for (int l = D; l >= 1; l--) {
+        if (l < static_cast<int>(v.level_rgb.size()) && !v.level_rgb[l].empty()) {
+            // a mesh's level sampled on its own (voxel.hpp, kSampledLevel): its colours are its own
+            // samples', as a bake of depth l has them, and the levels above are their means
+            if (v.level_rgb[l].size() != keys.size()) throw std::logic_error("build_levels: level colours and cells disagree");
+            sum = v.level_rgb[l];
+            count.assign(keys.size(), 1.0);
+        }
         t.mean[l].resize(keys.size());
         for (size_t i = 0; i < keys.size(); i++)
             for (int a = 0; a < 3; a++) t.mean[l][i][a] = sum[i][a] / count[i];

@@ -27,7 +27,9 @@ struct Octree {
 
 // The palette-independent part of an octree of depth D, from which the octree of any depth d <= D
 // is cut without sampling again: the masks, sibling and cousin groups of levels above d are the
-// same whatever d, and a node's colour is the mean of the leaves under it.
+// same whatever d, and a node's colour is the mean of the leaves under it (for a mesh baked deeper than
+// kSampledLevel: levels from kSampledLevel down have their own colours, Voxels::level_rgb, and the
+// levels above are the means of kSampledLevel's).
 struct OctreeLevels {
     int depth = 0;
     std::vector<std::vector<uint8_t>> masks, siblings, cousins;   // as in Octree, for depth D

@@ -10,6 +10,16 @@
 
 namespace mc {
 
+// Meshes: the deepest level sampled on its own over the whole surface. A mesh baked deeper has levels
+// 0..kSampledLevel exactly as a bake of that depth has them (the same cells, the same colours before
+// the palette), and each finer level l refines level l - 1 with level l's own sampling (voxel.cpp,
+// drop_orphans and adopt): so levels 0..l of a depth-D bake are a depth-l bake's for every l from
+// kSampledLevel to D, and the level of detail draws a deeper bake as the shallower bake it stands
+// for. 8: the default --depth, the catalogue's and the firmware's, whose bakes this leaves byte for
+// byte as they were (a bake of depth 8 or less samples once, at its own depth; its levels above
+// still come from that one finer sampling).
+constexpr int kSampledLevel = 8;
+
 struct VoxelOptions {
     int depth = 8;            // grid of 2^depth cells per side
     double spacing = 0.5;     // mesh sampling grid spacing, in cells
@@ -22,7 +32,11 @@ struct Voxels {
     double cell = 0;                  // model-space side of one cell (GridCube::cell(depth))
     std::vector<uint64_t> codes;      // Morton codes of occupied cells, ascending (bit 0 = x, 1 = y, 2 = z)
     std::vector<std::array<double, 3>> rgb;  // colour per cell, 0..255
-    uint64_t samples = 0;             // surface samples (meshes) or input points (point sets)
+    uint64_t samples = 0;             // surface samples (meshes: of every level sampled) or input points
+    // meshes deeper than kSampledLevel: level_rgb[l] (kSampledLevel <= l < depth) holds the colour of
+    // each node of level l, in ascending code order, from level l's own samples (build_levels takes
+    // these instead of the mean of the leaves under the node); empty elsewhere and for shallower bakes
+    std::vector<std::vector<std::array<double, 3>>> level_rgb;
     // meshes: one point on the surface per cell (the surface point nearest its samples' centroid),
     // where visibility rays start; empty for point sets
     std::vector<std::array<double, 3>> surface;

@@ -3,7 +3,8 @@
  *   psnr [--frames N]
  *
  * Built by tests/finish/suite.sh with TEST_SCENE, the catalogue bake (depth D), and REF_SCENE, the
- * same model baked at depth D + 1. The reference image is the double-precision renderer
+ * same model baked at depth D + 1 (sampled twice as densely: suite.sh says why). The reference image
+ * is the double-precision renderer
  * (runtime/ref, mc_ref_render: z-buffered, one pixel per leaf, exact positions) of the depth D + 1
  * octree: its leaves are half the size, so at 320x240 they are under a pixel up to zoom 2 (0.94 px)
  * and it has (almost) no holes. Against it the score measures what filling and splats change, apart

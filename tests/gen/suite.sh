@@ -111,6 +111,40 @@ check "quiet when stderr is not a terminal" test ! -s "$tmp/stderr.txt"
 script -qec "$modelc build/models/bunny00.off -o $tmp/p --depth 9" /dev/null >"$tmp/tty.txt" 2>&1
 check "progress on a terminal for steps over a second" grep -q 'modelc: [a-z ]* *[0-9]*%\|modelc: [a-z ]* done' "$tmp/tty.txt"
 
+# a deeper mesh bake drawn at a coarser level (the level of detail) draws what a bake of that depth
+# draws: level l of a depth-D bake has the cells and colours of a depth-l bake, for l from 8
+# (gen/voxel.hpp kSampledLevel) to D, and the levels above 8 those of the depth-8 bake. Read back
+# from the generated arrays (tests/gen/levels.c: each node's Morton code and palette RGB, level by
+# level), so palettes that number the same colours differently still compare equal (the models
+# here are grey: every colour is exact in the palette). bunny00 at 9 is the bake of the progress
+# check above; fandisk at 10 checks a level between 8 and the bake's depth too.
+levels_of() {   # levels_of BAKE_DIR LAST OUT: build tests/gen/levels.c against the bake, print levels 1..LAST
+    gcc -std=c99 -O0 -Iruntime/include -o "$3.bin" tests/gen/levels.c "$1"/*.c && "$3.bin" "$2" >"$3"
+}
+"$modelc" build/models/bunny00.off -o "$tmp/lv8" -q --depth 8
+"$modelc" build/models/fandisk.off -o "$tmp/lv8" -q --depth 8
+"$modelc" build/models/fandisk.off -o "$tmp/lv9" -q --depth 9
+"$modelc" build/models/fandisk.off -o "$tmp/lv10" -q --depth 10
+for pair in "bunny00 8 $tmp/p" "fandisk 8 $tmp/lv10" "fandisk 9 $tmp/lv10"; do
+    read -r m l deep <<<"$pair"
+    d=$(python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['points_per_level']) - 1)" "$deep/$m/budget.json")
+    if levels_of "$tmp/lv$l/$m" "$l" "$tmp/levels.$m.$l.txt" && levels_of "$deep/$m" "$l" "$tmp/levels.$m.$l.of$d.txt"; then
+        if cmp -s "$tmp/levels.$m.$l.txt" "$tmp/levels.$m.$l.of$d.txt"; then
+            ok "$m: levels 1..$l of the depth-$d bake are the depth-$l bake's, cell for cell and colour for colour ($(grep -c "^$l " "$tmp/levels.$m.$l.txt") cells at level $l)"
+        else
+            read -r more fewer recoloured < <(python3 - "$tmp/levels.$m.$l.txt" "$tmp/levels.$m.$l.of$d.txt" <<'PY'
+import sys
+a, b = ({tuple(x.split()[:2]): x.split()[2:] for x in open(f)} for f in sys.argv[1:3])
+print(len(b.keys() - a.keys()), len(a.keys() - b.keys()), sum(a[k] != b[k] for k in a.keys() & b.keys()))
+PY
+            )
+            nok "$m: levels 1..$l of the depth-$d bake are not the depth-$l bake's: $more nodes more, $fewer fewer, $recoloured of the common ones coloured differently"
+        fi
+    else
+        nok "$m: cannot read the levels of the depth-$l and depth-$d bakes"
+    fi
+done
+
 # normal cones (gen/cones.hpp): made for a closed, non-self-intersecting mesh, each holding the
 # outward normal of every face its node's cube meets (tests/gen/cones_check.py, in double precision,
 # independently of CGAL), counted in budget.json; none for an open mesh, a point set or --cull off
