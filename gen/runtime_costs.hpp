@@ -10,14 +10,14 @@
 // once with the default MC_LEAF_SWITCH=1 and once with -DMC_LEAF_SWITCH=0 (config.h). The runtime
 // has no .data and no .bss: its static RAM is 0. 64-bit divisions (view clamp, perspective,
 // clipping) pull in libgcc's __aeabi_ldivmod/__aeabi_uldivmod/__udivmoddi4: 960 bytes, from the link
-// map of a Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (octree_render.o 75847 bytes, with
+// map of a Cortex-M4 picolibc program. Host (x86-64 -O2) code is larger (octree_render.o 84474 bytes, with
 // the depth test as a select, MC_DEPTH_SELECT's default there); the budget is for the firmware target.
 // Header-only modules (bits.h, chunk.h, rng.h) have no code of their own: what they inline is
 // counted in their callers'.
 //
 // Stack: bytes per function from -fstack-usage (every entry "static", no dynamic frames), compiled
 // as above for Cortex-M4 and with host gcc 12 -O2 (x86-64), taking the larger of the two. Functions
-// the compiler inlines (mc_cursor_*, skip_subtree, setup_vectors, poll_abort, leaves) do not appear;
+// the compiler inlines (mc_cursor_*, exact_level2, setup_vectors, poll_abort, leaves) do not appear;
 // their frames are part of their callers'.
 #pragma once
 #include <cstddef>
@@ -36,7 +36,7 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 65280, 8460, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 68704, 11884, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
@@ -79,16 +79,20 @@ struct Frame {
     constexpr size_t bytes() const { return arm > host ? arm : host; }
 };
 inline constexpr Frame kFrames[] = {
-    {"mc_octree_render", 2520, 2752},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_octree_render", 3096, 3328},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
     {"mc_octree_lod_depth", 56, 80},
     {"culled", 24, 24},
-    {"visit", 96, 128},
+    {"visit", 40, 48},
+    {"visit_children", 80, 144},
+    {"persp_node", 104, 176},
+    {"linear_frame", 216, 72},
+    {"skip_subtree", 56, 48},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 72},
     {"draw_inside_squares", 144, 120},
-    {"draw_checked", 64, 80},
-    {"leaves_perspective", 80, 128},
-    {"leaves_clipped", 56, 72},
+    {"draw_checked", 72, 96},
+    {"leaves_perspective", 72, 128},
+    {"leaves_clipped", 48, 56},
     {"draw_square", 28, 16},
     {"classify", 16, 8},
     {"mc_mul_shift64", 24, 8},
@@ -115,13 +119,16 @@ constexpr size_t frame(const char *fn) { return frame_in(kFrames, fn); }
 //             -> mc_octree_lod_depth -> mc_view_clamp
 //             -> [setup_vectors] -> mc_view_rotation -> matmul | mc_cos -> mc_sin ; mc_mul_shift64
 //             -> classify
-//             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit recurses
-//                only into children at levels <= d-3, visit_inside likewise), then the deepest of
+//             -> visit -> visit_children / visit_inside: one pair (or one visit_inside) per level
+//                0..d-3 (max(d-2, 1) of them; each recurses only into children at levels <= d-3),
+//                then the deepest of the draws:
 //                  draw_inside, draw_inside_squares (footprints over a pixel)
 //                  draw_checked -> [leaves] -> leaves_perspective -> mc_mul_shift64 | draw_square
 //                                           | leaves_clipped -> draw_square
-//                  classify, [skip_subtree], culled (a leaf: it skips a culled subtree inline)
+//                  classify, skip_subtree, culled (a leaf: it skips a culled subtree inline)
 //                  [poll_abort] -> the abort callback (the caller's code: add its own stack)
+//                or, in perspective, from visit_children at level d-4 (or mc_octree_render at d = 3):
+//                  persp_node -> linear_frame | visit_children -> the draws | [exact_level2] -> leaves
 // [bracketed] functions are inlined into their callers. The bound is mc_octree_render's frame plus
 // the deepest of those paths. mc_clear and mc_finish_* are called by the front end beside it,
 // never inside it, and their frames are smaller than the walk's.
@@ -133,10 +140,13 @@ constexpr size_t stack_setup() {
 constexpr size_t stack_tail() {
     const size_t leaves = max2(frame("leaves_perspective") + max2(frame("mc_mul_shift64"), frame("draw_square")),
                                frame("leaves_clipped") + frame("draw_square"));
-    return max2(max2(max2(frame("draw_inside"), frame("draw_inside_squares")), frame("culled")),
-                max2(frame("draw_checked") + leaves, frame("classify")));
+    const size_t draws = max2(max2(max2(frame("draw_inside"), frame("draw_inside_squares")), frame("culled")),
+                              max2(frame("draw_checked") + leaves, max2(frame("classify"), frame("skip_subtree"))));
+    const size_t persp = frame("persp_node") +
+                         max2(max2(frame("linear_frame"), frame("visit_children") + draws), leaves);
+    return max2(draws, persp);
 }
-constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }
+constexpr size_t stack_walk_frame() { return max2(frame("visit") + frame("visit_children"), frame("visit_inside")); }
 constexpr int walk_frames(int depth) { return depth > 3 ? depth - 2 : 1; }
 constexpr size_t stack_bound(int depth) {
     return frame("mc_octree_render") + max2(stack_setup(), static_cast<size_t>(walk_frames(depth)) * stack_walk_frame() + stack_tail());

@@ -9,6 +9,14 @@
  * footprints included, are drawn without per-point bounds checks (one pixel, or one unclipped
  * square, a leaf).
  *
+ * Perspective (drawn level d >= 3): each node at level d-3 is projected exactly (one division) and,
+ * where a bound computed per node shows the first-order expansion of the projection about its
+ * centre puts every leaf below within MC_LINEAR_ERROR / 256 pixel of its exact projection
+ * (config.h; 1/16 by default), its leaves are drawn through that expansion like an orthographic
+ * node: additions only, off-screen subtrees skipped, unchecked where wholly on screen. Elsewhere
+ * (near the eye, or at the near plane) each level d-2 child gets its own expansion, or its leaves
+ * divide one by one.
+ *
  * No heap, no floating point, no recursion deeper than the drawn depth (at most MC_MAX_DEPTH frames
  * of the renderer's internal node function). Buffers belong to the caller; while mc_octree_render
  * runs they may hold values it puts back before returning (the select form of the depth test parks
