@@ -36,7 +36,7 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 68704, 11884, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 68880, 12052, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
@@ -79,13 +79,13 @@ struct Frame {
     constexpr size_t bytes() const { return arm > host ? arm : host; }
 };
 inline constexpr Frame kFrames[] = {
-    {"mc_octree_render", 3096, 3328},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
+    {"mc_octree_render", 2240, 2480},   // holds a ctx sized for MC_MAX_DEPTH = 12 levels
     {"mc_octree_lod_depth", 56, 80},
     {"culled", 24, 24},
-    {"visit", 40, 48},
-    {"visit_children", 80, 144},
-    {"persp_node", 104, 176},
-    {"linear_frame", 216, 72},
+    {"visit", 72, 112},                  // visit_children always inlined into it
+    {"frame_children", 80, 112},
+    {"persp_node", 96, 176},
+    {"linear_frame", 208, 72},
     {"skip_subtree", 56, 48},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 72},
@@ -119,16 +119,16 @@ constexpr size_t frame(const char *fn) { return frame_in(kFrames, fn); }
 //             -> mc_octree_lod_depth -> mc_view_clamp
 //             -> [setup_vectors] -> mc_view_rotation -> matmul | mc_cos -> mc_sin ; mc_mul_shift64
 //             -> classify
-//             -> visit -> visit_children / visit_inside: one pair (or one visit_inside) per level
-//                0..d-3 (max(d-2, 1) of them; each recurses only into children at levels <= d-3),
-//                then the deepest of the draws:
+//             -> visit / visit_inside: one frame per level 0..d-3 (max(d-2, 1) frames; visit, with
+//                visit_children inlined, recurses only into children at levels <= d-3, visit_inside
+//                likewise), then (visit -> frame_children, or visit_inside) the deepest of the draws:
 //                  draw_inside, draw_inside_squares (footprints over a pixel)
 //                  draw_checked -> [leaves] -> leaves_perspective -> mc_mul_shift64 | draw_square
 //                                           | leaves_clipped -> draw_square
 //                  classify, skip_subtree, culled (a leaf: it skips a culled subtree inline)
 //                  [poll_abort] -> the abort callback (the caller's code: add its own stack)
 //                or, in perspective, from visit_children at level d-4 (or mc_octree_render at d = 3):
-//                  persp_node -> linear_frame | visit_children -> the draws | [exact_level2] -> leaves
+//                  persp_node -> linear_frame | frame_children -> the draws | [exact_level2] -> leaves
 // [bracketed] functions are inlined into their callers. The bound is mc_octree_render's frame plus
 // the deepest of those paths. mc_clear and mc_finish_* are called by the front end beside it,
 // never inside it, and their frames are smaller than the walk's.
@@ -142,11 +142,11 @@ constexpr size_t stack_tail() {
                                frame("leaves_clipped") + frame("draw_square"));
     const size_t draws = max2(max2(max2(frame("draw_inside"), frame("draw_inside_squares")), frame("culled")),
                               max2(frame("draw_checked") + leaves, max2(frame("classify"), frame("skip_subtree"))));
-    const size_t persp = frame("persp_node") +
-                         max2(max2(frame("linear_frame"), frame("visit_children") + draws), leaves);
-    return max2(draws, persp);
+    const size_t frames = frame("frame_children") + draws;
+    const size_t persp = frame("persp_node") + max2(max2(frame("linear_frame"), frames), leaves);
+    return max2(frames, persp);
 }
-constexpr size_t stack_walk_frame() { return max2(frame("visit") + frame("visit_children"), frame("visit_inside")); }
+constexpr size_t stack_walk_frame() { return max2(frame("visit"), frame("visit_inside")); }
 constexpr int walk_frames(int depth) { return depth > 3 ? depth - 2 : 1; }
 constexpr size_t stack_bound(int depth) {
     return frame("mc_octree_render") + max2(stack_setup(), static_cast<size_t>(walk_frames(depth)) * stack_walk_frame() + stack_tail());

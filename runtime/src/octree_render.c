@@ -19,13 +19,18 @@
 #define HALF_SQRT3_Q30 929887697
 #define HALF_SQRT3_Q16 56756
 
-/* Displacement from the centre of a node at one level to that of its child k, as x and y apart and
- * as one packed pair (pos.h). Kept together so that the hot loop reaches all of a level's vectors
- * from one base register. */
+/* Displacement from the centre of a node at one level to that of its child k, as one packed pair
+ * (pos.h) and a depth. Kept together so that the hot loop reaches all of a level's vectors from one
+ * base register. */
 typedef struct levelvec {
     mc_pos2 xy[8];
-    mc_pos z[8], x[8], y[8];
+    mc_pos z[8];
 } levelvec;
+
+/* The same displacements apart, depth in Q F: what perspective divides (leaves_perspective). */
+typedef struct exactvec {
+    mc_pos x[8], y[8], z[8];
+} exactvec;
 
 typedef struct ctx {
     mc_cursor mask[MC_MAX_DEPTH];
@@ -52,9 +57,9 @@ typedef struct ctx {
                                           * Q F pixels; 0: one pixel per leaf */
     mc_pos cx, cy;                       /* perspective: screen centre plus translation, Q F */
     mc_pos_wide eye, near;               /* perspective: eye distance and near plane, Q F pixels */
-    /* perspective, drawn level d >= 3: the exact vectors of levels d-3..d-1 (Q F, z too). v[d-3..d-1]
-     * hold each linear frame's instead, with z in depth-buffer units (linear_frame) */
-    levelvec pv[3];
+    /* perspective: the exact vectors of the last three levels (level l in pv[l + 3 - d]). At d >= 3,
+     * v[d-3..d-1] hold each linear frame's instead, with z in depth-buffer units (linear_frame) */
+    exactvec pv[3];
     mc_pos ball[2];                      /* how far a level d-3 / d-2 node's leaves lie from its centre */
     mc_pos basis[2][3][3];               /* the step to a child along model axis j at levels d-3 and
                                           * d-2, as the exact vectors are: [level][j][x, y, z], Q F */
@@ -141,7 +146,7 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
 /* Leaves of one level d-1 node in perspective, lv its exact vectors: each point divides by its own
  * distance (exact, not linearised, so it lands where the reference renderer, runtime/ref, puts it).
  * Points nearer than the near plane (1/64 cube side in front of the eye) are not drawn. */
-static void leaves_perspective(ctx *c, const levelvec *lv, unsigned m, mc_pos x, mc_pos y, mc_pos z,
+static void leaves_perspective(ctx *c, const exactvec *lv, unsigned m, mc_pos x, mc_pos y, mc_pos z,
                                const uint8_t *col)
 {
     const mc_pos *vx = lv->x, *vy = lv->y, *vz = lv->z;
@@ -170,7 +175,7 @@ static void leaves_perspective(ctx *c, const levelvec *lv, unsigned m, mc_pos x,
  * leaf. */
 static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
-    if (c->exact) leaves_perspective(c, &c->v[c->d - 1], m, x, y, z, col);
+    if (c->exact) leaves_perspective(c, &c->pv[2], m, x, y, z, col);
     else leaves_clipped(c, m, x, y, z, col);
 }
 
@@ -454,8 +459,13 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z);
 static void persp_node(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z);
 
-/* The children (mask m, already read) of a node at level l <= d-3 centred at (x, y, z); see visit. */
-static void visit_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
+/* The children (mask m, already read) of a node at level l <= d-3 centred at (x, y, z); see visit.
+ * Inlined into visit, so that the walk's recursion is one function a level. */
+/* The children (mask m, already read) of a node at level l = d-3 centred at (x, y, z), on an
+ * orthographic walk or a linear frame: each skipped, drawn unchecked or drawn with checks. It calls
+ * no walk function, so the walk recurses only through visit (visit_children is inlined into it) and
+ * visit_inside, once a level, as the firmware's static stack bound expects (front/fw/stack_bound.py). */
+static void frame_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
 {
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
@@ -463,24 +473,40 @@ static void visit_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, m
         unsigned k = mc_ctz(m);
         const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
         mc_pos cx = POS2_X(p), cy = POS2_Y(p), cz = z + vz[k];
-        if (c->perspective && l + 3 < c->d) {            /* above the linear frames: nothing projected */
+        int where = classify(c, cx, cy, l + 1);
+        if (where < 0) {
+            skip_subtree(c, l + 1);
+        } else {
+            const uint8_t *cm = mc_cursor_take(&c->mask[l + 1], 1);
+            if (where > 0) draw_level3(c, l, 1u << k, cm, POS2(x, y), z);
+            else draw_checked(c, l + 1, *cm, cx, cy, cz);
+        }
+        if (c->aborted) return;
+    }
+}
+
+MC_ALWAYS_INLINE void visit_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
+{
+    if (l + 3 == c->d) {                                  /* the children are at level d-2 */
+        frame_children(c, l, m, x, y, z);
+        return;
+    }
+    const mc_pos2 *v = c->v[l].xy;
+    const mc_pos *vz = c->v[l].z;
+    for (; m; m &= m - 1) {
+        unsigned k = mc_ctz(m);
+        const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
+        mc_pos cx = POS2_X(p), cy = POS2_Y(p), cz = z + vz[k];
+        if (c->perspective) {                            /* above the linear frames: nothing projected */
             if (l + 4 == c->d) persp_node(c, l + 1, cx, cy, cz);
             else visit(c, l + 1, cx, cy, cz);
             if (c->aborted) return;
             continue;
         }
         int where = classify(c, cx, cy, l + 1);
-        if (where < 0) {
-            skip_subtree(c, l + 1);
-        } else if (l + 3 == c->d) {                      /* the child is at level d-2 */
-            const uint8_t *cm = mc_cursor_take(&c->mask[l + 1], 1);
-            if (where > 0) draw_level3(c, l, 1u << k, cm, POS2(x, y), z);
-            else draw_checked(c, l + 1, *cm, cx, cy, cz);
-        } else if (where > 0) {
-            visit_inside(c, l + 1, POS2(cx, cy), cz);
-        } else {
-            visit(c, l + 1, cx, cy, cz);
-        }
+        if (where < 0) skip_subtree(c, l + 1);
+        else if (where > 0) visit_inside(c, l + 1, POS2(cx, cy), cz);
+        else visit(c, l + 1, cx, cy, cz);
         if (c->aborted) return;
     }
 }
@@ -570,7 +596,7 @@ static void exact_level2(ctx *c, mc_pos x, mc_pos y, mc_pos z)
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
     const uint8_t *masks = mc_cursor_take(&c->mask[l + 1], mc_popcount8(m));
     if (c->color.p >= c->color.end) mc_cursor_refill(&c->color);
-    const levelvec *p = &c->pv[1];
+    const exactvec *p = &c->pv[1];
     for (; m; m &= m - 1) {
         unsigned k = mc_ctz(m);
         unsigned cm = *masks++;
@@ -585,29 +611,31 @@ static void exact_level2(ctx *c, mc_pos x, mc_pos y, mc_pos z)
 static void persp_node(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
 {
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    if (l == c->cone_level && culled(c, l)) return;      /* before the frame: no frame for it */
     mc_pos sx, sy, sz;
     if (linear_frame(c, l, x, y, z, &sx, &sy, &sz)) {
         int where = classify(c, sx, sy, l);
-        if (where < 0) {
+        if (where < 0) {                                 /* its cone record is read: only the rest */
+            const unsigned cones = c->cone_level;
+            c->cone_level = NO_CONES;
             skip_subtree(c, l);
+            c->cone_level = cones;
             return;
         }
-        if (l == c->cone_level && culled(c, l)) return;
         unsigned m = *mc_cursor_take(&c->mask[l], 1);
         if (where > 0) draw_level3(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), POS2(sx, sy), sz);
-        else visit_children(c, l, m, sx, sy, sz);
+        else frame_children(c, l, m, sx, sy, sz);
         return;
     }
-    if (l == c->cone_level && culled(c, l)) return;
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
-    const levelvec *p = &c->pv[0];
+    const exactvec *p = &c->pv[0];
     for (; m; m &= m - 1) {
         unsigned k = mc_ctz(m);
         mc_pos cx = x + p->x[k], cy = y + p->y[k], cz = z + p->z[k];
         if (linear_frame(c, l + 1, cx, cy, cz, &sx, &sy, &sz)) {
             /* the child as the only child of a node at its own centre: a zero vector k at level l */
             c->v[l].xy[k] = POS2(0, 0);
-            visit_children(c, l, 1u << k, sx, sy, sz - c->v[l].z[k]);
+            frame_children(c, l, 1u << k, sx, sy, sz - c->v[l].z[k]);
         } else {
             exact_level2(c, cx, cy, cz);
         }
@@ -633,7 +661,9 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
     c->radius = (mc_pos)pos_units(radius, 1, F - POS_FRAC);
     /* orthographic depth vectors are in depth-buffer units (the shift folded in, one rounding per
      * level); perspective keeps positions, since it divides by the distance */
+    mc_pos mx[MC_MAX_DEPTH], my[MC_MAX_DEPTH];           /* the largest |x|, |y| of each level */
     for (unsigned l = 0; l < c->d; l++) {
+        mx[l] = my[l] = 0;
         for (int k = 0; k < 8; k++) {
             int64_t sx = k & 1 ? 1 : -1, sy = k & 2 ? 1 : -1, sz = k & 4 ? 1 : -1;
             /* child k's centre is +-1/4 of the node's side 2^-l from its parent's: 2^-(l+2) */
@@ -642,32 +672,28 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
             int64_t ez = sx * r[2][0] + sy * r[2][1] + sz * r[2][2];
             levelvec *v = &c->v[l];
             const int sh = 30 + 16 + (int)l + 2;          /* Q30 rotation * Q16 scale * 2^-(l+2) */
-            v->x[k] = (mc_pos)pos_units(ex, scale, sh - POS_FRAC);
-            v->y[k] = (mc_pos)-pos_units(ey, scale, sh - POS_FRAC);
+            const mc_pos x = (mc_pos)pos_units(ex, scale, sh - POS_FRAC);
+            const mc_pos y = (mc_pos)-pos_units(ey, scale, sh - POS_FRAC);
             v->z[k] = (mc_pos)-pos_units(ez, scale, sh - F + (int)c->zshift);
-            v->xy[k] = POS2(v->x[k], v->y[k]);
-            /* perspective: Q F depths above the linear frames, and exact vectors beside theirs */
+            v->xy[k] = POS2(x, y);
+            const mc_pos ax = x < 0 ? -x : x, ay = y < 0 ? -y : y;
+            mx[l] = ax > mx[l] ? ax : mx[l];
+            my[l] = ay > my[l] ? ay : my[l];
+            /* perspective: Q F depths above the linear frames, and the last levels' exact vectors */
             const mc_pos zq = (mc_pos)-pos_units(ez, scale, sh - POS_FRAC);
             if (c->perspective && (l + 3 < c->d || c->d < 3)) v->z[k] = zq;
-            if (c->perspective && l + 3 >= c->d && c->d >= 3) {
-                levelvec *p = &c->pv[l + 3 - c->d];
-                p->x[k] = v->x[k];
-                p->y[k] = v->y[k];
+            if (c->perspective && l + 3 >= c->d) {
+                exactvec *p = &c->pv[l + 3 - c->d];
+                p->x[k] = x;
+                p->y[k] = y;
                 p->z[k] = zq;
             }
         }
     }
     c->reach_x[c->d] = c->reach_y[c->d] = 0;
     for (unsigned l = c->d; l-- > 0;) {
-        mc_pos mx = 0, my = 0;
-        for (int k = 0; k < 8; k++) {
-            mc_pos ax = c->v[l].x[k] < 0 ? -c->v[l].x[k] : c->v[l].x[k];
-            mc_pos ay = c->v[l].y[k] < 0 ? -c->v[l].y[k] : c->v[l].y[k];
-            mx = ax > mx ? ax : mx;
-            my = ay > my ? ay : my;
-        }
-        c->reach_x[l] = c->reach_x[l + 1] + mx;
-        c->reach_y[l] = c->reach_y[l + 1] + my;
+        c->reach_x[l] = c->reach_x[l + 1] + mx[l];
+        c->reach_y[l] = c->reach_y[l + 1] + my[l];
     }
     for (unsigned l = 0; l <= c->d; l++) {     /* nothing to add unless sums round (pos.h) */
         c->reach_x[l] += POS_REACH_SLACK;

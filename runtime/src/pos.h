@@ -112,19 +112,22 @@ static inline mc_pos pos_linear(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g)
 /* Whether the first-order projection about a node's centre is within eps / 256 pixel of the exact one
  * for every point within r of that centre (all Q F pixels; o: the centre's offset from the view
  * axis on screen, the larger axis; dist > 0). The error on one axis is
- *     q dz (x dz / dist - dx) / (dist + dz)
- * (exact minus first order), at most r^2 (|o| + eye / 2) / (dist (dist - r)) with |dx|, |dz| <= r
- * and |x| / dist = |o| / eye. Evaluated in Q4 pixels, every rounding towards failing the test:
- *     8 r^2 (2 o + eye) <= eps dist (dist - r)   (r, o, eye rounded up, dist down). */
+ *     q dz (u dz - dx) / (1 + dz / dist),   q = eye / dist, u = x / dist = o / eye
+ * (exact minus first order). Over |(dx, dz)| <= r, |dz (u dz - dx)| is at most
+ * r^2 (|u| + sqrt(u^2 + 1)) / 2 <= r^2 (|u| + 1 + u^2 / 2) / 2, so the error is at most
+ *     r^2 (o + eye + o^2 / (2 eye)) / (2 dist (dist - r)).
+ * Evaluated in Q4 pixels, every rounding towards failing the test:
+ *     8 r^2 (o + eye + o^2 / (2 eye)) <= eps dist (dist - r)   (r, o, eye rounded up, dist down). */
 static inline int pos_linear_ok(mc_pos r, mc_pos_wide o, mc_pos_wide eye, mc_pos_wide dist, int32_t eps)
 {
     const int s = F - 4;
     const int64_t up = ((int64_t)1 << s) - 1;
-    const int64_t r4 = ((int64_t)r + up) >> s, o4 = (o + up) >> s, e4 = (eye + up) >> s, d4 = dist >> s;
+    const int64_t r4 = ((int64_t)r + up) >> s, o4 = (o + up) >> s, e4 = ((eye + up) >> s) + 1, d4 = dist >> s;
     const int64_t dr = d4 - r4;
     if (dr <= 0) return 0;
     const int64_t t = (8 * r4 * r4 + dr - 1) / dr;     /* r4 < 2^20: no overflow */
-    return t <= ((int64_t)eps * d4) / (2 * o4 + e4 + 1);
+    const int64_t w = o4 + e4 + (o4 * o4 + 2 * e4 - 1) / (2 * e4);   /* o4 < 2^17 (o < 2^28) */
+    return t <= ((int64_t)eps * d4) / w;
 }
 
 /* pos_linear rounded to a multiple of 4 units (2 units off at most, 2^-(F-1) pixel), so that the

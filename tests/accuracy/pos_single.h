@@ -76,7 +76,7 @@ static inline int pos_linear_setup(mc_pos x, mc_pos y, mc_pos_mag q, mc_pos_wide
 static inline mc_pos pos_linear(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g) { return v * q - vz * g; }
 static inline int pos_linear_ok(mc_pos r, mc_pos_wide o, mc_pos_wide eye, mc_pos_wide dist, int32_t eps)
 {
-    return dist > r && r * r * (o + eye * 0.5f) <= (float)eps / 256.0f * dist * (dist - r);
+    return dist > r && r * r * (o + eye + o * o / (2.0f * eye)) <= (float)eps / 128.0f * dist * (dist - r);
 }
 static inline mc_pos_wide pos_project(mc_pos x, mc_pos_mag q) { return x * q; }
 static inline mc_pos pos_linear_step(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g) { return v * q - vz * g; }
