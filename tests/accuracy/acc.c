@@ -1,7 +1,7 @@
 /* Accuracy and cost of one runtime build against the mesh reference (make
  * bench-accuracy, tests/accuracy/bench.sh):
  *
- *   acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH] [--dump DIR]
+ *   acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH] [--error PX] [--dump DIR]
  *
  * Built per setting by tests/accuracy/bench.sh: the runtime (runtime/src, with -DMC_FRAC_BITS=F, or
  * with tests/accuracy/pos_single.h for the float build of the renderer, config.h MC_POS_HEADER), one bake of the model at depth D
@@ -24,6 +24,9 @@
  *         (at least N, and at least 40 ms of frames, at most 400);
  *   status: ok, or the runtime's error (e.g. size: mc_octree_render refuses a target larger than
  *         MC_TARGET_MAX, which is 2^(27 - MC_FRAC_BITS) pixels).
+ * --error PX: the level-selection bound (mc_octree_options.max_error = 16 PX, Q4 pixels): the renderer
+ * draws the shallowest level whose nodes span at most PX pixels (mc_octree_lod_depth), never deeper
+ * than the bake; the exact build draws the same level. 0 (default): the bake's depth.
  * --dump DIR: also writes each image and the reference as DIR/vI_SPLAT_FILL.ppm and DIR/vI_ref.ppm.
  * --cg: no reference and no timing; each of the four cost views is drawn once per splat and finished
  * once per fill through the noinline functions acc_clear, acc_render_S, acc_fill_M_S, which
@@ -79,7 +82,7 @@ static const char *splat_names[] = {"pixel", "zoom"};
 static const char *fill_names[] = {"none", "pixel", "scanline"};
 static const int nsplats = HAVE_SPLATS ? 2 : 1, nfills = HAVE_SCANLINE ? 3 : 2;
 
-/* the footprint of the view make_view made last */
+/* the footprint of the view make_view made last, and the level-selection bound (--error) */
 static mc_octree_options opt;
 
 static mc_view make_view(const view_spec *s, int splat)
@@ -126,14 +129,15 @@ static int render(const mc_view *v, const mc_target *t)
 #if ACC_EXACT
     mc_view c = mc_view_clamp(v, t->width, t->height);
     exact_ctx fc = {t, 1};
+    const unsigned level = mc_octree_lod_depth(&c, t->width, t->height, scene->depth, opt.max_error);
 #if HAVE_SPLATS
     if (opt.splat == MC_SPLAT_ZOOM || (opt.splat == MC_SPLAT_DEFAULT && MC_SPLAT_DEFAULT_MODE == MC_SPLAT_ZOOM)) {
-        double leaf = c.zoom / 65536.0 * (t->width < t->height ? t->width : t->height) / (double)(1u << scene->depth);
+        double leaf = c.zoom / 65536.0 * (t->width < t->height ? t->width : t->height) / (double)(1u << level);
         double s = ceil(leaf - 1e-9);
         fc.side = s < 1 ? 1 : s > MC_SPLAT_MAX ? MC_SPLAT_MAX : (int)s;
     }
 #endif
-    mc_ref_points(scene, &c, scene->depth, t->width, t->height, exact_plot, &fc);
+    mc_ref_points(scene, &c, level, t->width, t->height, exact_plot, &fc);
     return MC_OK;
 #else
     return mc_octree_render(scene, v, scene->depth, &opt, t, NULL, NULL, NULL);
@@ -303,6 +307,14 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--tag") && i + 1 < argc) tag = argv[++i];
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc) frames = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--cg")) cg = 1;
+        else if (!strcmp(argv[i], "--error") && i + 1 < argc) {
+            const double px = atof(argv[++i]);
+            if (!(px >= 0 && px <= 64)) {
+                fprintf(stderr, "acc: bad --error (0..64 pixels)\n");
+                return 2;
+            }
+            opt.max_error = (uint16_t)lround(px * MC_LOD_PIXEL);
+        }
         else if (!strcmp(argv[i], "--dump") && i + 1 < argc) dump = argv[++i];
         else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
             if (sscanf(argv[++i], "%ux%u", &W, &H) != 2 || W < 16 || H < 16 || W > MAXW || H > MAXH) {
@@ -310,7 +322,7 @@ int main(int argc, char **argv)
                 return 2;
             }
         } else if (argv[i][0] != '-') ref_path = argv[i];
-        else { fprintf(stderr, "usage: acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH]\n"); return 2; }
+        else { fprintf(stderr, "usage: acc REF_DUMP --tag TAG [--frames N] [--cg] [--size WxH] [--error PX]\n"); return 2; }
     }
     mc_target t = {color, depthbuf, (uint16_t)W, (uint16_t)H};
     if (cg) return run_cg(&t);

@@ -12,6 +12,10 @@
 #   - fixed point, MC_FRAC_BITS 8 10 12 14 16 18 at depth 8, and 8 12 18 at depth 10
 #   - fixed point, MC_FRAC_BITS 19..24 at depth 8: compiled and run, but at 320x240 mc_octree_render refuses
 #     the target (MC_TARGET_MAX = 2^(27 - F) pixels), recorded as status "size"
+#   - the level-selection bound: fixed point F = 15 at depths ACC_LOD_DEPTHS (default 8 and 10) with
+#     mc_octree_options.max_error at ACC_ERRORS pixels (default 1 2 4 8; acc.c --error): the renderer draws
+#     the shallowest level whose nodes span at most the bound, never deeper than the bake (every other
+#     setting: bound off, the bake's depth)
 # Each setting renders 12 views (yaw 0/20/40/60 degrees with pitch 0/5/10/15, zoom 1, 1.5, 2) with
 # each splat and fill the runtime has, against the mesh reference (runtime/ref/mesh_ref.c), and times
 # them (median of ACC_FRAMES frames, default 7, at least 20 ms). Instructions per frame: callgrind on
@@ -42,6 +46,8 @@ done
 mkdir -p "$OUT/bakes" "$OUT/obj" "$OUT/bin" "$OUT/cg" "$OUT/log"
 
 DEPTHS="5 6 7 8 9 10"
+LOD_DEPTHS=${ACC_LOD_DEPTHS:-8 10}
+ERRORS=${ACC_ERRORS:-1 2 4 8}
 FRACS_D8="8 10 12 14 16 18 19 20 21 22 23 24"
 FRACS_D10="8 12 18"
 
@@ -116,52 +122,61 @@ EOF
     done
 done
 
-# ---- the settings: model depth build frac --------------------------------------------------------
+# ---- the settings: model depth build frac lod (the level-selection bound in pixels, 0 = off) -----
 settings=()
 for m in $MODELS; do
-    for d in $DEPTHS; do settings+=("$m $d fixed 15" "$m $d float 15" "$m $d exact 15"); done
-    for f in $FRACS_D8; do settings+=("$m 8 fixed $f"); done
-    for f in $FRACS_D10; do settings+=("$m 10 fixed $f"); done
+    for d in $DEPTHS; do settings+=("$m $d fixed 15 0" "$m $d float 15 0" "$m $d exact 15 0"); done
+    for f in $FRACS_D8; do settings+=("$m 8 fixed $f 0"); done
+    for f in $FRACS_D10; do settings+=("$m 10 fixed $f 0"); done
+    # after the bound-off settings, which build the programs these run again with --error
+    for d in $LOD_DEPTHS; do for e in $ERRORS; do settings+=("$m $d fixed 15 $e"); done; done
 done
 
-echo "model,depth,build,frac,yaw,pitch,zoom,splat,fill,psnr,ssim,coverage,ms,cpu_ms,status" >"$OUT/views.csv"
-echo "model,depth,build,frac,part,ir" >"$OUT/cg.csv"
+echo "model,depth,build,frac,lod,yaw,pitch,zoom,splat,fill,psnr,ssim,coverage,ms,cpu_ms,status" >"$OUT/views.csv"
+echo "model,depth,build,frac,lod,part,ir" >"$OUT/cg.csv"
 cg_jobs=()
 for s in "${settings[@]}"; do
-    read -r m d build f <<<"$s"
+    read -r m d build f lod <<<"$s"
     [ "$build" = fixed ] || [ "$f" = 15 ] || continue
     name=${m}_d$d
     exe=$OUT/bin/acc-$name-$build-f$f
-    tag="$m,$d,$build,$f"
-    step "$tag: build"
+    tag="$m,$d,$build,$f,$lod"
     key=$f exact=0
     [ "$build" = float ] && key=float
     [ "$build" = exact ] && exact=1
-    if ! rt=$(rt_objs "$key" 2>"$OUT/log/rt$key.log"); then
-        echo "$m,$d,$build,$f,,,,,,,,,,,compile" >>"$OUT/views.csv"
+    if [ "$lod" = 0 ]; then
+        step "$tag: build"
+        if ! rt=$(rt_objs "$key" 2>"$OUT/log/rt$key.log"); then
+            echo "$m,$d,$build,$f,$lod,,,,,,,,,,,compile" >>"$OUT/views.csv"
+            continue
+        fi
+        # shellcheck disable=SC2046
+        $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -Iruntime/front/host $(cfg_flags "$key") \
+            -DACC_SCENE="mc_octree_$name" -DACC_EXACT=$exact -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
+            "$OUT/obj/$name"/*.o -lm
+    elif ! grep -q "^$m,$d,$build,$f,0,.*,ok\$" "$OUT/views.csv"; then
+        echo "$m,$d,$build,$f,$lod,,,,,,,,,,,compile" >>"$OUT/views.csv"
         continue
     fi
-    # shellcheck disable=SC2046
-    $CC $OPT -std=c99 -Wall -Wextra -Werror -Iruntime/include -Iruntime/ref -Iruntime/front/host $(cfg_flags "$key") \
-        -DACC_SCENE="mc_octree_$name" -DACC_EXACT=$exact -o "$exe" tests/accuracy/acc.c "$rt"/*.o \
-        "$OUT/obj/$name"/*.o -lm
-    step "$tag: render and time 12 views"
-    "$exe" "$OUT/bakes/$m.ref" --tag "$tag" --frames "$FRAMES" --size "$SIZE" >>"$OUT/views.csv"
+    bound=""
+    [ "$lod" = 0 ] || bound=" (level-selection bound $lod px)"
+    step "$tag: render and time 12 views$bound"
+    "$exe" "$OUT/bakes/$m.ref" --tag "$tag" --frames "$FRAMES" --size "$SIZE" --error "$lod" >>"$OUT/views.csv"
     # instruction counts: every setting that renders at this size (F <= 18 at 320x240)
-    if grep -q "^$tag,.*,ok\$" "$OUT/views.csv"; then cg_jobs+=("$tag $exe"); fi
+    if grep -q "^$tag,.*,ok\$" "$OUT/views.csv"; then cg_jobs+=("$tag $exe $lod"); fi
 done
 
 step "callgrind: ${#cg_jobs[@]} settings, 4 views each, two at a time"
 printf '%s\n' "${cg_jobs[@]}" | xargs -P 2 -L 1 bash -c '
-    tag=$0 exe=$1 out='"$OUT"'/cg/$(basename "$1").out
-    valgrind --tool=callgrind --toggle-collect="acc_*" --callgrind-out-file="$out" "$exe" --cg --size '"$SIZE"' \
-        >/dev/null 2>"$out.log" || { echo "callgrind failed: $exe" >&2; exit 0; }
+    tag=$0 exe=$1 lod=$2 out='"$OUT"'/cg/$(basename "$1")-e$2.out
+    valgrind --tool=callgrind --toggle-collect="acc_*" --callgrind-out-file="$out" "$exe" --cg --size '"$SIZE"' --error "$lod" \
+        >/dev/null 2>"$out.log" || { echo "callgrind failed: $exe --error $lod" >&2; exit 0; }
     callgrind_annotate --inclusive=yes --threshold=100 "$out" 2>/dev/null |
         sed -n "s/^ *\([0-9,]*\) ([^)]*) *[^ ]*:\(acc_[a-z_]*\) .*/\2 \1/p" | tr -d , |
         while read -r part ir; do echo "$tag,$part,$ir"; done >"$out.csv"'
 for s in "${cg_jobs[@]}"; do
-    exe=${s#* }
-    cat "$OUT/cg/$(basename "$exe").out.csv" >>"$OUT/cg.csv" 2>/dev/null || true
+    read -r _ exe lod <<<"$s"
+    cat "$OUT/cg/$(basename "$exe")-e$lod.out.csv" >>"$OUT/cg.csv" 2>/dev/null || true
 done
 
 step "report"

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # make bench-firmware: instructions per frame and per drawn point on Cortex-M3 and Cortex-M4, counted
-# by QEMU, beside the host's callgrind count for the same bake and views; and for each board's mesh
+# by QEMU, beside the host's callgrind count for the same bake and views; the point frames are the
+# checksum views (runtime/front/common/views.h) and then the frames with the renderer's options set
+# (runtime/front/common/frames.h: culling off, a level-of-detail bound, magnified leaves drawn as
+# squares), each reported beside the frame that differs from it in one thing; and for each board's mesh
 # bake (make firmware FW_MESH=1), instructions per mesh frame, per triangle drawn and per line pixel and
 # edge of the line drawings (runtime/front/common/mesh_frames.h's frames). Writes its own section of
 # tests/bench/RESULTS.md (between "<!-- bench-firmware: begin -->" and "<!-- bench-firmware: end -->",
@@ -87,11 +90,13 @@ def frames(path):
     r = {}
     for line in open(path):
         m = re.match(r"frame (\d+) yaw (-?\d+) pitch (-?\d+) roll (-?\d+) zoom (\d+) tx (-?\d+) ty (-?\d+) eye (\d+) "
-                     r"depth (\d+) size (\S+) rc (-?\d+) points (\d+) filled (\d+) fnv1a (\w+)", line)
+                     r"error (\d+) cull (on|off) depth (\d+) level (\d+) size (\S+) rc (-?\d+) points (\d+) "
+                     r"culled (\d+) filled (\d+) fnv1a (\w+)", line)
         if m:
             g = m.groups()
             r[int(g[0])] = dict(yaw=int(g[1]), pitch=int(g[2]), roll=int(g[3]), zoom=int(g[4]), tx=int(g[5]),
-                                ty=int(g[6]), eye=int(g[7]), depth=int(g[8]), size=g[9], points=int(g[11]), hash=g[13])
+                                ty=int(g[6]), eye=int(g[7]), error=int(g[8]), cull=g[9], depth=int(g[10]),
+                                level=int(g[11]), size=g[12], points=int(g[14]), culled=int(g[15]), hash=g[17])
     return r
 
 def costs(path):
@@ -121,7 +126,37 @@ def view_name(f):
     if f["zoom"] != 65536: s += f" zoom {f['zoom'] / 65536:.2f}"
     if f["tx"] or f["ty"]: s += f" t {f['tx']},{f['ty']}"
     s += f", perspective eye {f['eye'] / 65536:g}" if f["eye"] else ""
+    if f["cull"] == "off": s += ", **culling off**"
+    if f["error"]: s += f", **level of detail {f['error'] / 16:g} px**"
     return s
+
+def nviews_of(path):
+    for line in open(path):
+        m = re.match(r"modelc firmware: model \S+ depth \d+ size \S+ views (\d+)", line)
+        if m:
+            return int(m.group(1))
+    return 9
+
+CAM = ("yaw", "pitch", "roll", "zoom", "tx", "ty", "eye")
+def comparisons(fr, nviews):
+    """(kind, a, b) for each frame with options (index >= nviews) and the frame it differs from in one
+    thing: culling (a on, b off), level of detail (a bound, b the depth asked), squares (a magnified,
+    b the same view at zoom 1, one pixel a leaf)."""
+    out = []
+    for j in sorted(i for i in fr if i >= nviews):
+        f = fr[j]
+        same = [i for i in sorted(fr) if i != j and all(fr[i][k] == f[k] for k in CAM)]
+        if f["cull"] == "off":
+            p = [i for i in same if fr[i]["cull"] == "on" and fr[i]["error"] == f["error"]]
+            if p: out.append(("culling", p[0], j))
+        elif f["error"]:
+            p = [i for i in same if fr[i]["error"] == 0 and fr[i]["cull"] == f["cull"]]
+            if p: out.append(("lod", j, p[0]))
+        elif f["zoom"] > 65536:
+            p = [i for i in sorted(fr) if i != j and fr[i]["zoom"] == 65536 and fr[i]["error"] == 0
+                 and fr[i]["cull"] == f["cull"] and all(fr[i][k] == f[k] for k in CAM if k != "zoom")]
+            if p: out.append(("squares", j, p[0]))
+    return out
 
 L = []
 A = L.append
@@ -138,13 +173,18 @@ sha = hashlib.sha256(open("runtime/src/octree_render.c", "rb").read()).hexdigest
 A(f"- {qv}; {gv}, `-O2`, picolibc 1.8 (semihosting); host: valgrind callgrind on the same bake, gcc -O2 x86-64; "
   f"runtime/src/octree_render.c sha256 {sha}")
 A(f"- model {model}, each board's bake (`make firmware MODEL={model} BOARD=...`): mps2-an386 depth 8 at 320x240, "
-  "lm3s6965evb depth 7 at 160x128; the nine views of `runtime/front/common/views.h` (the checksum views)")
+  "lm3s6965evb depth 7 at 160x128; the point frames of `runtime/front/common/frames.h` (the checksum frames): "
+  "frames 0-8 the nine views of `views.h` with the default options (culling on where the bake has normal cones, "
+  "as bunny00's has; no level-of-detail bound: the bake's depth; the zoom footprint), then the same or other "
+  "views with one option changed: culling off, a level-of-detail bound of one pixel (`mc_octree_options.max_error` "
+  "16, the viewer's `--error 1`), and a view magnified so that every leaf is a 2x2 square wholly on screen")
 A("- **instructions, not cycles**: QEMU counts executed instructions (`-icount shift=0`: 1 ns of virtual time per "
   "instruction, read through SysTick at each stage boundary and calibrated with a loop of known length, exact to "
   "one tick = 80 instructions on lm3s6965evb, 40 on mps2-an386). A real Cortex-M3/M4 takes more cycles than "
   "instructions (loads 2 cycles, taken branches 2-4, flash wait states on the M3 above 20-50 MHz): QEMU models no timing.")
 A("- render = mc_octree_render alone (what callgrind's `--toggle-collect=mc_octree_render` counts on the host: Ir); clear = mc_clear; "
-  "finish = mc_finish_pixel_holes; points = leaves that landed on screen (mc_stats.points)")
+  "finish = mc_finish_pixel_holes; points = leaves that landed on screen (mc_stats.points); level = the level drawn "
+  "(mc_stats.depth); culled = back-facing nodes skipped (mc_stats.culled)")
 A("")
 A("Commands:")
 A("```")
@@ -155,18 +195,19 @@ if trace:
     A(f"qemu-system-arm -M lm3s6965evb ... -singlestep -d exec,nochain -D FIFO ...   # cross-check: one trace line per instruction")
 A("```")
 A("")
-summary = {}
+summary, side = {}, {}
 for b, cpu in boards:
     fr, co, ir = frames(os.path.join(out, f"{b}.icount.txt")), costs(os.path.join(out, f"{b}.icount.txt")), host_ir(b)
     hf = frames(os.path.join(out, f"{b}.host.txt"))
     same = all(fr[i]["hash"] == hf.get(i, {}).get("hash") for i in fr) and len(fr) == len(hf)
     f0 = fr[0]
+    nv = nviews_of(os.path.join(out, f"{b}.icount.txt"))
     A(f"### {b} ({cpu}), depth {f0['depth']}, {f0['size']}")
     A("")
     A(f"Frame checksums equal the host viewer's: **{'yes' if same else 'NO'}** ({len(fr)} frames).")
     A("")
-    A("| view | points | clear | render | **render / point** | finish | frame (clear+render+finish) | frame / point | host mc_octree_render Ir | host Ir / point |")
-    A("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    A("| frame: view | level | points | culled | clear | render | **render / point** | finish | frame (clear+render+finish) | frame / point | host mc_octree_render Ir | host Ir / point |")
+    A("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     tot = {"o": [0, 0, 0, 0], "p": [0, 0, 0, 0]}
     for i in sorted(co):
         c, f = co[i], fr[i]
@@ -174,18 +215,27 @@ for b, cpu in boards:
         h = ir[i] if i < len(ir) else None
         pts = max(c["points"], 1)
         k = "p" if f["eye"] else "o"
-        tot[k][0] += c["points"]; tot[k][1] += c["render"]; tot[k][2] += frame; tot[k][3] += h or 0
-        A(f"| {i}: {view_name(f)} | {c['points']:,} | {c['clear']:,} | {c['render']:,} | **{c['render'] / pts:.1f}** | "
-          f"{c['finish']:,} | {frame:,} | {frame / pts:.1f} | {h:,} | {h / pts:.1f} |" if h is not None else
-          f"| {i}: {view_name(f)} | {c['points']:,} | {c['clear']:,} | {c['render']:,} | **{c['render'] / pts:.1f}** | "
-          f"{c['finish']:,} | {frame:,} | {frame / pts:.1f} | - | - |")
-    for k, name in (("o", "orthographic views (0-6)"), ("p", "perspective views (7-8)")):
+        if i < nv:   # the totals: the checksum views with the default options
+            tot[k][0] += c["points"]; tot[k][1] += c["render"]; tot[k][2] += frame; tot[k][3] += h or 0
+        lead = f"| {i}: {view_name(f)} | {f['level']} | {c['points']:,} | {f['culled']:,} | {c['clear']:,} | {c['render']:,} | "
+        A(lead + f"**{c['render'] / pts:.1f}** | {c['finish']:,} | {frame:,} | {frame / pts:.1f} | "
+          + (f"{h:,} | {h / pts:.1f} |" if h is not None else "- | - |"))
+    persp = [i for i in range(nv) if fr[i]["eye"]]
+    for k, name in (("o", f"orthographic views (0-{nv - 1 - len(persp)}), default options"),
+                    ("p", f"perspective views ({'-'.join(map(str, persp[::max(len(persp) - 1, 1)]))}), default options")):
         p, r, fr_, h = tot[k]
         if p:
-            A(f"| **{name}, all frames** | {p:,} | | {r:,} | **{r / p:.1f}** | | {fr_:,} | {fr_ / p:.1f} | {h:,} | {h / p:.1f} |")
-    summary[b] = (co[0]["render"] / co[0]["points"], (co[0]["clear"] + co[0]["render"] + co[0]["finish"]) / co[0]["points"],
-                  tot["o"][1] / tot["o"][0], ir[0] / co[0]["points"] if ir else None)
+            A(f"| **{name}, all frames** | | {p:,} | | | {r:,} | **{r / p:.1f}** | | {fr_:,} | {fr_ / p:.1f} | {h:,} | {h / p:.1f} |")
     A("")
+    cmp_ = comparisons(fr, nv)
+    side[b] = (cpu, fr, co, ir, cmp_)
+    off = [bb for kind, a_, bb in cmp_ if kind == "culling" and a_ == 0]
+    paper = off[0] if off else 0
+    summary[b] = (co[paper]["render"] / co[paper]["points"],
+                  (co[paper]["clear"] + co[paper]["render"] + co[paper]["finish"]) / co[paper]["points"],
+                  tot["o"][1] / tot["o"][0], ir[paper] / co[paper]["points"] if len(ir) > paper else None,
+                  tot["p"][1] / tot["p"][0] if tot["p"][0] else None, tot["p"][3] / tot["p"][0] if tot["p"][0] else None,
+                  paper, co[0]["render"] / co[0]["points"])
     if b == "lm3s6965evb" and trace:
         marks = [int(x) for x in open(os.path.join(out, f"{b}.trace-marks.txt")).read().split()]
         rows = []
@@ -201,6 +251,59 @@ for b, cpu in boards:
               f"the ~10 instructions of one stage marker). Trace counts: "
               + ", ".join(f"frame {i} {t:,}" for i, t, _ in rows) + ".")
             A("")
+if any(v[4] for v in side.values()):
+    A("### The renderer's options side by side: culling, level of detail, squares")
+    A("")
+    A("Each frame with an option set (frames 9 on, `runtime/front/common/frames.h`) beside the frame that differs from "
+      "it in one thing, in the same run: **culling** on (the default; the bake has normal cones) against off, the same "
+      "view; **level of detail**, a bound of one pixel (`max_error` 16: the shallowest level whose nodes span at most a "
+      "pixel) against none (the bake's depth), the same view zoomed out; **squares**, a view at zoom 1.2 where every "
+      "leaf is a 2x2 square and every leaf lies on screen, against the same view at zoom 1 (one pixel a leaf, the same "
+      "leaves). render = mc_octree_render's instructions (QEMU), host Ir = callgrind's on x86-64 for the same frame; "
+      "the last column is the first frame's render against the second's.")
+    A("")
+    names = {"culling": ("culling on", "culling off"), "lod": ("level of detail 1 px", "bake's depth"),
+             "squares": ("2x2 squares (zoom 1.2)", "one pixel (zoom 1)")}
+    for b, (cpu, fr, co, ir, cmp_) in side.items():
+        if not cmp_:
+            continue
+        A(f"#### {b} ({cpu})")
+        A("")
+        A("| comparison | frame: view | level | points | culled | render | **render / point** | frame (clear+render+finish) | host Ir | **render: first against second** |")
+        A("|---|---|---:|---:|---:|---:|---:|---:|---:|---|")
+        for kind, a_, b_ in cmp_:
+            ra, rb = co[a_]["render"], co[b_]["render"]
+            ha = ir[a_] if a_ < len(ir) else None
+            hb = ir[b_] if b_ < len(ir) else None
+            for n, i in enumerate((a_, b_)):
+                c, f = co[i], fr[i]
+                h = ir[i] if i < len(ir) else None
+                frame = c["clear"] + c["render"] + c["finish"]
+                if n == 0:
+                    change = (f"**{ra / rb:.2f} x** ({100 * (ra / rb - 1):+.0f} %)" +
+                              (f"; host {ha / hb:.2f} x" if ha and hb else ""))
+                else:
+                    change = ""
+                A(f"| {names[kind][n]} | {i}: {view_name(f)} | {f['level']} | {c['points']:,} | {f['culled']:,} | {c['render']:,} | "
+                  f"**{c['render'] / max(c['points'], 1):.1f}** | {frame:,} | {f'{h:,}' if h is not None else '-'} | {change} |")
+        A("")
+    for b, (cpu, fr, co, ir, cmp_) in side.items():
+        parts = []
+        for kind, a_, b_ in cmp_:
+            ra, rb = co[a_]["render"], co[b_]["render"]
+            if kind == "culling":
+                parts.append(f"culling at view {a_} takes {ra:,} instructions against {rb:,} without "
+                             f"({100 * (1 - ra / rb):.0f} % fewer; {co[a_]['points']:,} of {co[b_]['points']:,} leaves drawn)")
+            elif kind == "lod":
+                parts.append(f"the one-pixel bound at zoom {fr[a_]['zoom'] / 65536:g} draws level {fr[a_]['level']} of "
+                             f"{fr[b_]['level']} in {ra:,} instructions against {rb:,} ({rb / ra:.1f} times fewer)")
+            else:
+                parts.append(f"2x2 squares take {co[a_]['render'] / max(co[a_]['points'], 1):.1f} instructions a leaf against "
+                             f"{co[b_]['render'] / max(co[b_]['points'], 1):.1f} for one pixel, the same {co[b_]['points']:,} leaves")
+        if parts:
+            A(f"{b} ({cpu}): " + "; ".join(parts) + ".")
+            A("")
+
 def mesh_costs(path):
     r, head = {}, {}
     if not os.path.exists(path):
@@ -284,7 +387,11 @@ A("The paper (Barth, Schwanecke & Wild, figure 10) times the frontal view of a d
 A("")
 m4, m3 = summary.get("mps2-an386"), summary.get("lm3s6965evb")
 if m4 and m3:
-    A("| | frontal view: mc_octree_render instructions / point | frontal: whole frame (clear + render + finish) / point | orthographic views 0-6: render / point | host x86-64 Ir / point (frontal) |")
+    A(f"The paper draws every point, so its figure compares with the frontal view with culling off (frame {m4[6]}, every "
+      f"leaf drawn); with culling on (frame 0, the default) the frontal view costs {m4[7]:.1f} instructions a drawn point "
+      f"on the Cortex-M4, the walk's cost spread over a third fewer points.")
+    A("")
+    A("| | frontal view, culling off: mc_octree_render instructions / point | frontal, culling off: whole frame (clear + render + finish) / point | orthographic views, default options: render / point | host x86-64 Ir / point (frontal, culling off) |")
     A("|---|---:|---:|---:|---:|")
     A(f"| Cortex-M4F (mps2-an386, depth 8, 320x240) | **{m4[0]:.1f}** | {m4[1]:.1f} | {m4[2]:.1f} | {m4[3]:.1f} |")
     A(f"| Cortex-M3 (lm3s6965evb, depth 7, 160x128) | **{m3[0]:.1f}** | {m3[1]:.1f} | {m3[2]:.1f} | {m3[3]:.1f} |")
@@ -294,8 +401,10 @@ if m4 and m3:
       f"instruction (a pessimistic Cortex-M4 CPI for this load/store-heavy loop) that is {100 / m4[0]:.1f} to "
       f"{230 / m4[0]:.1f} times fewer cycles. The paper's figure is Java on a JVM (bounds-checked arrays) and has no "
       f"hole filling. The Cortex-M4 count is {100 * (m4[0] / m4[3] - 1):.0f}% above the host's Ir (a 32-bit core needs two instructions, adds "
-      "and adc, for each 64-bit packed x/y addition that x86-64 does in one). Perspective views cost over ten times more per point on both (about 370 instructions "
-      "on Cortex-M, 250 Ir on x86-64): each point divides by its own distance (a 64-bit division, __aeabi_ldivmod in "
+      "and adc, for each 64-bit packed x/y addition that x86-64 does in one). "
+      + (f"Perspective views cost about {m4[4] / m4[2]:.0f} times more per point than the orthographic ones ({m4[4]:.0f} instructions "
+         f"on the Cortex-M4, {m3[4]:.0f} on the M3, {m4[5]:.0f} Ir on x86-64): " if m4[4] and m3[4] else "Perspective views cost far more per point: ")
+      + "each point divides by its own distance (a 64-bit division, __aeabi_ldivmod in "
       "software on Cortex-M) and scales x and y by two exact 64x64-bit products (mc_mul_shift64, portable C).")
 A("<!-- bench-firmware: end -->")
 text = "\n".join(L) + "\n"

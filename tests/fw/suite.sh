@@ -9,7 +9,10 @@
 #     check fails when budget.json disagrees with the ELF
 #   - make firmware-run: QEMU runs it to "done" with exit status 0; its frame checksum lines equal the
 #     host viewer's --checksums lines for the same bake, byte for byte (the fixed-point runtime is
-#     bit-exact across architectures); the frame it writes through semihosting equals the host's
+#     bit-exact across architectures), for the views of views.h and the frames with options of frames.h;
+#     those take their paths: culling off skips no node where the default skipped some, the
+#     level-of-detail bound draws a shallower level with fewer leaves, the magnified (squares) frame
+#     draws the same leaves as at zoom 1 (wholly on screen); the frame it writes through semihosting equals the host's
 #     --ppm output and converts to a valid PNG (build/tests/fw/BOARD.png)
 #   - the measured stack high-water mark is below the static bound
 # and for the same model baked with its mesh part on each board (make firmware FW_MESH=1: --as both at
@@ -63,6 +66,48 @@ open(sys.argv[2], "wb").write(png)
 # read it back: signature, size, and the same pixels
 back = open(sys.argv[2], "rb").read()
 assert back[:8] == b"\x89PNG\r\n\x1a\n" and struct.unpack(">II", back[16:24]) == (w, h)
+EOF
+}
+
+# the point frames: the views of views.h (default options), then frames.h's views with options
+nviews=$(grep -c '^    {[^{]' runtime/front/common/views.h)
+nframes=$((nviews + $(grep -c '^    {{' runtime/front/common/frames.h)))
+
+option_paths() {   # option_paths FRAMES: what the frames with options (index >= nviews) fail to show, or nothing
+    python3 - "$1" "$nviews" <<'EOF'
+import re, sys
+rows = {}
+for line in open(sys.argv[1]):
+    m = re.match(r"frame (\d+) yaw (-?\d+) pitch (-?\d+) roll (-?\d+) zoom (\d+) tx (-?\d+) ty (-?\d+) eye (\d+) "
+                 r"error (\d+) cull (on|off) depth (\d+) level (\d+) size \S+ rc 0 points (\d+) culled (\d+) ", line)
+    if m:
+        g = m.groups()
+        rows[int(g[0])] = dict(cam=g[1:8], zoom=int(g[4]), error=int(g[8]), cull=g[9], depth=int(g[10]),
+                               level=int(g[11]), points=int(g[12]), culled=int(g[13]))
+nviews = int(sys.argv[2])
+why = []
+opt = [i for i in sorted(rows) if i >= nviews]
+if not opt: why.append("no frame with options")
+for j in opt:
+    r = rows[j]
+    same = [i for i in sorted(rows) if i != j and rows[i]["cam"] == r["cam"]]
+    if r["cull"] == "off":
+        # culling off: no node skipped, more leaves than the same view culled
+        p = [i for i in same if rows[i]["cull"] == "on" and rows[i]["error"] == r["error"]]
+        if r["culled"] or not p or rows[p[0]]["culled"] == 0 or rows[p[0]]["points"] >= r["points"]:
+            why.append(f"frame {j} (cull off) against {p[:1]}: culled {r['culled']}")
+    elif r["error"]:
+        # a level-of-detail bound: a shallower level than the same view at the depth asked, fewer leaves
+        p = [i for i in same if rows[i]["error"] == 0 and rows[i]["cull"] == r["cull"]]
+        if not p or r["level"] >= r["depth"] or rows[p[0]]["level"] != r["depth"] or r["points"] >= rows[p[0]]["points"]:
+            why.append(f"frame {j} (error {r['error']}) level {r['level']} of {r['depth']} against {p[:1]}")
+    elif r["zoom"] > 65536:
+        # magnified (squares): wholly on screen, so the same leaves as the same view at zoom 1
+        z = [i for i in rows if i != j and rows[i]["cam"][:3] == r["cam"][:3] and rows[i]["cam"][4:] == r["cam"][4:]
+             and rows[i]["error"] == 0 and rows[i]["cull"] == "on" and rows[i]["zoom"] == 65536]
+        if not z or rows[z[0]]["points"] != r["points"]:
+            why.append(f"frame {j} (zoom {r['zoom']}) draws {r['points']} leaves, at zoom 1 {[rows[i]['points'] for i in z]}")
+print("; ".join(why))
 EOF
 }
 
@@ -134,17 +179,18 @@ EOF
     run=$dir/$model.run.txt
     check "$b: make firmware-run: QEMU runs the firmware to \"done\", exit status 0" \
         "$([ $st -eq 0 ] && grep -q '^done' "$run" 2>/dev/null || echo "exit $st: $(tail -5 "$out/$b.run.txt" | oneline)")"
-    nviews=$(grep -c '^    {' runtime/front/common/views.h)
     grep '^frame ' "$run" >"$out/$b.fw-frames.txt" 2>/dev/null
     $dir/$model/$model-view --checksums --ppm "$out/$b.host.ppm" >"$out/$b.host-frames.txt" 2>"$out/$b.host-err.txt"
     hst=$?
     nfw=$(wc -l <"$out/$b.fw-frames.txt")
-    check "$b: the host viewer's --checksums renders the same $nviews views (exit 0)" \
-        "$([ $hst -eq 0 ] && [ "$(wc -l <"$out/$b.host-frames.txt")" -eq "$nviews" ] || echo "exit $hst, $(wc -l <"$out/$b.host-frames.txt") lines")"
-    check "$b: firmware prints $nviews frame checksum lines, every render MC_OK" \
-        "$([ "$nfw" -eq "$nviews" ] && ! grep -qv ' rc 0 ' "$out/$b.fw-frames.txt" || echo "$nfw lines: $(head -3 "$out/$b.fw-frames.txt" | oneline)")"
-    check "$b: frame checksums (FNV-1a of colour and depth buffers) equal the host's, all $nviews views" \
+    check "$b: the host viewer's --checksums renders the same $nframes frames ($nviews views, $((nframes - nviews)) with options) (exit 0)" \
+        "$([ $hst -eq 0 ] && [ "$(wc -l <"$out/$b.host-frames.txt")" -eq "$nframes" ] || echo "exit $hst, $(wc -l <"$out/$b.host-frames.txt") lines")"
+    check "$b: firmware prints $nframes frame checksum lines, every render MC_OK" \
+        "$([ "$nfw" -eq "$nframes" ] && ! grep -qv ' rc 0 ' "$out/$b.fw-frames.txt" || echo "$nfw lines: $(head -3 "$out/$b.fw-frames.txt" | oneline)")"
+    check "$b: frame checksums (FNV-1a of colour and depth buffers) equal the host's, all $nframes frames" \
         "$(cmp -s "$out/$b.fw-frames.txt" "$out/$b.host-frames.txt" || diff "$out/$b.fw-frames.txt" "$out/$b.host-frames.txt" | head -4 | oneline)"
+    check "$b: the frames with options take their paths: culling skips nodes by default and none when off, the level of detail draws a shallower level, the squares frame the same leaves as at zoom 1" \
+        "$(option_paths "$out/$b.fw-frames.txt")"
     check "$b: the frame written through semihosting equals the host's --ppm, byte for byte" \
         "$(cmp "$dir/$model.ppm" "$out/$b.host.ppm" 2>&1 | oneline)"
     problem=$(ppm2png "$dir/$model.ppm" "$out/$b.png" 2>&1 | tail -1)
@@ -178,7 +224,6 @@ print("; ".join(why))
 EOF
 }
 
-nviews=$(grep -c '^    {' runtime/front/common/views.h)
 for b in mps2-an386 lm3s6965evb; do
     dir=build/fw/$b-mesh
     elf=$dir/$model.elf
@@ -226,10 +271,10 @@ for b in mps2-an386 lm3s6965evb; do
     hst=$?
     grep '^frame ' "$out/$t.host.txt" >"$out/$t.host-frames.txt"
     grep '^mesh frame ' "$out/$t.host.txt" >"$out/$t.host-mesh.txt"
-    check "$b mesh: the host viewer's --checksums prints $nviews point and then $nviews mesh frame lines (exit 0)" \
-        "$([ $hst -eq 0 ] && [ "$(wc -l <"$out/$t.host-frames.txt")" -eq "$nviews" ] &&
-            [ "$(wc -l <"$out/$t.host-mesh.txt")" -eq "$nviews" ] && [ "$(wc -l <"$out/$t.host.txt")" -eq $((2 * nviews)) ] &&
-            [ "$(head -1 "$out/$t.host-mesh.txt")" = "$(sed -n "$((nviews + 1))p" "$out/$t.host.txt")" ] ||
+    check "$b mesh: the host viewer's --checksums prints $nframes point and then $nviews mesh frame lines (exit 0)" \
+        "$([ $hst -eq 0 ] && [ "$(wc -l <"$out/$t.host-frames.txt")" -eq "$nframes" ] &&
+            [ "$(wc -l <"$out/$t.host-mesh.txt")" -eq "$nviews" ] && [ "$(wc -l <"$out/$t.host.txt")" -eq $((nframes + nviews)) ] &&
+            [ "$(head -1 "$out/$t.host-mesh.txt")" = "$(sed -n "$((nframes + 1))p" "$out/$t.host.txt")" ] ||
             echo "exit $hst, $(wc -l <"$out/$t.host.txt") lines")"
     nfw=$(wc -l <"$out/$t.fw-mesh.txt")
     first_mesh=$(grep -n '^mesh frame ' "$run" | head -1 | cut -d: -f1)
@@ -245,8 +290,8 @@ for b in mps2-an386 lm3s6965evb; do
     check "$b mesh: mesh frame checksum lines (style, level, faces drawn, FNV-1a) equal the host's, all $nviews views" \
         "$([ "$nfw" -gt 0 ] && cmp -s "$out/$t.fw-mesh.txt" "$out/$t.host-mesh.txt" ||
             diff "$out/$t.fw-mesh.txt" "$out/$t.host-mesh.txt" | head -4 | oneline)"
-    check "$b mesh: point frame checksums of the mesh bake equal the host's, all $nviews views" \
-        "$([ "$(wc -l <"$out/$t.fw-frames.txt")" -eq "$nviews" ] && cmp -s "$out/$t.fw-frames.txt" "$out/$t.host-frames.txt" ||
+    check "$b mesh: point frame checksums of the mesh bake equal the host's, all $nframes frames" \
+        "$([ "$(wc -l <"$out/$t.fw-frames.txt")" -eq "$nframes" ] && cmp -s "$out/$t.fw-frames.txt" "$out/$t.host-frames.txt" ||
             diff "$out/$t.fw-frames.txt" "$out/$t.host-frames.txt" | head -4 | oneline)"
     used=$(sed -n 's/^stack used \([0-9]*\) of.*/\1/p' "$run")
     bound=$(sed -n 's/^# .*stack bound \([0-9]*\) bytes.*/\1/p' "$out/$t.build.txt" | head -1)

@@ -5,6 +5,8 @@
  * point conversion on either side. The list covers the hot path (wholly on screen), the clipped
  * path (zoomed past the screen edge), translation, roll and perspective (64-bit division and
  * mc_mul_shift64), so a checksum mismatch on any of them shows an architecture-dependent result.
+ * The point frames are these views with the default options, then frames.h's views with the
+ * renderer's options set (culling off, level of detail, squares); the mesh frames are these views.
  * Header only, freestanding (<stdint.h> and the runtime's headers).
  */
 #ifndef MODELC_FRONT_VIEWS_H
@@ -37,9 +39,9 @@ static const mc_front_view mc_front_views[] = {
 /* The view whose frame the firmware writes out (and the host --checksums --ppm writes). */
 #define MC_FRONT_PPM_VIEW 1u
 
-static inline mc_view mc_front_view_get(unsigned i)
+/* The runtime's view of a table entry. */
+static inline mc_view mc_front_view_of(const mc_front_view *f)
 {
-    const mc_front_view *f = &mc_front_views[i];
     mc_view v = mc_view_default();
     v.yaw = f->yaw;
     v.pitch = f->pitch;
@@ -53,5 +55,7 @@ static inline mc_view mc_front_view_get(unsigned i)
     }
     return v;
 }
+
+static inline mc_view mc_front_view_get(unsigned i) { return mc_front_view_of(&mc_front_views[i]); }
 
 #endif

@@ -1,7 +1,8 @@
-/* The firmware front end: renders the fixed view list (../common/views.h) of the model linked in, on a
- * Cortex-M under QEMU or on a board with a semihosting debugger.
+/* The firmware front end: renders the fixed frame list (../common/views.h's views, then
+ * ../common/frames.h's views with the renderer's options set) of the model linked in, on a Cortex-M
+ * under QEMU or on a board with a semihosting debugger.
  *
- * Promise: for every view, one line on the semihosting console, exactly as the host viewer's
+ * Promise: for every point frame, one line on the semihosting console, exactly as the host viewer's
  * --checksums prints it (../common/frames.h: FNV-1a of the finished colour and depth buffers); the frame of
  * view MC_FRONT_PPM_VIEW written to the host as a binary PPM (ppm_out.h) named by the first
  * semihosting argument after the program name (default "frame.ppm"); then the measured stack
@@ -109,9 +110,9 @@ int main(void)
     const mc_target t = {mc_app_model.color, mc_app_model.depth, mc_app_model.max_width, mc_app_model.max_height};
     const unsigned depth = octree->depth;
     int status = 0;
-    printf("modelc firmware: model %s depth %u size %ux%u views %u\n", model->name, depth, (unsigned)t.width,
-           (unsigned)t.height, MC_FRONT_VIEW_COUNT);
-    for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+    printf("modelc firmware: model %s depth %u size %ux%u views %u frames %u\n", model->name, depth, (unsigned)t.width,
+           (unsigned)t.height, MC_FRONT_VIEW_COUNT, MC_FRONT_FRAME_COUNT);
+    for (unsigned i = 0; i < MC_FRONT_FRAME_COUNT; i++) {
         mc_front_result r = mc_front_frame(octree, i, depth, &t);
         printf(MC_FRONT_FRAME_LINE, MC_FRONT_FRAME_ARGS(i, depth, &t, r));
         if (r.rc != MC_OK) status = 1;

@@ -38,7 +38,7 @@ static void usage(FILE *f)
             "  --png FILE      render one frame to a PNG file\n"
             "  --ppm FILE      render one frame to a binary PPM file\n"
             "  --bench N       render N frames of one full turn and print ms per frame (median)\n"
-            "  --checksums     render the firmware's fixed view list (runtime/front/common/views.h) at the\n"
+            "  --checksums     render the firmware's fixed frame list (runtime/front/common/frames.h) at the\n"
             "                  baked screen size and the model's depth (unless --size, --depth) and\n"
             "                  print the firmware's checksum line per frame, then with a mesh part\n"
             "                  (--as both) its mesh frames' (runtime/front/common/mesh_frames.h);\n"
@@ -131,7 +131,7 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
 static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth, const char *png, const char *ppm)
 {
     int status = 0;
-    for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+    for (unsigned i = 0; i < MC_FRONT_FRAME_COUNT; i++) {
         mc_front_result r = mc_front_frame(octree, i, depth, t);
         printf(MC_FRONT_FRAME_LINE, MC_FRONT_FRAME_ARGS(i, depth, t, r));
         if (r.rc != MC_OK) status = 1;
