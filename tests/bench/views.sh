@@ -423,7 +423,7 @@ A("")
 
 # the renderer's targets for these views, each computed from the rows above
 ok = lambda c: "**meets**" if c else "**misses**"
-A("Issue 11's figures (level of detail on, the viewer's default):")
+A("The figures against their targets (level of detail on, the viewer's default):")
 A("")
 b = R.get(("bench", "on"))
 if b and ("quarter", "on") in R:

@@ -404,8 +404,11 @@ if m4 and m3:
       "and adc, for each 64-bit packed x/y addition that x86-64 does in one). "
       + (f"Perspective views cost about {m4[4] / m4[2]:.0f} times more per point than the orthographic ones ({m4[4]:.0f} instructions "
          f"on the Cortex-M4, {m3[4]:.0f} on the M3, {m4[5]:.0f} Ir on x86-64): " if m4[4] and m3[4] else "Perspective views cost far more per point: ")
-      + "each point divides by its own distance (a 64-bit division, __aeabi_ldivmod in "
-      "software on Cortex-M) and scales x and y by two exact 64x64-bit products (mc_mul_shift64, portable C).")
+      + "most nodes three levels above the leaves are projected once (a 64-bit division, __aeabi_ldivmod in "
+      "software on Cortex-M, and a few more for the error bound and the slopes) and their leaves drawn by additions "
+      "(linear frames, config.h MC_LINEAR_ERROR), but nodes too near the eye for the bound (view 8's eye is 0.75 cube "
+      "sides away: the near plane cuts the model) divide leaf by leaf and scale x and y by two exact 64x64-bit products "
+      "(mc_mul_shift64, portable C).")
 A("<!-- bench-firmware: end -->")
 text = "\n".join(L) + "\n"
 res = "tests/bench/RESULTS.md"
