@@ -459,20 +459,26 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z);
 static void persp_node(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z);
 
-/* The children (mask m, already read) of a node at level l <= d-3 centred at (x, y, z); see visit.
- * Inlined into visit, so that the walk's recursion is one function a level. */
+/* The centre of child k of a level-l node centred at (x, y, z). */
+MC_ALWAYS_INLINE void child_centre(const ctx *c, unsigned l, unsigned k, mc_pos x, mc_pos y, mc_pos z, mc_pos *cx,
+                                   mc_pos *cy, mc_pos *cz)
+{
+    const mc_pos2 p = POS2_ADD(POS2(x, y), c->v[l].xy[k]);
+    *cx = POS2_X(p);
+    *cy = POS2_Y(p);
+    *cz = z + c->v[l].z[k];
+}
+
 /* The children (mask m, already read) of a node at level l = d-3 centred at (x, y, z), on an
  * orthographic walk or a linear frame: each skipped, drawn unchecked or drawn with checks. It calls
  * no walk function, so the walk recurses only through visit (visit_children is inlined into it) and
  * visit_inside, once a level, as the firmware's static stack bound expects (front/fw/stack_bound.py). */
 static void frame_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
 {
-    const mc_pos2 *v = c->v[l].xy;
-    const mc_pos *vz = c->v[l].z;
     for (; m; m &= m - 1) {
-        unsigned k = mc_ctz(m);
-        const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
-        mc_pos cx = POS2_X(p), cy = POS2_Y(p), cz = z + vz[k];
+        const unsigned k = mc_ctz(m);
+        mc_pos cx, cy, cz;
+        child_centre(c, l, k, x, y, z, &cx, &cy, &cz);
         int where = classify(c, cx, cy, l + 1);
         if (where < 0) {
             skip_subtree(c, l + 1);
@@ -485,18 +491,18 @@ static void frame_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, m
     }
 }
 
+/* The children (mask m, already read) of a node at level l <= d-3 centred at (x, y, z); see visit.
+ * Inlined into visit, so that the walk's recursion is one function a level. */
 MC_ALWAYS_INLINE void visit_children(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)
 {
     if (l + 3 == c->d) {                                  /* the children are at level d-2 */
         frame_children(c, l, m, x, y, z);
         return;
     }
-    const mc_pos2 *v = c->v[l].xy;
-    const mc_pos *vz = c->v[l].z;
     for (; m; m &= m - 1) {
-        unsigned k = mc_ctz(m);
-        const mc_pos2 p = POS2_ADD(POS2(x, y), v[k]);
-        mc_pos cx = POS2_X(p), cy = POS2_Y(p), cz = z + vz[k];
+        const unsigned k = mc_ctz(m);
+        mc_pos cx, cy, cz;
+        child_centre(c, l, k, x, y, z, &cx, &cy, &cz);
         if (c->perspective) {                            /* above the linear frames: nothing projected */
             if (l + 4 == c->d) persp_node(c, l + 1, cx, cy, cz);
             else visit(c, l + 1, cx, cy, cz);
