@@ -49,7 +49,6 @@ typedef struct ctx {
     unsigned zshift;                     /* depth buffer value = z >> zshift (see the top) */
     unsigned poll_level;                 /* level at which the abort callback is polled */
     int perspective;
-    int exact;                           /* perspective leaves projected one by one (leaves()) */
     int inside;                          /* 0: every node drawn with checks (small targets, splats) */
     int32_t splat;                       /* orthographic footprint side, pixels (1: one pixel) */
     mc_pos square_margin;                /* how far its squares reach past the leaves, Q F (0: none) */
@@ -175,7 +174,8 @@ static void leaves_perspective(ctx *c, const exactvec *lv, unsigned m, mc_pos x,
  * leaf. */
 static void leaves(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
-    if (c->exact) leaves_perspective(c, &c->pv[2], m, x, y, z, col);
+    /* perspective at d >= 3 reaches here only inside linear frames, whose leaves are orthographic */
+    if (c->perspective && c->d < 3) leaves_perspective(c, &c->pv[2], m, x, y, z, col);
     else leaves_clipped(c, m, x, y, z, col);
 }
 
@@ -802,7 +802,6 @@ int mc_octree_render(const mc_octree *octree, const mc_view *view, unsigned dept
     c.hf = POS_PIXELS(c.h);
     c.d = depth;
     c.perspective = v.projection == MC_PERSPECTIVE;
-    c.exact = c.perspective && depth < 3;
     c.abort = abort;
     c.user = user;
     c.points = c.polls = 0;

@@ -89,7 +89,7 @@ static inline int pos_place(mc_pos centre, mc_pos_wide offset, mc_pos size, mc_p
 /* Perspective, linearised about a node's centre (octree_render.c, linear_frame). A leaf at x + dx,
  * dist + dz from the eye lands at q x + q (dx - x dz / dist), q = eye / dist, to first order:
  * g = q x / dist is the slope of the second term. Both stay below 2^31 (Q24), so that the products
- * in pos_linear fit 64 bits; 0 where they would not (the node is then projected leaf by leaf). */
+ * in pos_linear_step fit 64 bits; 0 where they would not (the node is then projected leaf by leaf). */
 static inline int pos_linear_setup(mc_pos x, mc_pos y, mc_pos_mag q, mc_pos_wide dist, mc_pos_mag *gx, mc_pos_mag *gy)
 {
     const int64_t lim = (int64_t)1 << 31;
@@ -102,12 +102,6 @@ static inline int pos_linear_setup(mc_pos x, mc_pos y, mc_pos_mag q, mc_pos_wide
 /* q x rounded, for |x| < 2^31 and 0 < q < 2^31 (pos_linear_setup's range): a linear frame's
  * centre, without pos_magnify's general product. */
 static inline mc_pos_wide pos_project(mc_pos x, mc_pos_mag q) { return ((int64_t)x * q + ((int64_t)1 << 23)) >> 24; }
-
-/* The linearised image of one displacement (v across, vz away from the eye), rounded to Q F. */
-static inline mc_pos pos_linear(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g)
-{
-    return (mc_pos)(((int64_t)v * q - (int64_t)vz * g + ((int64_t)1 << 23)) >> 24);   /* to nearest, half-way up */
-}
 
 /* Whether the first-order projection about a node's centre is within eps / 256 pixel of the exact one
  * for every point within r of that centre (all Q F pixels; o: the centre's offset from the view
@@ -130,8 +124,9 @@ static inline int pos_linear_ok(mc_pos r, mc_pos_wide o, mc_pos_wide eye, mc_pos
     return t <= ((int64_t)eps * d4) / w;
 }
 
-/* pos_linear rounded to a multiple of 4 units (2 units off at most, 2^-(F-1) pixel), so that the
- * two levels below a linear frame's top halve its vectors exactly (POS2_HALF). */
+/* The linearised image q v - g vz of one displacement (v across, vz away from the eye), rounded to
+ * a multiple of 4 units of Q F (2 units off at most, 2^-(F-1) pixel), so that the two levels below
+ * a linear frame's top halve its vectors exactly (POS2_HALF). */
 static inline mc_pos pos_linear_step(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g)
 {
     return (mc_pos)((((int64_t)v * q - (int64_t)vz * g + ((int64_t)1 << 25)) >> 26) * 4);

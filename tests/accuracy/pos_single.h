@@ -73,7 +73,6 @@ static inline int pos_linear_setup(mc_pos x, mc_pos y, mc_pos_mag q, mc_pos_wide
     *gy = y * q / dist;
     return 1;
 }
-static inline mc_pos pos_linear(mc_pos v, mc_pos vz, mc_pos_mag q, mc_pos_mag g) { return v * q - vz * g; }
 static inline int pos_linear_ok(mc_pos r, mc_pos_wide o, mc_pos_wide eye, mc_pos_wide dist, int32_t eps)
 {
     return dist > r && r * r * (o + eye + o * o / (2.0f * eye)) <= (float)eps / 128.0f * dist * (dist - r);

@@ -23,11 +23,7 @@ FRAMES=${BENCH_FRAMES:-200}
 ROUNDS=${BENCH_ROUNDS:-5}
 CG_FRAMES=${CG_FRAMES:-20}
 SIZE=${BENCH_SIZE:-320x240}
-CC=${CC:-gcc}
-[ "$CC" = cc ] && CC=gcc
-OPT="-O2 -g"                                           # the Makefile's CFLAGS
-RT_FLAGS="-std=c99 -ffreestanding -Wall -Wextra"       # the Makefile's RT_CFLAGS (without -Werror)
-HOST_FLAGS="-std=c99 -Wall -Wextra"                    # the Makefile's HOST_CFLAGS (without -Werror)
+. tests/bench/common.sh   # CC, OPT, RT_FLAGS, HOST_FLAGS, bench_quote
 
 OUT=build/bench
 RES=$OUT/results
@@ -38,11 +34,7 @@ T0=$(date +%s)
 die() { echo "bench: $*" >&2; exit 1; }
 # every command that matters goes through run: logged (shell-quoted) for RESULTS.md, then executed
 run() {
-    local a q=""
-    for a in "$@"; do
-        if [[ $a =~ ^[][A-Za-z0-9_./=,:+@%-]+$ ]]; then q+="$a "; else q+="$(printf '%q' "$a") "; fi
-    done
-    printf '%s\n' "${q% }" >>"$RES/commands.log"
+    printf '%s\n' "$(bench_quote "$@")" >>"$RES/commands.log"
     "$@"
 }
 step() { printf '[bench %4ss] %s\n' "$(($(date +%s) - T0))" "$*"; }

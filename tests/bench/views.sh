@@ -38,11 +38,7 @@ ROUNDS=${VIEWS_ROUNDS:-3}
 CG_FRAMES=${CG_FRAMES:-20}
 PSNR_VIEWS=${VIEWS_PSNR_VIEWS:-8}
 BAKE_TIMEOUT=${VIEWS_BAKE_TIMEOUT:-600}
-CC=${CC:-gcc}
-[ "$CC" = cc ] && CC=gcc
-OPT="-O2 -g"                                       # the Makefile's CFLAGS, as tests/bench/run.sh
-RT_FLAGS="-std=c99 -ffreestanding -Wall -Wextra"   # the Makefile's RT_CFLAGS (without -Werror)
-HOST_FLAGS="-std=c99 -Wall -Wextra"                # the Makefile's HOST_CFLAGS (without -Werror)
+. tests/bench/common.sh   # CC, OPT, RT_FLAGS, HOST_FLAGS, bench_quote
 OUT=build/bench/views
 RES=$OUT/res
 OBJ=$OUT/obj
@@ -54,12 +50,10 @@ step() { printf '[bench-views %4ss] %s\n' "$(($(date +%s) - T0))" "$*"; }
 # every command that makes a figure goes through run: logged for the section, then executed; a failure
 # stops the benchmark with one line (the command's own output is in the file it was sent to)
 run() {
-    local a q=""
-    for a in "$@"; do
-        if [[ $a =~ ^[][A-Za-z0-9_./=,:+@%-]+$ ]]; then q+="$a "; else q+="$(printf '%q' "$a") "; fi
-    done
-    printf '%s\n' "${q% }" >>"$RES/commands.log"
-    "$@" || die "failed (status $?): ${q% }"
+    local q
+    q=$(bench_quote "$@")
+    printf '%s\n' "$q" >>"$RES/commands.log"
+    "$@" || die "failed (status $?): $q"
 }
 # compile_each OBJDIR 'GLOB' COMPILER FLAGS...: every file of GLOB compiled into OBJDIR/NAME.o, logged as
 # the one shell loop it is (a depth-10 bake has dozens of data files)
@@ -348,6 +342,14 @@ if loads:
     A(f"- 1-minute load average during the timings: {min(loads):.2f} to {max(loads):.2f} on a {meta['cpu'].split('nproc ')[-1]}-CPU machine"
       + (" (shared with other work: absolute times are inflated and noisy; the instruction counts are not)." if max(loads) > 1.6 else "."))
 A("")
+def measured():
+    """(view, bake depth, level of detail, results) of every row whose bake was made"""
+    for key, size, zoom, proj, d in rows:
+        if status[d] == "ok":
+            for lod in ("on", "off"):
+                yield key, d, lod, R[key, lod]
+
+
 A("| view | bake | level of detail | depth drawn | leaves drawn per frame | Ir per frame | Ir per drawn leaf | modelc ms | "
   "Mesa points | Mesa point size | Mesa ms | **Mesa / modelc** |")
 A("|---|---:|---|---:|---:|---:|---:|---:|---:|---|---:|---:|")
@@ -367,14 +369,10 @@ A("Wall clock (same runs), the per-round CPU-time ratios, and the viewer's `--be
 A("")
 A("| view | bake | level of detail | modelc wall ms | Mesa wall ms | wall ratio | CPU ratio per round | viewer depth | viewer ms |")
 A("|---|---:|---|---:|---:|---:|---|---:|---:|")
-for key, size, zoom, proj, d in rows:
-    if status[d] != "ok":
-        continue
-    for lod in ("on", "off"):
-        r = R[key, lod]
-        A(f"| {LABEL[key]} | depth {d} | {lod} | {r['wall']:.3f} | {r['mesa_wall']:.2f} | {r['ratio_wall']:.1f}x | "
-          + ", ".join(f"{x:.1f}" for x in r["ratios"])
-          + f" | {r['viewer_depth']} | {num(r['viewer'].get('ms per frame (median)')):.3f} |")
+for key, d, lod, r in measured():
+    A(f"| {LABEL[key]} | depth {d} | {lod} | {r['wall']:.3f} | {r['mesa_wall']:.2f} | {r['ratio_wall']:.1f}x | "
+      + ", ".join(f"{x:.1f}" for x in r["ratios"])
+      + f" | {r['viewer_depth']} | {num(r['viewer'].get('ms per frame (median)')):.3f} |")
 A("")
 A(f"Same pixels? Mean pixels covered over the {cg_frames}-view turn by modelc with the level of detail off (the bake's "
   "depth, the other options at their defaults; its leaves drawn per frame are in the first table) and by Mesa (every leaf "

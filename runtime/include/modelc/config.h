@@ -108,7 +108,7 @@
  * where a bound computed per node shows the expansion puts every leaf within MC_LINEAR_ERROR / 256
  * pixel of its exact projection; where it does not (nodes near the eye, or near the near plane) it
  * tries each child, then divides per leaf. 16 (default): 1/16 pixel, below what a pixel grid shows
- * (tests/render and tests/stress measure it against double precision). 0: a division per leaf, the
+ * (tests/render and tests/stress measure it against the reference renderer, runtime/ref). 0: a division per leaf, the
  * exact projection everywhere. */
 #ifndef MC_LINEAR_ERROR
 #define MC_LINEAR_ERROR 16
