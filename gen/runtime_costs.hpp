@@ -36,7 +36,7 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 68880, 12052, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 69068, 12320, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
@@ -92,7 +92,7 @@ inline constexpr Frame kFrames[] = {
     {"draw_inside_squares", 144, 120},
     {"draw_checked", 80, 96},
     {"leaves_perspective", 80, 128},
-    {"leaves_clipped", 48, 56},
+    {"leaves_clipped", 56, 80},
     {"draw_square", 28, 16},
     {"classify", 16, 8},
     {"mc_mul_shift64", 24, 8},

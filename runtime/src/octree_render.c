@@ -116,6 +116,10 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
     }
 }
 
+/* The squares' depth test: the branch (the four pixels of a leaf mostly win or lose together, and
+ * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
+#define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
+
 /* Leaves of one level d-1 node that may reach off screen, orthographic: each point checked (a leaf
  * is drawn when its centre is on the target), as one pixel or, with footprints above one pixel, as
  * a c->splat square clipped to the target. */
@@ -133,7 +137,20 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
         uint16_t depth = (uint16_t)(z + vz[k]);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
-        if (c->splat > 1) {
+        if (c->splat == 2) {
+            /* the common footprint (640x480 at depth 8): most leaves of a node that reaches off
+             * screen still have their whole square on it */
+            const int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(1)), y0 = pos_floor(fy - POS_HALF_PIXELS(1));
+            if ((uint32_t)x0 < (uint32_t)(c->w - 1) && (uint32_t)y0 < (uint32_t)(c->h - 1)) {
+                uint16_t *zb = c->zb;
+                uint8_t *fb = c->fb;
+                const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
+                SQUARE_TEST(i, depth, col) SQUARE_TEST(i + 1, depth, col)
+                SQUARE_TEST(i + w, depth, col) SQUARE_TEST(i + w + 1, depth, col)
+            } else {
+                draw_square(c, fx, fy, 2, depth, *col);
+            }
+        } else if (c->splat > 1) {
             draw_square(c, fx, fy, c->splat, depth, *col);
         } else {
             int32_t i = py * c->w + px;
@@ -312,9 +329,6 @@ static void draw_inside(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, 
  * s x s square with no clipping, since the reach then holds the squares too (setup_vectors). The
  * square's top-left pixel is the leaf's centre less (s - 1) / 2 pixels, as draw_square has it; that
  * offset is folded into the node's centre once. s is a constant where the caller is inlined for 2. */
-/* The squares' depth test: the branch (the four pixels of a leaf mostly win or lose together, and
- * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
-#define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
 /* Test hook: 1 draws every footprint above one pixel through the clipped path, so a test can
  * compare the two (tests/stress: the other form of the renderer). */
 #ifndef MC_TEST_CLIPPED_SQUARES
