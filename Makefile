@@ -5,6 +5,7 @@
 #   make demo                    deps + generator + bake the default model + its viewer + a PNG and stats
 #   make test                    the whole test suite, two suites at a time; last line "N passed, N failed, N skipped"
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
+#   make web MODEL=file [NAME=n] [WEB_SIZE=WxH]  bake it and build build/NAME/web/: index.html + NAME.wasm (no libc), open it in a browser
 #   make track MODEL=file [NAME=n]           bake an edge model (.cao or mesh) and build build/NAME/NAME-track
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
@@ -16,6 +17,7 @@
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make bench-views             the point renderer at every view (zoom, size, perspective, deeper bakes), level of detail on and off, beside Mesa
+#   make bench-web               the web viewer's module in headless Chromium beside the native viewer, side by side
 #   make stress                  10^7 random views against the double-precision reference (about 13 min), freestanding -O0..-O3,-Os
 #   make fuzz                    the ASan + UBSan generator, then libFuzzer on each reader and the bake, FUZZ_SECONDS=600 each
 
@@ -35,7 +37,7 @@ GEN_LIBS := -lmstch -lOpenMeshTools -lOpenMeshCore -lpthread
 
 # Debian packages: the build, the tests and the benchmarks (libopenmesh-dev: the mesh part's
 # progressive meshes and decimation; the readers in gen/input/ do not use it)
-DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
+DEB_PACKAGES := build-essential clang lld chromium libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
   libclang-rt-14-dev \
   libosmesa6-dev draco python3 perl strace bsdutils coreutils \
@@ -45,7 +47,7 @@ DEB_PACKAGES := build-essential clang libopenmesh-dev libcgal-dev libcgal-demo l
 BENCH_PACKAGES := libvisp-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: help deps gen models views demo view track readme-images test bench stress clean
+.PHONY: help deps gen models views demo view web track readme-images test bench stress clean
 help:
 	@sed -n 's/^#   //p' Makefile
 
@@ -164,6 +166,17 @@ view: $(MODELC) $(RT_OBJ) $(HOST_OBJ)
 	$(call link_view,$(NAME))
 	@echo "built $(BUILD)/$(NAME)/$(NAME)-view"
 
+# make web MODEL=file [NAME=n] [DEPTH=d] [WEB_SIZE=WxH]: bake, then build/NAME/web/ (index.html,
+# viewer.js, NAME.wasm and its base64 twin for file://): runtime/front/web/build.sh
+WEB_SRC := $(wildcard runtime/front/web/*) runtime/front/common/rgb.c $(RT_SRC) $(RT_HDR)
+web: $(MODELC)
+	@test -n "$(MODEL)" || { echo "usage: make web MODEL=path/to/file [NAME=name] [DEPTH=d] [WEB_SIZE=WxH]" >&2; exit 2; }
+	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --depth $(DEPTH) $(BAKE_OPTS)
+	runtime/front/web/build.sh $(BUILD) $(NAME) $(WEB_SIZE)
+# a catalogue model's page from its bake
+$(BUILD)/%/web/index.html: $(BUILD)/%/budget.json $(WEB_SRC)
+	runtime/front/web/build.sh $(BUILD) $* $(WEB_SIZE)
+
 # make track MODEL=file [NAME=n] [BAKE_OPTS=..]: bake an edge model (--as edges) and build build/NAME/NAME-track
 track: $(MODELC) $(RT_OBJ) $(TRACK_OBJ)
 	@test -n "$(MODEL)" || { echo "usage: make track MODEL=path/to/file.cao|mesh [NAME=name] [BAKE_OPTS=..]" >&2; exit 2; }
@@ -188,13 +201,16 @@ demo: deps
 	@echo "wrote $(BUILD)/$(DEFAULT_MODEL).png; run $(DEMO_VIEW) in a terminal to turn it"
 
 # the README's pictures, rendered by the viewer binaries
-readme-images: $(BUILD)/bunny00/bunny00-view $(BUILD)/nefertiti/nefertiti-view $(BUILD)/cube/cube-track
+readme-images: $(BUILD)/bunny00/bunny00-view $(BUILD)/nefertiti/nefertiti-view $(BUILD)/cube/cube-track $(BUILD)/bunny00/budget.json
 	$(BUILD)/bunny00/bunny00-view --png models/img/bunny00.png --zoom 0.9 --yaw 25 --pitch 10
 	rm -rf $(BUILD)/cube/overlay && mkdir -p $(BUILD)/cube/overlay
 	$(BUILD)/cube/cube-track --frames '$(VISP_MBT)/cube/image%04d.pgm' --camera $(VISP_MBT)/cube.xml \
 	  --init $(VISP_MBT)/cube.0.pos --count 31 --out $(BUILD)/cube/poses.csv --overlay $(BUILD)/cube/overlay
 	cp $(BUILD)/cube/overlay/frame0030.png models/img/cube_track.png
 	$(BUILD)/nefertiti/nefertiti-view --png models/img/nefertiti.png --zoom 0.85 --yaw -30 --pitch 5
+	$(MAKE) --no-print-directory $(BUILD)/bunny00/web/index.html
+	python3 tests/web/cdp.py file://$(CURDIR)/$(BUILD)/bunny00/web/index.html --size 672x560 \
+	  --eval-file tests/web/pose.js --screenshot models/img/web.png
 	$(MAKE) --no-print-directory view MODEL=$(BUILD)/models/bunny00.off NAME=bunny00_mesh BAKE_OPTS="--as both"
 	for m in shaded lines shaded+lines; do \
 	  $(BUILD)/bunny00_mesh/bunny00_mesh-view --mode $$m --png models/img/bunny00_$$(echo $$m | tr + _).png \
@@ -207,6 +223,7 @@ test:
 bench: $(MODELC) models
 	@tests/bench/run.sh
 	@tests/bench/views.sh
+	@tests/bench/web.sh
 
 # run time against error: depth 5..10, MC_FRAC_BITS 8..24, the float build (tests/accuracy/pos_single.h) and
 # exact double-precision positions against the mesh reference: tests/bench/accuracy.{csv,png} and a RESULTS.md section (tests/accuracy/bench.sh)
@@ -262,6 +279,10 @@ bench-lod-error: $(MODELC) models
 .PHONY: bench-views
 bench-views: $(MODELC) models
 	@tests/bench/views.sh
+
+.PHONY: bench-web
+bench-web: $(MODELC) models
+	@tests/bench/web.sh
 
 .PHONY: bench-accuracy
 bench-accuracy: $(MODELC) models

@@ -32,6 +32,7 @@ suites=(
     tests/render/suite.sh     # renders against the double-precision reference
     tests/points/suite.sh     # sparse point sets filled at bake time: closed surfaces, under 2 % background or far side
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
+    tests/web/suite.sh        # the web viewer in headless Chromium: frames equal the native viewer's
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets

@@ -8,6 +8,14 @@ void mc_front_rgb(const mc_target *t, const uint8_t *palette, uint32_t first, ui
     for (uint32_t k = 0; k < n; k++) mc_target_rgb(t, first + k, palette, mc_front_background, rgb + 3u * k);
 }
 
+void mc_front_rgba(const mc_target *t, const uint8_t *palette, uint32_t first, uint32_t n, uint8_t *rgba)
+{
+    for (uint32_t k = 0; k < n; k++) {
+        mc_target_rgb(t, first + k, palette, mc_front_background, rgba + 4u * k);
+        rgba[4u * k + 3] = 255;
+    }
+}
+
 /* decimal digits of v (< 100000) at p; returns how many */
 static unsigned put_decimal(char *p, unsigned v)
 {

@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# The web viewer (runtime/front/web, make web): the module's imports and exports, then the page in
+# headless Chromium, from file:// and from a plain static server, driven through its own handlers
+# (tests/web/drive.js): the view it ends at follows from the events, the frames while it moves are
+# coarse, and its fine frame equals the native viewer's PPM for the same view, pixel for pixel.
+# Chromium missing is a failure (make deps installs it); Chromium present but unable to start is a
+# skip with its reason.
+set -u
+cd "$(dirname "$0")/../.."
+TAP_PREFIX="web: "
+. tests/lib.sh
+
+dir=build/tests/web
+rm -rf "$dir" && mkdir -p "$dir"
+name=bunny00
+view=build/$name/$name-view
+[ -x "$view" ] || { notok "the native viewer $view is built (tests/run.sh builds it)"; exit 1; }
+
+# ---- the module ----
+if make -s --no-print-directory build/$name/web/index.html >"$dir/build.log" 2>&1; then
+    ok "make build/$name/web/index.html builds build/$name/web/ from the bake"
+else
+    notok "make build/$name/web/index.html" "$(tail -n 5 "$dir/build.log" | oneline)"
+    exit 1
+fi
+web=build/$name/web
+problems=""
+for f in index.html viewer.js $name.wasm $name.wasm.js; do [ -s "$web/$f" ] || problems+="$f missing; "; done
+check_problems "build/$name/web/ holds index.html, viewer.js, $name.wasm and $name.wasm.js" "$problems"
+python3 - "$web/$name.wasm" "$web/$name.wasm.js" >"$dir/module.txt" 2>&1 <<'EOF'
+import base64, sys
+data = open(sys.argv[1], 'rb').read()
+def uleb(b, i):
+    v = s = 0
+    while True:
+        x = b[i]; i += 1; v |= (x & 0x7f) << s; s += 7
+        if x < 0x80: return v, i
+assert data[:8] == b'\0asm\x01\0\0\0', 'not a wasm module'
+i, imports, exports = 8, 0, []
+while i < len(data):
+    sid = data[i]; size, j = uleb(data, i + 1); body = data[j:j + size]
+    if sid == 2: imports = uleb(body, 0)[0]
+    if sid == 7:
+        n, k = uleb(body, 0)
+        for _ in range(n):
+            ln, k = uleb(body, k); exports.append(body[k:k + ln].decode()); k += ln + 1; _, k = uleb(body, k)
+    i = j + size
+print('imports', imports)
+print('exports', ' '.join(sorted(exports)))
+print('bytes', len(data))
+js = open(sys.argv[2]).read()
+b64 = js.split('"')[1]
+print('base64-same', base64.b64decode(b64) == data)
+EOF
+imports=$(sed -n 's/^imports //p' "$dir/module.txt")
+[ "$imports" = 0 ] && ok "$name.wasm imports nothing ($(sed -n 's/^bytes //p' "$dir/module.txt") bytes)" ||
+    notok "$name.wasm imports nothing" "$(oneline <"$dir/module.txt")"
+exports=$(sed -n 's/^exports //p' "$dir/module.txt")
+problems=""
+for e in memory mcw_draw mcw_rgba mcw_drawn mcw_drawn_depth mcw_depth mcw_max_width mcw_max_height; do
+    [[ " $exports " == *" $e "* ]] || problems+="$e; "
+done
+check_problems "$name.wasm exports its memory and the mcw_* functions viewer.js calls" "$problems"
+[ "$(sed -n 's/^base64-same //p' "$dir/module.txt")" = True ] && ok "$name.wasm.js holds the module's bytes" ||
+    notok "$name.wasm.js holds the module's bytes" "$(oneline <"$dir/module.txt")"
+
+# ---- the page in Chromium ----
+command -v chromium >/dev/null || { notok "chromium is installed (make deps)"; exit 1; }
+chrome() {   # URL OUT: the page's DOM once it has settled (virtual time: timers run at once)
+    timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --user-data-dir="$dir/profile" \
+        --virtual-time-budget=1000000 --dump-dom "$1" >"$2" 2>"$2.err"
+}
+if ! chrome "about:blank" "$dir/blank.html" || ! grep -q '<html' "$dir/blank.html"; then
+    for c in "file: drive" "file: fine frame" "http: fine frame" "bad page"; do
+        skip "$c" "Chromium cannot start here: $(grep -v -i dbus "$dir/blank.html.err" | head -n 3 | oneline)"
+    done
+    exit 0
+fi
+
+# a copy of the page that also loads the driver
+page=$dir/page
+cp -r "$web" "$page"
+cp tests/web/drive.js "$page/"
+sed -i 's|<script src="viewer.js"></script>|&\n<script src="drive.js"></script>|' "$page/index.html"
+# what the driver's events must lead to (viewer.js: 8 angle units a pixel of drag, 64 a key press,
+# zoom times 1.1 a wheel notch, angles modulo 4096): drag (+49, -5), a notch in, one ArrowRight
+expect_yaw=$(( (49 * 8 + 64) % 4096 )) expect_pitch=$(( ((-5 * 8) % 4096 + 4096) % 4096 ))
+expect_zoom=$(python3 -c 'print(round(65536 * 1.1))')
+
+# run_page URL TAG: loads the page, checks the driver's result against the native viewer
+run_page() {
+    local url=$1 tag=$2 out=$dir/$2
+    mkdir -p "$out"
+    chrome "$url" "$out/dom.html"
+    python3 - "$out/dom.html" "$out" <<'EOF' >"$out/result.txt" 2>&1
+import base64, html, json, re, sys
+dom = open(sys.argv[1]).read()
+m = re.search(r'<pre id="drive-result">(.*?)</pre>', dom, re.S)
+if not m:
+    print('error no drive result in the DOM'); sys.exit(0)
+r = json.loads(html.unescape(m.group(1)))
+if 'error' in r:
+    print('error', r['error'].replace('\n', ' ')); sys.exit(0)
+w, h = r['width'], r['height']
+rgba = base64.b64decode(r['rgba'])
+rgb = bytes(b for i, b in enumerate(rgba) if i % 4 != 3)
+open(sys.argv[2] + '/canvas.ppm', 'wb').write(b'P6\n%d %d\n255\n' % (w, h) + rgb)
+print('alpha', 'opaque' if all(rgba[i] == 255 for i in range(3, len(rgba), 4)) else 'not opaque')
+print('size %dx%d' % (w, h))
+v = r['view']
+print('view', v['yaw'], v['pitch'], v['zoom'], v['error'])
+for k, f in enumerate(r['moving']):
+    print('moving%d' % k, f['yaw'], f['pitch'], f['zoom'], f['error'], int(f['moving']), f['depth'])
+f = r['rest']
+print('rest', f['yaw'], f['pitch'], f['zoom'], f['error'], int(f['moving']), f['depth'], f['points'])
+EOF
+    if grep -q '^error' "$out/result.txt"; then
+        notok "$tag: drive" "$(head -c 300 "$out/result.txt" | oneline)"
+        notok "$tag: fine frame" "no result"
+        return
+    fi
+    read -r _ yaw pitch zoom err < <(grep '^view' "$out/result.txt")
+    read -r _ size < <(grep '^size' "$out/result.txt")
+    problems=""
+    [ "$yaw $pitch $zoom" = "$expect_yaw $expect_pitch $expect_zoom" ] ||
+        problems+="view yaw $yaw pitch $pitch zoom $zoom, expected $expect_yaw $expect_pitch $expect_zoom; "
+    [ "$err" = 16 ] || problems+="bound $err, expected 16 (one pixel); "
+    while read -r _ my mp mz me mm md; do   # each moving frame: twice the bound, the native depth there
+        [ "$me" = 32 ] && [ "$mm" = 1 ] || problems+="a moving frame drew at bound $me (moving $mm), expected 32; "
+        nd=$("$view" --size "$size" --yaw "$(python3 -c "print($my * 360 / 4096)")" --pitch "$(python3 -c "print($mp * 360 / 4096)")" \
+            --zoom "$(python3 -c "print($mz / 65536)")" --error 2 --ppm /dev/null | sed -n 's/.* depth \([0-9]*\) .*/\1/p')
+        [ "$md" = "$nd" ] || problems+="a moving frame drew depth $md, the native viewer $nd at 2 px; "
+    done < <(grep '^moving' "$out/result.txt")
+    grep -q '^alpha opaque' "$out/result.txt" || problems+="canvas not opaque; "
+    check_problems "$tag: drive: drag, wheel and key reach the view (yaw $yaw pitch $pitch zoom $zoom), coarse frames while moving" "$problems"
+    # the native viewer's frame for the view the page ended at
+    "$view" --size "$size" --yaw "$(python3 -c "print($yaw * 360 / 4096)")" --pitch "$(python3 -c "print($pitch * 360 / 4096)")" \
+        --zoom "$(python3 -c "print($zoom / 65536)")" --ppm "$out/native.ppm" >"$out/native.txt" 2>&1
+    if cmp -s "$out/native.ppm" "$out/canvas.ppm"; then
+        ok "$tag: fine frame at ${size}: the canvas equals the native viewer's PPM pixel for pixel ($(sed -n 's/.*points \([0-9]*\).*/\1/p' "$out/native.txt") points)"
+    else
+        notok "$tag: fine frame at ${size}" "$(python3 tests/bench/bench_tools.py image-cmp "$out/native.ppm" "$out/canvas.ppm" 2>&1 | oneline)"
+    fi
+}
+
+run_page "file://$PWD/$page/index.html" "file"
+
+# from a plain static server; without NAME.wasm.js, so the page must fetch NAME.wasm
+served=$dir/served
+cp -r "$page" "$served"
+rm -f "$served/$name.wasm.js"
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+python3 -m http.server "$port" --bind 127.0.0.1 --directory "$served" >"$dir/http.log" 2>&1 &
+server=$!
+trap 'kill $server 2>/dev/null' EXIT
+for _ in $(seq 50); do python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/index.html')" 2>/dev/null && break; sleep 0.1; done
+run_page "http://127.0.0.1:$port/index.html" "http"
+grep -q "GET /$name.wasm " "$dir/http.log" && ok "http: the page fetched $name.wasm from the server" ||
+    notok "http: the page fetched $name.wasm from the server" "$(oneline <"$dir/http.log")"
+kill $server 2>/dev/null
+
+# a page whose module cannot load says so in its status line
+bad=$dir/bad
+cp -r "$web" "$bad"
+rm -f "$bad/$name.wasm.js"
+chrome "file://$PWD/$bad/index.html" "$dir/bad.html"
+grep -q "<div id=\"status\">$name: cannot load $name.wasm.js</div>" "$dir/bad.html" &&
+    ok "bad page: a module that cannot load gives one status line naming it" ||
+    notok "bad page: a module that cannot load gives one status line naming it" "$(grep 'id="status"' "$dir/bad.html" | oneline)"
+exit $status
