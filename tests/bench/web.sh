@@ -2,7 +2,7 @@
 # make bench-web: the web viewer's module in headless Chromium against the native viewer, side by side
 # in one run. Bakes bunny00 once (build/bench/web/b08), links its native viewer as the Makefile does and
 # builds its page (runtime/front/web/build.sh) from the same bake and runtime; then, per size and round,
-# native --bench, the page (tests/bench/web_bench.js), native again; ratio = the page's median over the
+# native --bench, the page (tests/bench/web_bench.js through tests/web/cdp.py), native again; ratio = the page's median over the
 # mean of the two native medians around it; the figure is the median over rounds. Writes the "web"
 # section of tests/bench/RESULTS.md (or of the file given as $1).
 set -euo pipefail
@@ -45,35 +45,12 @@ clang_version=$(clang --version | head -n 1)
 chromium_version=$(chromium --version 2>/dev/null | head -n 1)
 wasm_bytes=$(stat -c %s "$OUT/b08/web/b08.wasm")
 
-# page(SIZE): a copy of the page at that canvas size with the timing script; prints its MODELC-BENCH line
-page_dir() { echo "$OUT/page-$1"; }
-for size in $SIZES; do
-    d=$(page_dir "$size")
-    cp -r "$OUT/b08/web" "$d"
-    cp tests/bench/web_bench.js "$d/"
-    w=${size%x*} h=${size#*x}
-    sed -i -e "s/width=\"[0-9]*\" height=\"[0-9]*\"/width=\"$w\" height=\"$h\"/" \
-        -e 's|<script src="viewer.js"></script>|&\n<script src="web_bench.js"></script>|' "$d/index.html"
-done
-chrome_bench() {   # SIZE: runs the page until it prints its line (real time, not virtual)
-    local d
-    d=$(page_dir "$1")
-    printf '%s\n' "chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 file://$PWD/$d/index.html?frames=$FRAMES" >>"$RES/commands.log"
-    python3 - "$PWD/$d/index.html?frames=$FRAMES" "$OUT/profile" <<'PY'
-import subprocess, sys, time
-p = subprocess.Popen(['chromium', '--headless', '--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage',
-                      '--user-data-dir=' + sys.argv[2], '--enable-logging=stderr', '--v=0',
-                      'file://' + sys.argv[1]], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-t0, line = time.time(), None
-for l in p.stderr:
-    if 'MODELC-BENCH' in l:
-        line = l[l.index('MODELC-BENCH'):].split('"')[0].strip()
-        break
-    if time.time() - t0 > 300: break
-p.kill(); p.wait()
-if not line: sys.exit('no MODELC-BENCH line from the page')
-print(line)
-PY
+chrome_bench() {   # SIZE: "ms points" of the page's module at that size (real time, not virtual)
+    local w=${1%x*} h=${1#*x} js
+    js="$(cat tests/bench/web_bench.js)($w, $h, $FRAMES)"
+    printf '%s\n' "python3 tests/web/cdp.py file://$PWD/$OUT/b08/web/index.html --eval \"\$(cat tests/bench/web_bench.js)($w, $h, $FRAMES)\"" >>"$RES/commands.log"
+    python3 tests/web/cdp.py "file://$PWD/$OUT/b08/web/index.html" --eval "$js" |
+        python3 -c 'import json, sys; r = json.load(sys.stdin); print("%.4f %d" % (r["ms"], r["points"]))'
 }
 native_bench() {   # SIZE: the native viewer's median ms
     run "$OUT/b08-view" --bench "$FRAMES" --size "$1" >"$RES/native.txt"
@@ -107,7 +84,7 @@ out.append('Written by \`tests/bench/web.sh\` (\`make bench-web\`) on $(date -u 
            '($(git status --porcelain runtime | wc -l) uncommitted runtime file(s)). $clang_version; $chromium_version, headless, one tab.')
 out.append('')
 out.append('- **Native**: \`b08-view --bench $FRAMES --size WxH\`: the median over a turn of yaw of the time of mc_clear + mc_octree_render + mc_finish (the default fill), level-of-detail bound 1 px.')
-out.append('- **Chromium**: the page with \`tests/bench/web_bench.js\`: one warm-up turn, then the same $FRAMES views through the module\'s mcw_draw, which does the same and also widens the frame to RGBA for the canvas; the median over batches of 10 frames of performance.now() time over the batch (Chromium coarsens the clock to 0.1 ms).')
+out.append('- **Chromium**: \`tests/bench/web_bench.js\` evaluated in the page (\`tests/web/cdp.py\`, real time): a warm-up of a turn and 3 s, then the same $FRAMES views through the module\'s mcw_draw, which does the same and also widens the frame to RGBA for the canvas; the median over batches of 10 frames of performance.now() time over the batch (Chromium coarsens the clock to 0.1 ms).')
 out.append('- Each round runs native, Chromium, native at one size; a round\'s ratio is Chromium over the mean of the two native runs; the figure is the median over $ROUNDS rounds. Wall-clock time on a shared 2-CPU machine; 1-minute load average $load0 before and $load1 after.')
 out.append('')
 out.append('| size | points drawn per frame | native ms (median of rounds) | Chromium ms (median of rounds) | **Chromium / native** | ratio per round |')
@@ -116,9 +93,9 @@ summary = []
 for s in sizes:
     rs = [r for r in rows if r[0] == s]
     nat = [(float(r[2]) + float(r[3])) / 2 for r in rs]
-    web = [float(r[8]) for r in rs]
+    web = [float(r[4]) for r in rs]
     ratio = [wb / n for wb, n in zip(web, nat)]
-    pts = rs[0][9]
+    pts = rs[0][5]
     med = statistics.median(ratio)
     out.append('| %s | %s | %.3f | %.3f | **%.2fx** | %s |' % (s, '{:,}'.format(int(pts)), statistics.median(nat), statistics.median(web), med,
                                                            ', '.join('%.2f' % x for x in ratio)))

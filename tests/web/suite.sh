@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The web viewer (runtime/front/web, make web): the module's imports and exports, then the page in
 # headless Chromium, from file:// and from a plain static server, driven through its own handlers
-# (tests/web/drive.js): the view it ends at follows from the events, the frames while it moves are
+# (tests/web/drive.js, evaluated through tests/web/cdp.py in real time): the view it ends at follows from the events, the frames while it moves are
 # coarse, and its fine frame equals the native viewer's PPM for the same view, pixel for pixel.
 # Chromium missing is a failure (make deps installs it); Chromium present but unable to start is a
 # skip with its reason.
@@ -66,41 +66,32 @@ check_problems "$name.wasm exports its memory and the mcw_* functions viewer.js 
 
 # ---- the page in Chromium ----
 command -v chromium >/dev/null || { notok "chromium is installed (make deps)"; exit 1; }
-chrome() {   # URL OUT: the page's DOM once it has settled (virtual time: timers run at once)
-    timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --user-data-dir="$dir/profile" \
-        --virtual-time-budget=1000000 --dump-dom "$1" >"$2" 2>"$2.err"
-}
-if ! chrome "about:blank" "$dir/blank.html" || ! grep -q '<html' "$dir/blank.html"; then
-    for c in "file: drive" "file: fine frame" "http: fine frame" "bad page"; do
-        skip "$c" "Chromium cannot start here: $(grep -v -i dbus "$dir/blank.html.err" | head -n 3 | oneline)"
+cdp() { timeout 120 python3 tests/web/cdp.py "$@"; }   # URL [--eval JS | --eval-file F]: prints the value as JSON
+if ! cdp about:blank --eval '6 * 7' >"$dir/blank.txt" 2>&1 || [ "$(cat "$dir/blank.txt")" != 42 ]; then
+    for c in "file: drive" "file: fine frame" "http: drive" "http: fine frame" "http: fetch" "bad page"; do
+        skip "$c" "Chromium cannot start here: $(head -n 3 "$dir/blank.txt" | oneline)"
     done
     exit 0
 fi
 
-# a copy of the page that also loads the driver
-page=$dir/page
-cp -r "$web" "$page"
-cp tests/web/drive.js "$page/"
-sed -i 's|<script src="viewer.js"></script>|&\n<script src="drive.js"></script>|' "$page/index.html"
 # what the driver's events must lead to (viewer.js: 8 angle units a pixel of drag, 64 a key press,
 # zoom times 1.1 a wheel notch, angles modulo 4096): drag (+49, -5), a notch in, one ArrowRight
 expect_yaw=$(( (49 * 8 + 64) % 4096 )) expect_pitch=$(( ((-5 * 8) % 4096 + 4096) % 4096 ))
 expect_zoom=$(python3 -c 'print(round(65536 * 1.1))')
+page=$dir/page
+cp -r "$web" "$page"
 
 # run_page URL TAG: loads the page, checks the driver's result against the native viewer
 run_page() {
     local url=$1 tag=$2 out=$dir/$2
     mkdir -p "$out"
-    chrome "$url" "$out/dom.html"
-    python3 - "$out/dom.html" "$out" <<'EOF' >"$out/result.txt" 2>&1
-import base64, html, json, re, sys
-dom = open(sys.argv[1]).read()
-m = re.search(r'<pre id="drive-result">(.*?)</pre>', dom, re.S)
-if not m:
-    print('error no drive result in the DOM'); sys.exit(0)
-r = json.loads(html.unescape(m.group(1)))
-if 'error' in r:
-    print('error', r['error'].replace('\n', ' ')); sys.exit(0)
+    cdp "$url" --eval-file tests/web/drive.js >"$out/drive.json" 2>"$out/drive.err"
+    python3 - "$out/drive.json" "$out" <<'EOF' >"$out/result.txt" 2>&1
+import base64, json, sys
+try:
+    r = json.load(open(sys.argv[1]))
+except ValueError:
+    print('error no result from the page'); sys.exit(0)
 w, h = r['width'], r['height']
 rgba = base64.b64decode(r['rgba'])
 rgb = bytes(b for i, b in enumerate(rgba) if i % 4 != 3)
@@ -115,7 +106,7 @@ f = r['rest']
 print('rest', f['yaw'], f['pitch'], f['zoom'], f['error'], int(f['moving']), f['depth'], f['points'])
 EOF
     if grep -q '^error' "$out/result.txt"; then
-        notok "$tag: drive" "$(head -c 300 "$out/result.txt" | oneline)"
+        notok "$tag: drive" "$(cat "$out/result.txt" "$out/drive.err" | head -c 300 | oneline)"
         notok "$tag: fine frame" "no result"
         return
     fi
@@ -155,16 +146,17 @@ server=$!
 trap 'kill $server 2>/dev/null' EXIT
 for _ in $(seq 50); do python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/index.html')" 2>/dev/null && break; sleep 0.1; done
 run_page "http://127.0.0.1:$port/index.html" "http"
-grep -q "GET /$name.wasm " "$dir/http.log" && ok "http: the page fetched $name.wasm from the server" ||
-    notok "http: the page fetched $name.wasm from the server" "$(oneline <"$dir/http.log")"
+grep -q "GET /$name.wasm " "$dir/http.log" && ok "http: fetch: the page fetched $name.wasm from the server" ||
+    notok "http: fetch: the page fetched $name.wasm from the server" "$(oneline <"$dir/http.log")"
 kill $server 2>/dev/null
 
 # a page whose module cannot load says so in its status line
 bad=$dir/bad
 cp -r "$web" "$bad"
 rm -f "$bad/$name.wasm.js"
-chrome "file://$PWD/$bad/index.html" "$dir/bad.html"
-grep -q "<div id=\"status\">$name: cannot load $name.wasm.js</div>" "$dir/bad.html" &&
+cdp "file://$PWD/$bad/index.html" --eval \
+    "window.modelc.ready.then(() => 'loaded', () => document.getElementById('status').textContent)" >"$dir/bad.txt" 2>&1
+[ "$(cat "$dir/bad.txt")" = "\"$name: cannot load $name.wasm.js\"" ] &&
     ok "bad page: a module that cannot load gives one status line naming it" ||
-    notok "bad page: a module that cannot load gives one status line naming it" "$(grep 'id="status"' "$dir/bad.html" | oneline)"
+    notok "bad page: a module that cannot load gives one status line naming it" "$(oneline <"$dir/bad.txt")"
 exit $status
