@@ -33,16 +33,19 @@ CXXFLAGS ?= -O2 -g
 RT_CFLAGS := -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
 HOST_CFLAGS := -std=c99 -Wall -Wextra -Werror -Iruntime/include
 GEN_CXXFLAGS := -std=c++17 -Wall -Wextra -Igen -Iruntime/include -DCGAL_DISABLE_GMP=1 -DCGAL_NO_GMP=1
-GEN_LIBS := -lmstch -lOpenMeshTools -lOpenMeshCore -lpthread
+# -ltinygltf: the glTF reader (gen/input/gltf.cpp); -lstb: its texture decoding (stb_image, which
+# Debian's libtinygltf itself links)
+GEN_LIBS := -lmstch -lOpenMeshTools -lOpenMeshCore -ltinygltf -lstb -lpthread
 
 # Debian packages: the build, the tests and the benchmarks (libopenmesh-dev: the mesh part's
-# progressive meshes and decimation; the readers in gen/input/ do not use it)
+# progressive meshes and decimation; the readers in gen/input/ do not use it; libtinygltf-dev: the
+# glTF reader; assimp-testmodels: the glTF samples tests/gen/gltf.sh bakes, 20 MB)
 DEB_PACKAGES := build-essential clang lld chromium libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
-  libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libcmocka-dev valgrind tmux gnuplot-nox \
+  libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libtinygltf-dev libcmocka-dev valgrind tmux gnuplot-nox \
   libclang-rt-14-dev \
   libosmesa6-dev draco python3 perl strace bsdutils coreutils \
   gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm \
-  visp-images-data
+  visp-images-data assimp-testmodels
 # the benchmarks' big extras, not in every CI run: ViSP's tracker for tests/bench/visp_track.cpp (make deps-bench)
 BENCH_PACKAGES := libvisp-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
@@ -306,16 +309,19 @@ clean:
 # Every generator source but gen/main.cpp, compiled by clang with coverage for libFuzzer, ASan and
 # UBSan; one target per reader (tests/fuzz/fuzz_reader.cpp with the extension compiled in) and one
 # for the whole bake (tests/fuzz/fuzz_bake.cpp, with gen/main.cpp's main renamed so it is callable).
-#   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz cao bake track_input"]   findings: tests/fuzz/regress/
+# gltf and glb are the glTF reader's two forms; tinygltf and stb_image are compiled in from their
+# headers (tests/fuzz/tinygltf_impl.cpp) so that they are instrumented too, not linked as -ltinygltf -lstb.
+#   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz cao gltf glb bake track_input stream"]   findings: tests/fuzz/regress/
 FUZZ_CXX ?= clang++
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CXXFLAGS := -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(GEN_CXXFLAGS)
-FUZZ_READERS := off obj ply stl xyz cao
-FUZZ_TARGETS ?= $(FUZZ_READERS) bake track_input
+FUZZ_READERS := off obj ply stl xyz cao gltf glb
+FUZZ_TARGETS ?= $(FUZZ_READERS) bake track_input stream
 FUZZ_SECONDS ?= 600
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_GEN_SRC := $(filter-out gen/main.cpp,$(GEN_SRC))
-FUZZ_GEN_OBJ := $(patsubst gen/%.cpp,$(FUZZ_DIR)/gen/%.o,$(FUZZ_GEN_SRC)) $(FUZZ_DIR)/gen/templates.o
+FUZZ_GEN_OBJ := $(patsubst gen/%.cpp,$(FUZZ_DIR)/gen/%.o,$(FUZZ_GEN_SRC)) $(FUZZ_DIR)/gen/templates.o $(FUZZ_DIR)/tinygltf.o
+FUZZ_LIBS := $(filter-out -ltinygltf -lstb,$(GEN_LIBS))
 FUZZ_BINS := $(foreach t,$(FUZZ_TARGETS),$(FUZZ_DIR)/fuzz-$(t))
 $(FUZZ_DIR)/gen/%.o: gen/%.cpp $(GEN_HDR)
 	@mkdir -p $(@D)
@@ -323,6 +329,9 @@ $(FUZZ_DIR)/gen/%.o: gen/%.cpp $(GEN_HDR)
 $(FUZZ_DIR)/gen/templates.o: $(BUILD)/gen/templates.cpp
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
+$(FUZZ_DIR)/tinygltf.o: tests/fuzz/tinygltf_impl.cpp
+	@mkdir -p $(@D)
+	$(FUZZ_CXX) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link -std=c++17 -w -I/usr/include/stb -c -o $@ $<
 $(FUZZ_DIR)/main.o: gen/main.cpp $(GEN_HDR)
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -Dmain=mc_fuzz_modelc_main -c -o $@ $<
@@ -333,9 +342,9 @@ $(FUZZ_DIR)/bake.o: tests/fuzz/fuzz_bake.cpp tests/fuzz/fuzz_file.hpp $(GEN_HDR)
 	@mkdir -p $(@D)
 	$(FUZZ_CXX) $(FUZZ_CXXFLAGS) -c -o $@ $<
 $(foreach r,$(FUZZ_READERS),$(FUZZ_DIR)/fuzz-$(r)): $(FUZZ_DIR)/fuzz-%: $(FUZZ_DIR)/reader-%.o $(FUZZ_GEN_OBJ)
-	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(FUZZ_LIBS)
 $(FUZZ_DIR)/fuzz-bake: $(FUZZ_DIR)/bake.o $(FUZZ_DIR)/main.o $(FUZZ_GEN_OBJ)
-	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(GEN_LIBS)
+	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(FUZZ_LIBS)
 # the tracker front end's input readers (runtime/front/track/track_input.c: C, so clang); its
 # findings are replayed by tests/unit/test_track_input.c, not through modelc
 FUZZ_CC ?= clang
@@ -343,6 +352,13 @@ $(FUZZ_DIR)/fuzz-track_input: tests/fuzz/fuzz_track_input.c runtime/front/track/
 	@mkdir -p $(@D)
 	$(FUZZ_CC) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer -Wall -Wextra -Werror -Iruntime/include -o $@ \
 	  tests/fuzz/fuzz_track_input.c runtime/front/track/track_input.c -lm
+
+# the stream reader (runtime/src/stream.c: C) and the renderer on what it takes; its findings are
+# replayed by tests/stream/suite.sh
+$(FUZZ_DIR)/fuzz-stream: tests/fuzz/fuzz_stream.c tests/stream/forge.h $(RT_SRC) $(RT_HDR)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer -Wall -Wextra -Werror -Iruntime/include -o $@ \
+	  tests/fuzz/fuzz_stream.c $(RT_SRC)
 
 .PHONY: fuzz fuzz-build
 fuzz-build: $(FUZZ_BINS)

@@ -342,7 +342,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
                    "arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -O2 and host gcc -O2) summed over the bounded call "
                    "graph (gen/runtime_costs.hpp); add the abort callback's own stack"}}},
         {"screen", {opt.screen_w, opt.screen_h}},
-        {"emit", opt.lib ? "lib" : "app"},
+        {"emit", opt.lib ? "lib" : opt.stream ? "stream" : "app"},
         {"bits_per_point",
          {{"geometry", 8.0 * mask_bytes / points},
           {"color", 8.0 * color_bytes / points},
@@ -398,6 +398,16 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     nlohmann::json chunk_files = nlohmann::json::array();
     Files out = fill_templates(t, vox, opt, plan, bud, files, chunk_files);
     std::string budget_text = budget_json(t, vox, opt, plan, bud, chunk_files);
+    if (opt.stream) {
+        Stream st = octree_stream(t);
+        nlohmann::json b = nlohmann::json::parse(budget_text);
+        b["stream"] = {{"file", opt.name + ".mcs"},
+                       {"bytes", st.bytes.size()},
+                       {"drawable_at", st.drawable_at},
+                       {"note", "drawable_at[i]: the bytes a reader needs to draw depth i + 1 (stream.h)"}};
+        budget_text = b.dump(2) + "\n";
+        out.emplace_back(opt.name + ".mcs", std::move(st.bytes));
+    }
     out.emplace_back("budget.json", budget_text);
     write_directory(opt.out_dir, opt.name, out);
     return budget_text;

@@ -23,6 +23,7 @@ struct EmitOptions {
     size_t file_bytes = 262144;
     int screen_w = 640, screen_h = 480;
     bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
+    bool stream = false;       // --emit stream: also NAME.mcs, the octree as one stream (stream.h)
     UpAxis up = UpAxis::y;     // the file's axis shown as up (--up): recorded in the model descriptor
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
     Limits limits;             // recorded in budget.json (checked by the caller)
@@ -31,6 +32,14 @@ struct EmitOptions {
     const PMesh *pmesh = nullptr;   // the mesh part (--as both), or none
     size_t particles = 300;    // --as edges: particles the app binding's static arrays hold
 };
+
+// The octree as a stream (runtime/include/modelc/stream.h, version 1): its bytes, and the bytes a
+// reader needs to draw depth 1, 2, ..., D (the end of each level's record).
+struct Stream {
+    std::string bytes;
+    std::vector<size_t> drawable_at;
+};
+Stream octree_stream(const Octree &tree);
 
 // The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where
 // they are laid out; the cost rules are budget.hpp's).

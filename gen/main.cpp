@@ -63,7 +63,7 @@ int main(int argc, char **argv) {
     mc::PMeshOptions pmesh_opt;
     mc::EdgeModelOptions edge_opt;
     std::string unit = "m";
-    app.add_option("input", input, "model file: .off .obj .ply .stl .cao (meshes), .xyz .ply (point sets)")->required();
+    app.add_option("input", input, "model file: .off .obj .ply .stl .cao .gltf .glb (meshes), .xyz .ply (point sets)")->required();
     app.add_option("-o,--out", out_dir, "parent directory of the output directory")->capture_default_str();
     app.add_option("-n,--name", name, "model name, a C identifier (default: from the file name)");
     app.add_option("-d,--depth", vox.depth, "octree depth D: a grid of 2^D cells per side")
@@ -90,8 +90,9 @@ int main(int argc, char **argv) {
                    "each optionally @N directions")
         ->capture_default_str();
     app.add_option("--emit", emit_kind, "app: the model and NAME_app.c with static frame buffers for a front end; "
-                   "lib: only the model's .c/.h, for an existing firmware project")
-        ->check(CLI::IsMember({"app", "lib"}))->capture_default_str();
+                   "lib: only the model's .c/.h, for an existing firmware project; stream: app and NAME.mcs, the "
+                   "octree as one binary stream, coarse levels first (runtime/include/modelc/stream.h)")
+        ->check(CLI::IsMember({"app", "lib", "stream"}))->capture_default_str();
     app.add_option("--flash-budget", flash_budget, "fail (exit 1, no output) unless data, descriptors and the "
                    "runtime's code fit SIZE bytes (e.g. 262144, 256K, 1M)");
     app.add_option("--ram-budget", ram_budget, "fail unless the frame buffers for --screen and the runtime's static "
@@ -165,6 +166,7 @@ int main(int argc, char **argv) {
         return fail("--fit needs at least one of --flash-budget, --ram-budget, --stack-budget", 2);
     if (as == "edges") {
         if (fit) return fail("--fit: an edge model has no depth or palette to choose (--as edges)", 2);
+        if (emit_kind == "stream") return fail("--emit stream: streams hold a point octree; an edge model has none (--as edges)", 2);
         static const std::map<std::string, double> units = {{"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"um", 1e-6}};
         auto u = units.find(unit);
         char *end = nullptr;
@@ -174,6 +176,7 @@ int main(int argc, char **argv) {
         edge_opt.crease_angle = pmesh_opt.crease_angle;
     }
     emit.lib = emit_kind == "lib";
+    emit.stream = emit_kind == "stream";
     emit.up = up == "z" ? mc::UpAxis::z : mc::UpAxis::y;
     if (name.empty()) name = name_from_path(input);
     if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")))

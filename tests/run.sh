@@ -33,6 +33,8 @@ suites=(
     tests/points/suite.sh     # sparse point sets filled at bake time: closed surfaces, under 2 % background or far side
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/web/suite.sh        # the web viewer in headless Chromium: frames equal the native viewer's
+    tests/stream/suite.sh     # streamed bakes: every prefix draws its level exactly, damaged streams refused
+    tests/gen/gltf.sh         # glTF input: meshes as .gltf/.glb read and bake as their OFF twins, Debian's samples, malformed files
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets

@@ -68,7 +68,8 @@ Format format_of(const std::string &path) {
     if (ext == ".stl") return Format::stl;
     if (ext == ".xyz") return Format::xyz;
     if (ext == ".cao") return Format::cao;
-    fail_none(path, "unknown format '" + ext + "' (expected .off .obj .ply .stl .xyz .cao)");
+    if (ext == ".gltf" || ext == ".glb") return Format::gltf;
+    fail_none(path, "unknown format '" + ext + "' (expected .off .obj .ply .stl .xyz .cao .gltf .glb)");
 }
 
 }  // namespace input
@@ -85,6 +86,7 @@ Model load_model(const std::string &path) {
     case input::Format::stl: m = input::read_stl(path, size); break;
     case input::Format::xyz: m = input::read_xyz(path, size); break;
     case input::Format::cao: m = input::read_cao(path, size); break;
+    case input::Format::gltf: m = input::read_gltf(path, size); break;
     }
     check_usable(path, m);
     return m;

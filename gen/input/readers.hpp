@@ -13,6 +13,11 @@
 //   CAO (ViSP's tracker models) is a mesh as above whose polygons are its faces from points and
 //     its faces from lines (each as the vertex loop its lines chain into), and the only format
 //     that fills Model::lines: its 3D lines, then the sides of every polygon kept, each edge once;
+//   glTF (.gltf, .glb) is a mesh as above made of the triangle primitives of the default scene's
+//     nodes, each vertex transformed by its node's world matrix in double before the rounding to
+//     float, colours from the base colour (factor, texture, COLOR_0) as sRGB bytes (gltf.cpp);
+//     the one reader built on a library (tinygltf) and one that reads its file whole, checked
+//     before and after the library;
 //   point sets (XYZ, PLY without faces): coordinates and normals as double, RGB colours.
 #pragma once
 #include <cstdint>
@@ -22,7 +27,7 @@
 
 namespace mc::input {
 
-enum class Format { off, obj, ply, stl, xyz, cao };
+enum class Format { off, obj, ply, stl, xyz, cao, gltf };
 
 // Format from the extension (case-insensitive); InputError for anything else.
 Format format_of(const std::string &path);
@@ -33,5 +38,6 @@ Model read_ply(const std::string &path, uint64_t size);
 Model read_stl(const std::string &path, uint64_t size);
 Model read_xyz(const std::string &path, uint64_t size);
 Model read_cao(const std::string &path, uint64_t size);
+Model read_gltf(const std::string &path, uint64_t size);  // .gltf and .glb
 
 }  // namespace mc::input

@@ -5,7 +5,7 @@
 # timeout, allocation over the limit) minimized and, one per distinct report, added to
 # tests/fuzz/regress/TARGET/, which tests/fuzz/suite.sh replays in make test.
 #
-# usage: tests/fuzz/fuzz.sh [TARGET...]       (default: off obj ply stl xyz cao bake track_input)
+# usage: tests/fuzz/fuzz.sh [TARGET...]       (default: off obj ply stl xyz cao gltf glb bake track_input)
 #   FUZZ_SECONDS=600   seconds per target
 #   FUZZ_JOBS=1        libFuzzer worker processes per target (-fork)
 #   FUZZ_TIMEOUT=10    seconds one input may take before it is a hang
@@ -23,7 +23,7 @@ RSS_MB=${FUZZ_RSS_MB:-2048}
 MALLOC_MB=${FUZZ_MALLOC_MB:-512}
 MAX_LEN=${FUZZ_MAX_LEN:-4096}
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl xyz cao bake track_input)
+[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl xyz cao gltf glb bake track_input stream)
 bins=build/fuzz
 dir=${FUZZ_WORK:-build/fuzz}
 exts=(off obj ply stl xyz cao)   # the bake target's format byte, as in fuzz_bake.cpp
@@ -68,6 +68,18 @@ printf '0.02 0.1 0.5\n# theta u\n2.1 1.1 -0.4\n' >"$ts/pose.pos"
 printf '# theta u per frame\n0 0 0\n0.1 -0.2 0.3 # c\n\n1e-3 0 3.14\n' >"$ts/orient.txt"
 printf '547.7,542.1,338.7,234.5' >"$ts/camera.txt"
 printf '0.02,0.1,0.5,2.1,1.1,-0.4' >"$ts/pose.txt"
+
+# the stream reader (stream, tests/fuzz/fuzz_stream.c; its findings are replayed by
+# tests/stream/suite.sh): small bakes' streams (--emit stream), each read whole and with its CRCs
+# rewritten (the target's first byte)
+ss=$seeds/stream
+mkdir -p "$ss"
+for spec in "bunny00 --depth 5" "kitten --depth 4 --palette 1"; do
+    read -r m args <<<"$spec"
+    # shellcheck disable=SC2086
+    build/bin/modelc "$(model_file "$m")" -o "$dir/stream-seeds" --name "s_$m" --emit stream -q $args &&
+        for b in 0 3; do { printf "\\x0$b"; cat "$dir/stream-seeds/s_$m/s_$m.mcs"; } >"$ss/$m-$b.in"; done
+done
 
 # signature FILE TARGET: what a finding's report says, without addresses or sizes, and the first
 # frame in the generator's own code: two findings with one signature are one bug

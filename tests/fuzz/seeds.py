@@ -3,17 +3,24 @@
 
 usage: seeds.py MODELS_DIR OUT_DIR
 
-Writes OUT_DIR/{off,obj,ply,stl,xyz,cao}/: small valid files cut from the catalogue's models (the
-first faces of a mesh with their vertices renumbered, the first points of a point set), the same
-meshes in every format the generator reads (OBJ, ASCII and binary STL, ASCII and binary PLY, with
-and without colours, CAO with faces from lines and from points), ViSP's cube as CAO written here,
-and truncated prefixes of the originals; and OUT_DIR/bake/, each of those with the bake fuzzer's
-leading format byte (tests/fuzz/fuzz_bake.cpp). Valid seeds let the mutations start deep in each
+Writes OUT_DIR/{off,obj,ply,stl,xyz,cao,gltf,glb}/: small valid files cut from the catalogue's models
+(the first faces of a mesh with their vertices renumbered, the first points of a point set), the
+same meshes in every format the generator reads (OBJ, ASCII and binary STL, ASCII and binary PLY,
+with and without colours, CAO with faces from lines and from points, glTF and GLB with a node
+hierarchy, COLOR_0, a baseColorFactor, a PNG texture, strips and fans, and tests/gen/make_gltf.py's
+malformed files), ViSP's cube as CAO written here, and truncated prefixes of the originals; and
+OUT_DIR/bake/, each of the first six formats' seeds with the bake fuzzer's leading format byte
+(tests/fuzz/fuzz_bake.cpp). Valid seeds let the mutations start deep in each
 reader instead of at its first header check.
 """
 import os
+import shutil
 import struct
 import sys
+import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "gen"))
+import make_gltf  # noqa: E402  (tests/gen/make_gltf.py: the glTF writer of tests/gen/gltf.sh)
 
 EXTS = ["off", "obj", "ply", "stl", "xyz", "cao"]  # the bake target's format byte: new ones at the end
 
@@ -87,6 +94,47 @@ def mesh_files(name, v, faces, out):
     ply += b"".join(struct.pack("<B%di" % len(f), len(f), *f) for f in faces)
     write(f"{out}/ply/{name}-binary.ply", ply)
     write(f"{out}/cao/{name}.cao", cao(name, v, faces))
+    gltf_files(name, [tuple(make_gltf.f32(c) for c in p) for p in v], t, out)
+
+
+def gltf_files(name, v, t, out):
+    """glTF seeds: plain, and with a hierarchy, colours, a texture, strips and fans; then malformed."""
+    M = make_gltf
+    n = len(v)
+    os.makedirs(f"{out}/gltf", exist_ok=True)
+    os.makedirs(f"{out}/glb", exist_ok=True)
+    d = M.Doc()
+    d.node(mesh=d.mesh(v, t))
+    d.glb(f"{out}/glb/{name}.glb")
+    d = M.Doc()
+    d.node(mesh=d.mesh(v, t))
+    d.gltf(f"{out}/gltf/{name}.gltf")
+    # a matrix node over a TRS node, COLOR_0 bytes, a factor and a texture on TEXCOORD_0
+    for ext in ("gltf", "glb"):
+        d = M.Doc()
+        m = d.mesh(v, t, {"COLOR_0": d.accessor(M.U8, "VEC4", [c for i in range(n) for c in colour(i) + (255,)], n, True),
+                          "TEXCOORD_0": d.accessor(M.F32, "VEC2", [0.3 * i for i in range(2 * n)], n)})
+        child = d.node(root=False, mesh=m, translation=[1, 2, 3], rotation=[0, 0.6, 0, 0.8], scale=[1, 2, 1])
+        d.node(children=[child], matrix=[0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1])
+        image = M.png(2, 2, [[(255, 0, 0), (0, 255, 0)], [(0, 0, 255), (9, 9, 9)]])
+        ref = {"bufferView": d.view(image), "mimeType": "image/png"} if ext == "glb" else \
+            {"uri": "data:image/png;base64," + M.base64.b64encode(image).decode()}
+        d.material(baseColorFactor=[0.5, 0.7, 0.9, 1], baseColorTexture={"index": d.texture(ref, 33648, 33071)})
+        d.glb(f"{out}/glb/{name}-coloured.glb") if ext == "glb" else d.gltf(f"{out}/gltf/{name}-coloured.gltf")
+    d = M.Doc()
+    d.node(mesh=d.mesh(v, None, mode=5))
+    d.node(mesh=d.mesh(v, None, mode=6))
+    d.node(mesh=d.mesh(v, None, mode=0))
+    d.gltf(f"{out}/gltf/{name}-strip-fan.gltf")
+    tmp = tempfile.mkdtemp()
+    try:
+        M.bad(tmp, v, t)
+        for f in sorted(os.listdir(tmp)):
+            ext = f.rsplit(".", 1)[-1]
+            if ext in ("gltf", "glb"):
+                shutil.copy(os.path.join(tmp, f), f"{out}/{ext}/bad-{f}")
+    finally:
+        shutil.rmtree(tmp)
 
 
 def cao(name, v, faces, by_lines=4):

@@ -68,7 +68,7 @@ expect missing-file "$in/missing.off" - '^cannot open: No such file or directory
 mkdir -p "$in/dir.off"
 expect directory "$in/dir.off" - '^cannot open: Is a directory$'
 printf 'OFF\n%s\n' "$TETRA_V" >"$in/model.txt"
-expect unknown-extension "$in/model.txt" - "^unknown format '\.txt' \(expected \.off \.obj \.ply \.stl \.xyz \.cao\)$"
+expect unknown-extension "$in/model.txt" - "^unknown format '\.txt' \(expected \.off \.obj \.ply \.stl \.xyz \.cao \.gltf \.glb\)$"
 : >"$in/empty.off"
 expect empty-file "$in/empty.off" - '^file is empty$'
 

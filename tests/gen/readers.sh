@@ -15,7 +15,7 @@ TAP_PREFIX="readers: "
 . tests/tap.sh
 
 dump=$tmp/model_dump
-if ! g++ -std=c++17 -O1 -Igen -o "$dump" tests/gen/model_dump.cpp gen/input/*.cpp 2>"$tmp/cc.txt"; then
+if ! g++ -std=c++17 -O1 -Igen -o "$dump" tests/gen/model_dump.cpp gen/input/*.cpp -ltinygltf -lstb 2>"$tmp/cc.txt"; then
     notok "build the model dump tool" "$(oneline <"$tmp/cc.txt")"
     exit 1
 fi
