@@ -258,6 +258,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
     header.emplace("workspace_bytes", std::to_string(workspace));
     header.emplace("lib", opt.lib);
     header.emplace("mono", t.palette.size() == 1);
+    if (opt.stream) header.emplace("stream", mstch::array{mstch::map{{"stream_bytes", std::to_string(opt.stream_bytes)}}});
     mstch::array symbols;
     for (const Array &a : arrays)
         symbols.push_back(mstch::map{{"symbol", a.symbol}, {"suffix", a.symbol.substr(4 + name.size())}});
@@ -391,7 +392,13 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
 
 }  // namespace
 
-std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &opt) {
+std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &options) {
+    Stream st;
+    EmitOptions opt = options;
+    if (opt.stream) {
+        st = octree_stream(t);
+        opt.stream_bytes = st.bytes.size();
+    }
     const Plan plan = make_plan(t, opt);
     const Budget bud = budget_of(t, opt, plan);
     const auto files = data_files(plan.arrays, opt.file_bytes);
@@ -399,12 +406,13 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     Files out = fill_templates(t, vox, opt, plan, bud, files, chunk_files);
     std::string budget_text = budget_json(t, vox, opt, plan, bud, chunk_files);
     if (opt.stream) {
-        Stream st = octree_stream(t);
         nlohmann::json b = nlohmann::json::parse(budget_text);
         b["stream"] = {{"file", opt.name + ".mcs"},
                        {"bytes", st.bytes.size()},
                        {"drawable_at", st.drawable_at},
-                       {"note", "drawable_at[i]: the bytes a reader needs to draw depth i + 1 (stream.h)"}};
+                       {"note", "drawable_at[i]: the bytes a reader needs to draw depth i + 1 (stream.h); "
+                                "a receiver's buffer holds all bytes (NAME.h MC_NAME_STREAM_BYTES; the app binding's "
+                                "stream_buf, RAM not counted in ram.image, which is the baked model's)"}};
         budget_text = b.dump(2) + "\n";
         out.emplace_back(opt.name + ".mcs", std::move(st.bytes));
     }

@@ -24,6 +24,7 @@ struct EmitOptions {
     int screen_w = 640, screen_h = 480;
     bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
     bool stream = false;       // --emit stream: also NAME.mcs, the octree as one stream (stream.h)
+    size_t stream_bytes = 0;   // its size, set by emit_model: NAME.h's MC_NAME_STREAM_BYTES and the app's buffer
     UpAxis up = UpAxis::y;     // the file's axis shown as up (--up): recorded in the model descriptor
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
     Limits limits;             // recorded in budget.json (checked by the caller)

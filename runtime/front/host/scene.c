@@ -28,6 +28,7 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
 {
     memset(s, 0, sizeof *s);
     s->app = app;
+    s->octree = app->model->octree;
     s->mode = mode;
     s->opt = *opt;
     s->drawn_depth = 0;
@@ -52,7 +53,7 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     if (s->mode == MC_HOST_POINTS) {
         mc_stats st = {0, 0, 0, 0, 0};
         mc_clear(t);
-        int rc = mc_octree_render(s->app->model->octree, v, depth, &s->opt, t, abort, NULL, &st);
+        int rc = mc_octree_render(s->octree, v, depth, &s->opt, t, abort, NULL, &st);
         if (st.aborted) return 1;
         s->drawn_depth = st.depth;
         s->culled = st.culled;
@@ -81,5 +82,5 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
 
 const uint8_t *mc_host_scene_palette(const mc_host_scene *s)
 {
-    return s->mode == MC_HOST_POINTS ? s->app->model->octree->palette : s->app->model->pmesh->palette;
+    return s->mode == MC_HOST_POINTS ? s->octree->palette : s->app->model->pmesh->palette;
 }

@@ -33,6 +33,7 @@ typedef enum mc_host_mode {
 
 typedef struct mc_host_scene {
     const mc_app *app;
+    const mc_octree *octree; /* points: what they draw, the model's octree unless a stream's level */
     mc_host_mode mode;
     mc_octree_options opt;   /* points */
     unsigned drawn_depth;    /* points: the level the last frame drew (opt.max_error may draw shallower) */

@@ -76,6 +76,7 @@ typedef struct term_state {
     double frame_ms;
     uint32_t points;    /* points or faces drawn */
     double now;         /* when the keys being read arrived */
+    mc_host_stream *stream;   /* or NULL: the points come from the model */
 } term_state;
 
 
@@ -176,8 +177,13 @@ static void put_status(const term_state *s)
 {
     char line[STATUS_BYTES_MAX - 32];
     const mc_host_scene *sc = s->scene;
+    char note[160];
     const char *keys = mc_host_scene_has_mesh(sc) ? "q quits, arrows turn, +/- zoom, m mode, [ ] detail, r resets"
                                                   : "q quits, arrows turn, +/- zoom, r resets";
+    if (s->stream) {
+        mc_host_stream_status(s->stream, note, sizeof note);
+        keys = note;
+    }
     int n = sc->mode == MC_HOST_POINTS
                 ? snprintf(line, sizeof line, " %s | points | depth %u/%u at %ux%u | %.1f ms | %lu points | zoom %.2f | %s",
                            s->app->model->name, s->drawn_depth, (unsigned)s->octree->depth, (unsigned)s->lay.w,
@@ -349,6 +355,18 @@ static void resize(term_state *s)
  * Returns -1 when the loop should end. */
 static int step(term_state *s, double *prev)
 {
+    if (s->stream && !s->stream->done) {
+        if (mc_host_stream_pump(s->stream, 0)) {
+            s->octree = s->scene->octree = mc_host_stream_octree(s->stream);
+            s->fine_needed = 1;
+        }
+        if (s->stream->done) s->fine_needed = 1;   /* the status line changes */
+    }
+    if (!s->octree) {   /* a stream with nothing drawable yet */
+        s->drawn_depth = 0;
+        mc_tio_wait(s->stream->done ? -1 : 20);
+        return read_keys(s, now_s()) < 0 || s->quit ? -1 : 0;
+    }
     const unsigned full = s->octree->depth;
     const unsigned coarse = s->fine_error ? full : full > 1 ? full - 1u : 1u;
     const uint32_t coarse_error = 2u * s->fine_error;
@@ -367,12 +385,12 @@ static int step(term_state *s, double *prev)
         if (r < 0) return -1;
         if (r > 0) s->fine_needed = 0;
     } else {
-        mc_tio_wait(-1);
+        mc_tio_wait(s->stream && !s->stream->done ? 20 : -1);
     }
     return 0;
 }
 
-int mc_host_interactive(mc_host_scene *scene, mc_view start)
+int mc_host_interactive(mc_host_scene *scene, mc_view start, mc_host_stream *stream)
 {
     const mc_app *app = scene->app;
     if (mc_tio_enter() != 0) {
@@ -383,8 +401,9 @@ int mc_host_interactive(mc_host_scene *scene, mc_view start)
     term_state s;
     memset(&s, 0, sizeof s);
     s.app = app;
-    s.octree = app->model->octree;
+    s.octree = scene->octree;
     s.scene = scene;
+    s.stream = stream;
     s.fine_error = scene->opt.max_error;
     s.start = start;
     reset_view(&s);

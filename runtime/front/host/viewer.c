@@ -5,9 +5,10 @@
  *              --error PX --cull on|off --mode points|shaded|lines|shaded+lines --lod N]
  *   NAME-view --bench N [...]
  *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
+ *   NAME-view --stream SRC [...]   the points from a streamed bake (modelc --emit stream)
  *   NAME-view            interactive, when stdout is a terminal
  *
- * Reads no files: the model is compiled in. Host-only code (stdio, clocks, terminal) lives here,
+ * The model is compiled in; --stream reads its stream instead (stream_in.h). Host-only code (stdio, clocks, terminal) lives here,
  * outside the freestanding runtime. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -24,6 +25,7 @@
 
 #include "image.h"
 #include "scene.h"
+#include "stream_in.h"
 #include "term.h"
 #include "timing.h"
 #include "../common/frames.h"   /* the view list and frame checksum the firmware prints: --checksums */
@@ -65,6 +67,11 @@ static void usage(FILE *f)
             "  --lod N|auto    the mesh's level of detail: N vertices, from its base to its full count, or\n"
             "                  auto: the finest that keeps frames at --target-ms (default full)\n"
             "  --target-ms T   the frame time --lod auto holds (default 16.7)\n"
+            "  --stream SRC    draw the points from the model's stream (a bake with modelc --emit stream)\n"
+            "                  as it arrives from SRC: - (standard input), a file or FIFO, or tcp:HOST:PORT;\n"
+            "                  the deepest complete level is drawn (a line per level on stdout); a stream\n"
+            "                  that ends early or fails its checks is reported and its last complete level\n"
+            "                  drawn (exit status 1)\n"
             "  --help          this text\n"
             "With no output option and stdout a terminal, runs interactively: arrow keys rotate, + and -\n"
             "zoom, m changes the mode, [ and ] the mesh's level of detail, q quits.\n",
@@ -170,7 +177,7 @@ int main(int argc, char **argv)
     mc_fill fill = MC_FILL_DEFAULT;
     mc_octree_options opt = {MC_SPLAT_DEFAULT, MC_LOD_PIXEL, MC_CULL_DEFAULT};
     mc_host_mode mode = MC_HOST_POINTS;
-    const char *lod_arg = NULL;
+    const char *lod_arg = NULL, *stream_src = NULL;
     double target_ms = 1000.0 / 60;
     long frames = 0;
     static const struct option opts[] = {
@@ -183,7 +190,8 @@ int main(int argc, char **argv)
         {"help", no_argument, 0, 'h'}, {"fill", required_argument, 0, 'f'},
         {"splat", required_argument, 0, 'S'}, {"mode", required_argument, 0, 'm'},
         {"lod", required_argument, 0, 'l'}, {"target-ms", required_argument, 0, 't'},
-        {"error", required_argument, 0, 'E'}, {"cull", required_argument, 0, 'C'}, {0, 0, 0, 0}};
+        {"error", required_argument, 0, 'E'}, {"cull", required_argument, 0, 'C'},
+        {"stream", required_argument, 0, 'R'}, {0, 0, 0, 0}};
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, "", opts, NULL)) != -1) {
@@ -237,6 +245,7 @@ int main(int argc, char **argv)
             if (mc_host_mode_parse(optarg, &mode)) return die("--mode expects points, shaded, lines or shaded+lines", optarg);
             break;
         case 'l': lod_arg = optarg; break;
+        case 'R': stream_src = optarg; break;
         case 't':
             if (parse_double(optarg, 0.01, 10000, &target_ms)) return die("--target-ms expects 0.01..10000 ms", optarg);
             break;
@@ -262,10 +271,39 @@ int main(int argc, char **argv)
         h = mc_app_model.max_height;
     }
     mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
+    static mc_host_stream stream;
+    int stream_failed = 0;
+    if (stream_src) {
+        char why[512];
+        if (frames) return die("--stream and --bench exclude each other", NULL);
+        if (mode != MC_HOST_POINTS) return die("--stream draws points only", mc_host_mode_name(mode));
+        if (mc_host_stream_open(&stream, &mc_app_model, stream_src, why, sizeof why)) return die(why, NULL);
+        scene.octree = NULL;
+        if (check || png || ppm || !isatty(STDOUT_FILENO)) {
+            /* one-shot: read it all, a line per level as it becomes drawable */
+            while (!stream.done)
+                if (mc_host_stream_pump(&stream, 1)) {
+                    char line[160];
+                    mc_host_stream_status(&stream, line, sizeof line);
+                    printf("%s\n", line);
+                }
+            fflush(stdout);
+            if (!mc_host_stream_ok(&stream)) {
+                char line[200];
+                mc_host_stream_status(&stream, line, sizeof line);
+                fprintf(stderr, "%s-view: %s\n", model->name, line);
+                if (!stream.depth) return 1;
+                stream_failed = 1;
+            }
+            scene.octree = octree = mc_host_stream_octree(&stream);
+            if (depth > octree->depth) depth = octree->depth;
+        }
+    }
     if (check) {
         if (frames) return die("--checksums and --bench exclude each other", NULL);
         if (mode != MC_HOST_POINTS) return die("--checksums draws points only", NULL);
-        return checksums(octree, &t, depth, png, ppm);
+        int rc = checksums(octree, &t, depth, png, ppm);
+        return rc ? rc : stream_failed;
     }
     mc_view v = mc_view_default();
     v.yaw = mc_host_angle(yaw);
@@ -276,7 +314,7 @@ int main(int argc, char **argv)
 
     if (frames) return bench(&scene, &t, v, depth, (int)frames);
     if (!png && !ppm) {
-        if (isatty(STDOUT_FILENO)) return mc_host_interactive(&scene, v);
+        if (isatty(STDOUT_FILENO)) return mc_host_interactive(&scene, v, stream_src ? &stream : NULL);
         return die("stdout is not a terminal: give --png FILE, --ppm FILE or --bench N (see --help)", NULL);
     }
 
@@ -293,5 +331,5 @@ int main(int argc, char **argv)
     else
         printf("model %s mode %s lod %u of %u vertices, %u faces size %ux%u faces drawn %u ms %.3f\n", model->name,
                mc_host_mode_name(mode), scene.lod.level, model->pmesh->vertices, scene.lod.faces, w, h, drawn, ms);
-    return 0;
+    return stream_failed;
 }

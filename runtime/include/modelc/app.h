@@ -4,7 +4,7 @@
  * buffers of exactly the size asked for at bake time (--screen), and, with a mesh part, the static
  * memory its level of detail and line drawings need; with an edge part, what a tracker needs for
  * camera frames of that size and --particles particles (the frame buffers then hold the sparse depth
- * buffer's depths and colours). A front end links against this
+ * buffer's depths and colours); with --emit stream, a buffer that holds the whole stream. A front end links against this
  * one symbol and so works with any model; it asks app->model which parts it has. Libraries built
  * with --emit lib leave it out.
  */
@@ -36,6 +36,8 @@ typedef struct mc_app {
     mc_xvertex *edges_cache; /* the projected vertices, one per vertex of the edge model */
     mc_particle *particles;  /* 2 * max_particles: the filter's two arrays (particles.h) */
     uint32_t max_particles;
+    uint8_t *stream_buf;     /* a bake with --emit stream: room for its stream (stream.h), or NULL */
+    uint32_t stream_cap;     /* MC_NAME_STREAM_BYTES */
 } mc_app;
 
 extern const mc_app mc_app_model;
