@@ -282,11 +282,11 @@ int main(int argc, char **argv)
         if (check || png || ppm || !isatty(STDOUT_FILENO)) {
             /* one-shot: read it all, a line per level as it becomes drawable */
             while (!stream.done)
-                if (mc_host_stream_pump(&stream, 1)) {
-                    char line[160];
-                    mc_host_stream_status(&stream, line, sizeof line);
-                    printf("%s\n", line);
-                }
+                if (mc_host_stream_pump(&stream, 1))
+                    printf("stream: depth %u of %u after %lu of %lu bytes\n", stream.depth, (unsigned)stream.reader.depth,
+                           (unsigned long)stream.reader.len, (unsigned long)stream.reader.total);
+            if (mc_host_stream_ok(&stream))
+                printf("stream: complete, depth %u, %lu bytes\n", stream.depth, (unsigned long)stream.reader.len);
             fflush(stdout);
             if (!mc_host_stream_ok(&stream)) {
                 char line[200];

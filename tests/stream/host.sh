@@ -1,0 +1,145 @@
+#!/usr/bin/env bash
+# The host viewer's --stream (runtime/front/host/stream_in.c) on bunny00 baked at depth 7 with
+# --emit stream, against the same viewer drawing its compiled-in octree at --depth d: the whole
+# stream from a pipe, a FIFO and a TCP socket on localhost (sent in pieces with pauses: a line per
+# level as it becomes drawable); cuts at every level's end, a byte before it and at random: the
+# frame of the deepest complete level, the truncation reported, exit status 1, and no file when
+# nothing was drawable; a flipped byte and a wrong version: the error and its byte, the last good
+# level drawn; --stream refused by a bake without a stream buffer.
+set -u
+cd "$(dirname "$0")/../.."
+TAP_PREFIX="stream: host: "
+. tests/lib.sh
+
+dir=build/tests/stream-host
+fresh_dir "$dir"
+model=$(model_file bunny00) || { notok "bunny00's model file (make models)"; exit 1; }
+rt_objs >/dev/null || { notok "make runtime-objs"; exit 1; }
+link() {   # NAME: the viewer of the bake in $dir/NAME, as the Makefile links it
+    # shellcheck disable=SC2046
+    gcc $(mkvar CFLAGS) $(mkvar RT_CFLAGS) -ffunction-sections -fdata-sections -o "$dir/$1/$1-view" "$dir/$1"/*.c \
+        $(rt_objs host) $(mkvar VIEW_LDFLAGS) >"$dir/$1.link.log" 2>&1
+}
+if build/bin/modelc "$model" -o "$dir" --name bunny --depth 7 --emit stream -q >"$dir/bake.log" 2>&1 && link bunny &&
+    build/bin/modelc "$model" -o "$dir" --name plain --depth 4 -q >>"$dir/bake.log" 2>&1 && link plain; then
+    ok "bunny00 baked at depth 7 with --emit stream and at depth 4 without; their viewers link"
+else
+    notok "bakes and viewers" "$(cat "$dir/bake.log" "$dir"/*.link.log 2>/dev/null | tail -n 5 | oneline)"
+    exit 1
+fi
+view=$dir/bunny/bunny-view
+mcs=$dir/bunny/bunny.mcs
+read -r -a ends < <(python3 -c "import json,sys; print(*json.load(open(sys.argv[1]))['stream']['drawable_at'])" "$dir/bunny/budget.json")
+size=$(stat -c %s "$mcs")
+
+# the native frames of every depth, from the compiled-in octree
+for d in $(seq 1 ${#ends[@]}); do "$view" --depth "$d" --yaw 30 --pitch 20 --ppm "$dir/ref-$d.ppm" >/dev/null; done
+
+# the whole stream from a pipe, a FIFO and a TCP socket
+"$view" --stream - --yaw 30 --pitch 20 --ppm "$dir/pipe.ppm" <"$mcs" >"$dir/pipe.out" 2>&1
+rc=$?
+[ $rc -eq 0 ] && cmp -s "$dir/pipe.ppm" "$dir/ref-7.ppm" && grep -q "^stream: complete, depth 7, $size bytes" "$dir/pipe.out" &&
+    ok "the whole stream on standard input: complete, the frame equals --depth 7's, exit 0" ||
+    notok "the whole stream on standard input" "exit $rc; $(oneline <"$dir/pipe.out")"
+mkfifo "$dir/fifo"
+{ head -c 5000 "$mcs"; sleep 0.3; tail -c +5001 "$mcs"; } >"$dir/fifo" &
+"$view" --stream "$dir/fifo" --yaw 30 --pitch 20 --ppm "$dir/fifo.ppm" >"$dir/fifo.out" 2>&1
+rc=$?
+wait
+[ $rc -eq 0 ] && cmp -s "$dir/fifo.ppm" "$dir/ref-7.ppm" && grep -q '^stream: depth 7 of 7 after' "$dir/fifo.out" &&
+    grep -q '^stream: depth [1-6] of 7 after [0-9]* of' "$dir/fifo.out" &&
+    ok "the whole stream from a FIFO in two pieces with a pause: a level drawable from the first, the frame equals --depth 7's" ||
+    notok "the whole stream from a FIFO" "exit $rc; $(oneline <"$dir/fifo.out")"
+port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+python3 - "$port" "$mcs" "${ends[@]}" >"$dir/server.log" 2>&1 <<'EOF' &
+import socket, sys, time
+port, path, ends = int(sys.argv[1]), sys.argv[2], [int(e) for e in sys.argv[3:]]
+data = open(path, 'rb').read()
+s = socket.socket()
+s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+s.bind(('127.0.0.1', port))
+s.listen(1)
+print('ready', flush=True)
+s.settimeout(30)
+c, _ = s.accept()
+at = 0
+for e in ends + [len(data)]:
+    c.sendall(data[at:e])
+    at = e
+    time.sleep(0.1)
+c.close()
+EOF
+server=$!
+for _ in $(seq 50); do grep -q ready "$dir/server.log" && break; sleep 0.1; done
+timeout 60 "$view" --stream "tcp:127.0.0.1:$port" --yaw 30 --pitch 20 --ppm "$dir/tcp.ppm" >"$dir/tcp.out" 2>&1
+rc=$?
+wait $server
+levels=$(grep -c '^stream: depth [0-9]* of 7 after' "$dir/tcp.out")
+[ $rc -eq 0 ] && cmp -s "$dir/tcp.ppm" "$dir/ref-7.ppm" && [ "$levels" -ge 5 ] &&
+    ok "the whole stream over TCP on localhost, a level at a time with pauses: $levels lines as levels became drawable, the frame equals --depth 7's" ||
+    notok "the whole stream over TCP" "exit $rc, $levels level lines; $(oneline <"$dir/tcp.out")"
+
+# cuts: every level's end, a byte before it, inside the header, and at random (seeded)
+cuts=(0 10 19 20 $((size - 1)))
+for e in "${ends[@]}"; do cuts+=("$e" $((e - 1))); done
+while read -r c; do cuts+=("$c"); done < <(python3 -c "import random; r = random.Random(11); print('\n'.join(str(r.randrange(1, $size)) for _ in range(10)))")
+problems=""
+for k in "${cuts[@]}"; do
+    d=0
+    for e in "${ends[@]}"; do [ "$k" -ge "$e" ] && d=$((d + 1)); done
+    head -c "$k" "$mcs" >"$dir/cut.mcs"
+    rm -f "$dir/cut.ppm"
+    "$view" --stream "$dir/cut.mcs" --yaw 30 --pitch 20 --ppm "$dir/cut.ppm" >"$dir/cut.out" 2>"$dir/cut.err"
+    rc=$?
+    [ $rc -eq 1 ] || { problems+="cut $k: exit $rc; "; continue; }
+    [ "$(wc -l <"$dir/cut.err")" = 1 ] && grep -q "^bunny-view: stream: truncated at byte $k; " "$dir/cut.err" ||
+        problems+="cut $k: $(oneline <"$dir/cut.err"); "
+    if [ "$d" -eq 0 ]; then
+        [ ! -e "$dir/cut.ppm" ] && grep -q "nothing was drawable" "$dir/cut.err" || problems+="cut $k: nothing drawable, yet a frame or no word of it; "
+    else
+        cmp -s "$dir/cut.ppm" "$dir/ref-$d.ppm" || problems+="cut $k: not --depth $d's frame; "
+        grep -q "drawing depth $d," "$dir/cut.err" || problems+="cut $k: not depth $d; "
+    fi
+done
+check_problems "${#cuts[@]} cuts (the header, every level's end and a byte before it, 10 at random): one line 'truncated at byte k', exit 1, the frame of the deepest complete level, no file when nothing was drawable" "$problems"
+
+# damage: a flipped byte in level 5's record, a wrong version (the header's CRC made valid)
+python3 - "$mcs" "$dir" "${ends[@]}" <<'EOF'
+import struct, sys, zlib
+data = bytearray(open(sys.argv[1], 'rb').read())
+ends = [int(e) for e in sys.argv[3:]]
+flip = bytearray(data)
+at = (ends[3] + ends[4]) // 2
+flip[at] ^= 0x40
+open(sys.argv[2] + '/flip.mcs', 'wb').write(flip)
+open(sys.argv[2] + '/flip.at', 'w').write('%d %d\n' % (at, ends[3]))
+ver = bytearray(data)
+ver[4:6] = struct.pack('<H', 2)
+ver[16:20] = struct.pack('<I', zlib.crc32(bytes(ver[:16])))
+open(sys.argv[2] + '/version.mcs', 'wb').write(ver)
+EOF
+problems=""
+"$view" --stream "$dir/flip.mcs" --yaw 30 --pitch 20 --ppm "$dir/flip.ppm" >/dev/null 2>"$dir/flip.err"
+rc=$?
+[ $rc -eq 1 ] && grep -q "^bunny-view: stream: crc at byte [0-9]*; drawing depth 4, the last complete level" "$dir/flip.err" &&
+    cmp -s "$dir/flip.ppm" "$dir/ref-4.ppm" || problems+="flipped byte: exit $rc, $(oneline <"$dir/flip.err"); "
+rm -f "$dir/version.ppm"
+"$view" --stream - --ppm "$dir/version.ppm" <"$dir/version.mcs" >/dev/null 2>"$dir/version.err"
+rc=$?
+[ $rc -eq 1 ] && grep -q "^bunny-view: stream: version at byte 4; nothing was drawable" "$dir/version.err" && [ ! -e "$dir/version.ppm" ] ||
+    problems+="version 2: exit $rc, $(oneline <"$dir/version.err"); "
+check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 2: 'version at byte 4', no file; exit 1 both" "$problems"
+
+# refusals: one line each, exit 2, no file
+problems=""
+for args in "plain/plain-view --stream $mcs" "bunny/bunny-view --stream $dir/none.mcs" "bunny/bunny-view --stream tcp:127.0.0.1:1" \
+    "bunny/bunny-view --stream tcp:nohost" "bunny/bunny-view --stream $mcs --bench 3"; do
+    rm -f "$dir/refused.ppm"
+    # shellcheck disable=SC2086
+    "$dir"/$args --ppm "$dir/refused.ppm" >"$dir/refused.out" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] && [ "$(wc -l <"$dir/refused.out")" = 1 ] && [ ! -e "$dir/refused.ppm" ] ||
+        problems+="$args: exit $rc, $(oneline <"$dir/refused.out"); "
+done
+check_problems "refused with one line, exit 2, no file: a bake without --emit stream, a missing file, a closed port, tcp: without a port, --bench" "$problems"
+exit $status
