@@ -5,7 +5,8 @@
 #   make demo                    deps + generator + bake the default model + its viewer + a PNG and stats
 #   make test                    the whole test suite, two suites at a time; last line "N passed, N failed, N skipped"
 #   make view MODEL=file [NAME=n] [DEPTH=d]   bake any model file and build build/NAME/NAME-view
-#   make web MODEL=file [NAME=n] [WEB_SIZE=WxH]  bake it and build build/NAME/web/: index.html + NAME.wasm (no libc), open it in a browser
+#   make web MODEL=file [NAME=n] [WEB_SIZE=WxH] [WEB_STREAM=1]  bake it and build build/NAME/web/: index.html + NAME.wasm (no libc), open it in a browser;
+#                                WEB_STREAM=1: also stream.html, which fetches the bake's stream NAME.mcs level by level (serve the folder over http)
 #   make track MODEL=file [NAME=n]           bake an edge model (.cao or mesh) and build build/NAME/NAME-track
 #   make models                  extract the catalogue's sample models under build/models/
 #   make bench                   benchmarks, written to tests/bench/RESULTS.md
@@ -169,12 +170,13 @@ view: $(MODELC) $(RT_OBJ) $(HOST_OBJ)
 	$(call link_view,$(NAME))
 	@echo "built $(BUILD)/$(NAME)/$(NAME)-view"
 
-# make web MODEL=file [NAME=n] [DEPTH=d] [WEB_SIZE=WxH]: bake, then build/NAME/web/ (index.html,
-# viewer.js, NAME.wasm and its base64 twin for file://): runtime/front/web/build.sh
+# make web MODEL=file [NAME=n] [DEPTH=d] [WEB_SIZE=WxH] [WEB_STREAM=1]: bake, then build/NAME/web/
+# (index.html, viewer.js, NAME.wasm and its base64 twin for file://): runtime/front/web/build.sh;
+# WEB_STREAM=1 bakes with --emit stream, and build.sh adds stream.html, NAME-stream.wasm and NAME.mcs
 WEB_SRC := $(wildcard runtime/front/web/*) runtime/front/common/rgb.c $(RT_SRC) $(RT_HDR)
 web: $(MODELC)
-	@test -n "$(MODEL)" || { echo "usage: make web MODEL=path/to/file [NAME=name] [DEPTH=d] [WEB_SIZE=WxH]" >&2; exit 2; }
-	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --depth $(DEPTH) $(BAKE_OPTS)
+	@test -n "$(MODEL)" || { echo "usage: make web MODEL=path/to/file [NAME=name] [DEPTH=d] [WEB_SIZE=WxH] [WEB_STREAM=1]" >&2; exit 2; }
+	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --depth $(DEPTH) $(BAKE_OPTS) $(if $(WEB_STREAM),--emit stream)
 	runtime/front/web/build.sh $(BUILD) $(NAME) $(WEB_SIZE)
 # a catalogue model's page from its bake
 $(BUILD)/%/web/index.html: $(BUILD)/%/budget.json $(WEB_SRC)
@@ -392,7 +394,7 @@ FW_ELF := $(FW_DIR)/$(FW_MODEL).elf
 FW_HOSTVIEW := $(FW_BAKE)/$(FW_MODEL)-view
 FW_QEMU_TIMEOUT ?= 600
 ARM_CC := arm-none-eabi-gcc
-FW_SRC := $(filter-out runtime/front/fw/track_main.c,$(wildcard runtime/front/fw/*.c)) $(COMMON_SRC)
+FW_SRC := $(filter-out runtime/front/fw/track_main.c runtime/front/fw/stream_main.c runtime/front/fw/uart_%.c,$(wildcard runtime/front/fw/*.c)) $(COMMON_SRC)
 FW_HDR := $(wildcard runtime/front/fw/*.h) $(COMMON_HDR)
 # the catalogue's bake options without its --depth, then the board's depth and screen (and mesh part)
 FW_BAKE_OPTS = $(strip $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_DEPTH) \
@@ -458,6 +460,88 @@ firmware-run: firmware $(FW_HOSTVIEW)
 
 bench-firmware:
 	@tests/fw/bench.sh
+
+# ---- the model over the UART: a receiver firmware under QEMU ------------------------------------
+#   make firmware-stream BOARD=b                 bake the board's stream, build the receiver, check the ELF
+#   make firmware-stream-run BOARD=b [STREAM=f]  run it under qemu-system-arm with UART0 fed from file f
+#                                                (default: the bake's NAME.mcs); compare with the host viewer
+# The receiver (runtime/front/fw/stream_main.c and the board's UART driver, uart_$(B.uart).c) links no
+# model arrays: the bake (build/fw/B-stream/NAME: --emit stream at the board's stream_depth and
+# stream_screen, boards/B.mk) gives it only NAME.h's sizes, for its static receive and frame buffers.
+# QEMU reads f on its standard input (-serial stdio; QEMU 7.2's file chardev takes no input-path)
+# and hands UART0 a byte only when it has room, so nothing is lost; a UART has no end of file, so the
+# firmware ends a stream that stops short after idle=MS without a byte (FW_STREAM_ARGS: its options,
+# e.g. "idle=3000 frames=4"). FW_STREAM_SERIAL replaces -serial stdio (e.g. -serial tcp::4444,server
+# for a sender on a socket; the comparison still reads f). runtime/front/fw/stream_check.py then
+# compares the firmware's lines with the host viewer linked with the same bake: each level's frames
+# with --checksums --depth D and with --stream on the bytes the firmware had when it drew them, the
+# final state (complete, or the reader's error, its byte and the depth kept) with --stream f's.
+FW_STREAM_DEPTH ?= $($(BOARD).stream_depth)
+FW_STREAM_SCREEN ?= $($(BOARD).stream_screen)
+FW_STREAM_DIR := $(BUILD)/fw/$(BOARD)-stream
+FW_STREAM_BAKE := $(FW_STREAM_DIR)/$(FW_MODEL)
+FW_STREAM_ELF := $(FW_STREAM_DIR)/$(FW_MODEL)-stream.elf
+FW_STREAM_VIEW := $(FW_STREAM_BAKE)/$(FW_MODEL)-view
+STREAM ?= $(FW_STREAM_BAKE)/$(FW_MODEL).mcs
+FW_STREAM_ARGS ?=
+FW_STREAM_SRC = runtime/front/fw/stream_main.c runtime/front/fw/uart_$($(BOARD).uart).c runtime/front/fw/cmdline.c \
+  runtime/front/fw/stack.c
+FW_STREAM_BAKE_OPTS = $(strip $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_STREAM_DEPTH) \
+  --screen $(FW_STREAM_SCREEN) --emit stream)
+# the bake's NAME.h defines, by name: MC_<NAME>_STREAM_BYTES, _SCREEN_WIDTH, _SCREEN_HEIGHT, _DEPTH
+fw_stream_def = MC_$(shell echo '$(FW_MODEL)' | tr a-z A-Z)_$(1)
+FW_STREAM_CFLAGS = -I$(FW_STREAM_BAKE) -DMC_FW_STREAM_HEADER='"$(FW_MODEL).h"' -DMC_FW_CLOCK_HZ=$($(BOARD).clock_hz)u \
+  -DMC_FW_STREAM_BYTES=$(call fw_stream_def,STREAM_BYTES) -DMC_FW_STREAM_WIDTH=$(call fw_stream_def,SCREEN_WIDTH) \
+  -DMC_FW_STREAM_HEIGHT=$(call fw_stream_def,SCREEN_HEIGHT) -DMC_FW_STREAM_DEPTH=$(call fw_stream_def,DEPTH)
+FW_STREAM_LDFLAGS = $(subst $(FW_DIR)/$(FW_MODEL).map,$(FW_STREAM_DIR)/$(FW_MODEL)-stream.map,$(FW_LDFLAGS))
+comma := ,
+FW_STREAM_SERIAL ?= -serial stdio
+FW_STREAM_QEMU = timeout $(FW_QEMU_TIMEOUT) qemu-system-arm -M $($(BOARD).qemu) -nographic -monitor none \
+  -semihosting-config enable=on,target=native,arg=$(FW_MODEL)-stream$(foreach a,$(FW_STREAM_ARGS),$(comma)arg=$(a)) \
+  $(FW_STREAM_SERIAL) -kernel $(FW_STREAM_ELF)
+
+.PHONY: firmware-stream firmware-stream-run fw-stream-args
+fw-stream-args:
+	@test -n "$(filter $(BOARD),$(FW_BOARDS))" -a -n "$(filter $(FW_MODEL),$(CATALOGUE))" -a -n "$($(BOARD).uart)" || \
+	  { echo "usage: make firmware-stream|firmware-stream-run MODEL=<$(CATALOGUE)> BOARD=<$(FW_BOARDS)> [STREAM=file]" >&2; exit 2; }
+
+$(FW_STREAM_DIR)/$(FW_MODEL).opts: FORCE
+	@mkdir -p $(@D)
+	@echo '$(FW_STREAM_BAKE_OPTS)' | cmp -s - $@ || echo '$(FW_STREAM_BAKE_OPTS)' > $@
+$(FW_STREAM_BAKE)/budget.json: $(BUILD)/models/$(notdir $($(FW_MODEL).src)) $(MODELC) $(FW_STREAM_DIR)/$(FW_MODEL).opts
+	rm -rf $(FW_STREAM_BAKE)
+	$(MODELC) $< -o $(FW_STREAM_DIR) --name $(FW_MODEL) -q $(FW_STREAM_BAKE_OPTS)
+
+# the runtime and the receiver only (the bake's .c files are not compiled), an object a source so
+# that make -j compiles them side by side
+FW_STREAM_RT_OBJ = $(patsubst runtime/src/%.c,$(FW_STREAM_DIR)/obj/rt_%.o,$(RT_SRC))
+FW_STREAM_FW_OBJ = $(patsubst runtime/front/fw/%.c,$(FW_STREAM_DIR)/obj/fw_%.o,$(FW_STREAM_SRC))
+FW_STREAM_DEPS = $(RT_HDR) runtime/front/fw/boards/$(BOARD).mk Makefile
+$(FW_STREAM_RT_OBJ): $(FW_STREAM_DIR)/obj/rt_%.o: runtime/src/%.c $(FW_STREAM_DEPS)
+	@mkdir -p $(@D)
+	@echo "  ARM CC $<"
+	@$(ARM_CC) $(FW_CFLAGS) $(RT_CFLAGS) -c -o $@ $<
+$(FW_STREAM_FW_OBJ): $(FW_STREAM_DIR)/obj/fw_%.o: runtime/front/fw/%.c $(FW_STREAM_DEPS) $(FW_HDR) $(FW_STREAM_BAKE)/budget.json
+	@mkdir -p $(@D)
+	@echo "  ARM CC $<"
+	@$(ARM_CC) $(FW_CFLAGS) $(HOST_CFLAGS) $(FW_STREAM_CFLAGS) -c -o $@ $<
+$(FW_STREAM_ELF): $(FW_STREAM_RT_OBJ) $(FW_STREAM_FW_OBJ) runtime/front/fw/boards/$(BOARD).ld
+	$(ARM_CC) -o $@ $(FW_STREAM_RT_OBJ) $(FW_STREAM_FW_OBJ) $(FW_STREAM_LDFLAGS)
+
+$(FW_STREAM_VIEW): $(FW_STREAM_BAKE)/budget.json $(RT_OBJ) $(HOST_OBJ)
+	$(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $@ $(FW_STREAM_BAKE)/*.c $(RT_OBJ) $(HOST_OBJ) $(VIEW_LDFLAGS)
+
+firmware-stream: fw-stream-args $(FW_STREAM_ELF)
+	arm-none-eabi-size $(FW_STREAM_ELF)
+	python3 runtime/front/fw/check_stream_elf.py --elf $(FW_STREAM_ELF) --budget $(FW_STREAM_BAKE)/budget.json \
+	  --ld runtime/front/fw/boards/$(BOARD).ld --obj $(FW_STREAM_DIR)/obj
+
+firmware-stream-run: firmware-stream $(FW_STREAM_VIEW)
+	@test -f '$(STREAM)' || { echo "firmware-stream-run: STREAM=$(STREAM): no such file" >&2; exit 2; }
+	@rm -f $(FW_STREAM_DIR)/run.txt; $(FW_STREAM_QEMU) < '$(STREAM)' > $(FW_STREAM_DIR)/run.txt 2>&1; \
+	  st=$$?; cat $(FW_STREAM_DIR)/run.txt; \
+	  python3 runtime/front/fw/stream_check.py --run $(FW_STREAM_DIR)/run.txt --status $$st \
+	    --view $(FW_STREAM_VIEW) --stream '$(STREAM)' --work $(FW_STREAM_DIR)/check
 
 # ---- the tracker on Cortex-M: ViSP's cube under QEMU, its poses equal to the host tracker's ------
 #   make firmware-track BOARD=b        bake ViSP's cube (--as edges) for board b, store frames of its sequence, cross-compile, check the ELF

@@ -34,10 +34,13 @@ suites=(
     tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
     tests/web/suite.sh        # the web viewer in headless Chromium: frames equal the native viewer's
     tests/stream/suite.sh     # streamed bakes: every prefix draws its level exactly, damaged streams refused
+    tests/stream/host.sh      # the host viewer's --stream from a pipe, a FIFO, TCP: cuts and damage keep the last good level
+    tests/web/stream.sh       # the web page over a streaming fetch in headless Chromium: cuts, damage, progressive frames
     tests/gen/gltf.sh         # glTF input: meshes as .gltf/.glb read and bake as their OFF twins, Debian's samples, malformed files
     tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
     tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
+    tests/fw/stream.sh        # the stream receiver firmware over the UART under QEMU: levels' checksums equal the host's
     tests/fw/track.sh         # the tracker firmware under QEMU: ViSP's cube, poses equal the host tracker's
     tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree

@@ -3,8 +3,8 @@
 # headless Chromium, from file:// and from a plain static server, driven through its own handlers
 # (tests/web/drive.js, evaluated through tests/web/cdp.py in real time): the view it ends at follows from the events, the frames while it moves are
 # coarse, and its fine frame equals the native viewer's PPM for the same view, pixel for pixel.
-# Chromium missing is a failure (make deps installs it); Chromium present but unable to start is a
-# skip with its reason.
+# The stream page has its own suite (tests/web/stream.sh). Chromium missing is a failure (make deps installs it);
+# Chromium present but unable to start is a skip with its reason.
 set -u
 cd "$(dirname "$0")/../.."
 TAP_PREFIX="web: "
@@ -26,7 +26,8 @@ fi
 web=build/$name/web
 problems=""
 for f in index.html viewer.js $name.wasm $name.wasm.js; do [ -s "$web/$f" ] || problems+="$f missing; "; done
-check_problems "build/$name/web/ holds index.html, viewer.js, $name.wasm and $name.wasm.js" "$problems"
+for f in stream.html $name-stream.wasm $name.mcs; do [ ! -e "$web/$f" ] || problems+="$f, but the bake has no stream; "; done
+check_problems "build/$name/web/ holds index.html, viewer.js, $name.wasm and $name.wasm.js (no stream page: the bake has no stream)" "$problems"
 python3 - "$web/$name.wasm" "$web/$name.wasm.js" >"$dir/module.txt" 2>&1 <<'EOF'
 import base64, sys
 data = open(sys.argv[1], 'rb').read()

@@ -6,6 +6,12 @@
 // The view is kept in the runtime's integers (angles in 4096 units a turn, zoom in Q16), so a test
 // can ask the native viewer for exactly the same frame (tests/web). window.modelc exposes the state
 // for tests and for the curious.
+//
+// The stream page (stream.html: <body data-stream="NAME.mcs">, or ?stream=URL) loads NAME-stream.wasm,
+// which holds no model, and fetches the stream (modelc --emit stream) through response.body, feeding
+// each piece to the module as it arrives: the deepest complete level is drawn as soon as it is
+// checked, and again whenever a deeper one is; the status line tells the stream's state, and a
+// truncated or damaged stream its error, while the last good level stays drawn. http(s) only.
 'use strict';
 (function () {
   const ANGLE_FULL = 4096, ZOOM_ONE = 65536, LOD_PIXEL = 16;
@@ -18,6 +24,8 @@
   const canvas = document.getElementById('view');
   const status = document.getElementById('status');
   const name = document.body.dataset.model;
+  const streaming = document.body.dataset.stream !== undefined;
+  const streamUrl = streaming ? (new URLSearchParams(location.search).get('stream') || document.body.dataset.stream) : null;
   const ctx = canvas.getContext('2d');
   const w = canvas.width, h = canvas.height;
   const image = ctx.createImageData(w, h);
@@ -26,6 +34,11 @@
   let ex = null, depth = 0, moving = false, dragging = null, pending = false, restTimer = 0;
   let frames = 0, last = null;
   const idleWaiters = [];
+  // the stream's state: bytes come from the network, total and levels (D) from its header, drawable
+  // the bytes and time at which each depth became drawable, error the reader's or the network's
+  const st = { url: streamUrl, bytes: 0, total: 0, levels: 0, depth: 0, done: false, ok: false,
+               error: null, drawable: [] };
+  let frameLine = '', streamLine = '';
 
   // file:// pages cannot fetch, so NAME.wasm.js carries the same bytes in base64 for them
   function loadScript(src) {
@@ -38,6 +51,13 @@
     });
   }
   async function instantiate() {
+    if (streaming) {
+      if (location.protocol !== 'http:' && location.protocol !== 'https:')
+        throw new Error('the stream page needs http(s), as fetch cannot read file:// (open index.html, or serve this folder)');
+      const r = await fetch(name + '-stream.wasm');
+      if (!r.ok) throw new Error(name + '-stream.wasm: HTTP ' + r.status);
+      return (await WebAssembly.instantiate(await r.arrayBuffer(), {})).instance;
+    }
     if (location.protocol === 'http:' || location.protocol === 'https:') {
       const r = await fetch(name + '.wasm');
       if (!r.ok) throw new Error(name + '.wasm: HTTP ' + r.status);
@@ -53,24 +73,33 @@
   const mod = (a) => ((a % ANGLE_FULL) + ANGLE_FULL) % ANGLE_FULL;
   function zoomBy(f) { view.zoom = Math.min(ZOOM_MAX, Math.max(ZOOM_MIN, Math.round(view.zoom * f))); }
 
+  function showStatus() {
+    status.textContent = streaming ? (frameLine ? frameLine + '\n' : '') + streamLine : frameLine;
+  }
   function draw() {
     pending = false;
+    if (streaming && depth === 0) {   // nothing drawable (yet): no frame
+      if (!moving) while (idleWaiters.length) idleWaiters.shift()(null);
+      return;
+    }
     const error = moving ? 2 * view.error : view.error;
     const t0 = performance.now();
     const rc = ex.mcw_draw(w, h, view.yaw, view.pitch, view.zoom, error);
     const ms = performance.now() - t0;
     if (rc !== 0) {
-      status.textContent = name + ': mcw_draw returned ' + rc;
+      frameLine = name + ': mcw_draw returned ' + rc;
+      showStatus();
       return;
     }
     image.data.set(new Uint8ClampedArray(ex.memory.buffer, ex.mcw_rgba(), w * h * 4));
     ctx.putImageData(image, 0, 0);
     frames++;
     last = { yaw: view.yaw, pitch: view.pitch, zoom: view.zoom, error: error, moving: moving,
-             depth: ex.mcw_drawn_depth(), points: ex.mcw_drawn(), ms: ms };
-    status.textContent = name + ' | depth ' + last.depth + '/' + depth + ' | ' +
+             depth: ex.mcw_drawn_depth(), points: ex.mcw_drawn(), ms: ms, model: depth };
+    frameLine = name + ' | depth ' + last.depth + '/' + depth + ' | ' +
       last.points.toLocaleString('en') + ' points | ' + ms.toFixed(2) + ' ms | zoom ' +
       (view.zoom / ZOOM_ONE).toFixed(2) + ' | ' + (moving ? 'coarse' : 'fine') + ' | ' + w + 'x' + h;
+    showStatus();
     if (!moving) while (idleWaiters.length) idleWaiters.shift()(last);
   }
   function request() {
@@ -128,6 +157,88 @@
     nudge();
   });
 
+  // ---- the stream page: fetch, feed, draw each level as it completes ----
+  function streamStatus() {
+    const kept = st.depth ? 'drawing depth ' + st.depth + ', the last complete level' : 'nothing was drawable';
+    if (st.error && st.error.at !== undefined)
+      streamLine = 'stream: ' + st.error.name + ' at byte ' + st.error.at + '; ' + kept;
+    else if (st.error)
+      streamLine = 'stream: ' + st.error.message + '; ' + kept;
+    else if (st.done)
+      streamLine = 'stream: complete, depth ' + st.depth + ', ' + st.bytes + ' bytes';
+    else
+      streamLine = 'stream: depth ' + st.depth + ' of ' + (st.levels || '?') + ' after ' + st.bytes + ' of ' +
+        (st.total || '?') + ' bytes';
+    showStatus();
+  }
+  function readerState() {
+    st.total = ex.mcw_stream_total();
+    st.levels = ex.mcw_stream_levels();
+    const rc = ex.mcw_stream_error();
+    if (rc !== 0 && !st.error) {
+      const at = ex.mcw_stream_error_name(rc);
+      const bytes = new Uint8Array(ex.memory.buffer, at);
+      let n = 0;
+      while (bytes[n]) n++;
+      st.error = { name: String.fromCharCode.apply(null, bytes.subarray(0, n)), code: rc, at: ex.mcw_stream_error_at() };
+    }
+    const d = ex.mcw_depth();
+    if (d > depth) {
+      depth = st.depth = d;
+      st.drawable.push({ depth: d, bytes: st.bytes, ms: Math.round(performance.now()) });
+      request();
+    }
+  }
+  // a piece of the body into the module, a scratch area at a time; false once the reader stopped
+  function feed(bytes) {
+    const room = ex.mcw_scratch_bytes();
+    for (let i = 0; i < bytes.length; i += room) {
+      const piece = bytes.subarray(i, Math.min(bytes.length, i + room));
+      new Uint8Array(ex.memory.buffer, ex.mcw_scratch(), piece.length).set(piece);
+      st.bytes += piece.length;
+      const rc = ex.mcw_feed(piece.length);
+      readerState();
+      if (rc !== 0) return false;
+    }
+    return true;
+  }
+  async function receive() {
+    streamStatus();
+    try {
+      const r = await fetch(streamUrl, { cache: 'no-store' });
+      if (!r.ok) throw new Error('HTTP ' + r.status + ' for ' + streamUrl);
+      const body = r.body.getReader();
+      for (;;) {
+        let piece;
+        try {
+          piece = await body.read();
+        } catch (err) {
+          throw new Error('read failed after ' + st.bytes + ' bytes: ' + err.message);
+        }
+        if (piece.done) {
+          ex.mcw_end();
+          readerState();
+          break;
+        }
+        if (!feed(piece.value)) {
+          body.cancel().catch(() => {});
+          break;
+        }
+        streamStatus();
+      }
+    } catch (err) {
+      if (!st.error) st.error = { name: 'fetch', message: err.message };
+    }
+    st.done = true;
+    st.ok = !st.error;
+    streamStatus();
+    request();
+    return snapshot();
+  }
+  function snapshot() {
+    return Object.assign({}, st, { error: st.error && Object.assign({}, st.error), drawable: st.drawable.slice() });
+  }
+
   const ready = instantiate().then((instance) => {
     ex = instance.exports;
     depth = ex.mcw_depth();
@@ -139,6 +250,9 @@
     status.textContent = name + ': ' + err.message;
     throw err;
   });
+  // the stream page: resolves with the stream's state once it ended, complete or not
+  const received = streaming ? ready.then(receive) : Promise.resolve(null);
+  received.catch(() => {});
 
   window.modelc = {
     ready: ready,
@@ -146,7 +260,10 @@
     frames: () => frames,
     last: () => last,
     exports: () => ex,   // the module's own functions (web.c), for benchmarks
-    // resolves with the next fine frame (at rest), drawn after everything so far
+    stream: () => (streaming ? snapshot() : null),   // the stream's state (the stream page)
+    received: received,
+    // resolves with the next fine frame (at rest), drawn after everything so far (null on the stream
+    // page while nothing is drawable)
     idle: () => new Promise((resolve) => { idleWaiters.push(resolve); if (!moving) request(); }),
   };
 })();

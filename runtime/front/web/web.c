@@ -11,11 +11,22 @@
  * MC_LOD_PIXEL units), so the page and the native viewer cannot round it differently. All memory is
  * static: the bake's frame buffers (app.h) and one RGBA frame of MC_WEB_MAX_PIXELS pixels, which the
  * build sets to the bake's screen size.
+ *
+ * Built with MC_WEB_STREAM_BYTES (the stream page, build.sh), the module holds no bake: the model
+ * arrives as a stream (modelc/stream.h) that viewer.js copies piece by piece into mcw_scratch() and
+ * hands to mcw_feed, into a static receive buffer of MC_WEB_STREAM_BYTES (the bake's
+ * MC_NAME_STREAM_BYTES); mcw_draw then draws the deepest complete level, exactly as the native
+ * viewer draws the bake at that depth, and keeps drawing it after the stream fails. The frame
+ * buffers are its own, MC_WEB_MAX_WIDTH x MC_WEB_MAX_HEIGHT.
  */
 #include <stdint.h>
-#include <modelc/app.h>
 #include <modelc/modelc.h>
 #include "../common/rgb.h"
+#ifdef MC_WEB_STREAM_BYTES
+#include <modelc/stream.h>
+#else
+#include <modelc/app.h>
+#endif
 
 /* MC_WEB_MAX_PIXELS: the RGBA frame's size in pixels; the build passes the bake's screen
  * (MC_NAME_SCREEN_WIDTH * MC_NAME_SCREEN_HEIGHT from NAME.h). */
@@ -28,25 +39,81 @@
 static uint8_t rgba[4u * (MC_WEB_MAX_PIXELS)];
 static mc_stats last;
 
-EXPORT("mcw_max_width") uint32_t mcw_max_width(void) { return mc_app_model.max_width; }
-EXPORT("mcw_max_height") uint32_t mcw_max_height(void) { return mc_app_model.max_height; }
-EXPORT("mcw_depth") uint32_t mcw_depth(void) { return mc_app_model.model->octree ? mc_app_model.model->octree->depth : 0; }
+#ifdef MC_WEB_STREAM_BYTES
+#if !defined MC_WEB_MAX_WIDTH || !defined MC_WEB_MAX_HEIGHT
+#error "MC_WEB_MAX_WIDTH, MC_WEB_MAX_HEIGHT: the bake's screen (build.sh passes them with MC_WEB_STREAM_BYTES)"
+#endif
+/* a fetch delivers pieces of any size; viewer.js copies them here at most this much at a time */
+#define SCRATCH_BYTES 65536u
+static uint8_t stream_buf[MC_WEB_STREAM_BYTES];
+static uint8_t scratch[SCRATCH_BYTES];
+static uint8_t frame_color[(MC_WEB_MAX_WIDTH) * (MC_WEB_MAX_HEIGHT)];
+static uint16_t frame_depth[(MC_WEB_MAX_WIDTH) * (MC_WEB_MAX_HEIGHT)];
+static mc_stream reader;
+static int reader_ready;
+
+static mc_stream *stream(void)
+{
+    if (!reader_ready) {   /* no start-up code without libc: set up on first use */
+        mc_stream_init(&reader, stream_buf, MC_WEB_STREAM_BYTES);
+        reader_ready = 1;
+    }
+    return &reader;
+}
+#define MODEL_OCTREE mc_stream_octree(stream())
+#define MAX_WIDTH (MC_WEB_MAX_WIDTH)
+#define MAX_HEIGHT (MC_WEB_MAX_HEIGHT)
+#define FRAME_COLOR frame_color
+#define FRAME_DEPTH frame_depth
+
+EXPORT("mcw_scratch") uint8_t *mcw_scratch(void) { return scratch; }
+EXPORT("mcw_scratch_bytes") uint32_t mcw_scratch_bytes(void) { return SCRATCH_BYTES; }
+/* Feeds the first n bytes of the scratch area; the reader's MC_STREAM_* code (sticky). */
+EXPORT("mcw_feed") int32_t mcw_feed(uint32_t n)
+{
+    return n <= SCRATCH_BYTES ? mc_stream_feed(stream(), scratch, n) : MC_STREAM_ERR_ARG;
+}
+/* The input ended: MC_STREAM_OK when the stream was complete, else its error. */
+EXPORT("mcw_end") int32_t mcw_end(void) { return mc_stream_end(stream()); }
+/* where the stream is: the bytes in the buffer, the header's total (0 until read) and depth D,
+ * the first error and the byte offset where it was found, and the buffer's size */
+EXPORT("mcw_stream_len") uint32_t mcw_stream_len(void) { return stream()->len; }
+EXPORT("mcw_stream_total") uint32_t mcw_stream_total(void) { return stream()->total; }
+EXPORT("mcw_stream_levels") uint32_t mcw_stream_levels(void) { return stream()->depth; }
+EXPORT("mcw_stream_error") int32_t mcw_stream_error(void) { return stream()->error; }
+EXPORT("mcw_stream_error_at") uint32_t mcw_stream_error_at(void) { return stream()->error_at; }
+EXPORT("mcw_stream_error_name") const char *mcw_stream_error_name(int32_t error) { return mc_stream_error_name(error); }
+EXPORT("mcw_stream_cap") uint32_t mcw_stream_cap(void) { return MC_WEB_STREAM_BYTES; }
+#else
+#define MODEL_OCTREE mc_app_model.model->octree
+#define MAX_WIDTH mc_app_model.max_width
+#define MAX_HEIGHT mc_app_model.max_height
+#define FRAME_COLOR mc_app_model.color
+#define FRAME_DEPTH mc_app_model.depth
+#endif
+
+EXPORT("mcw_max_width") uint32_t mcw_max_width(void) { return MAX_WIDTH; }
+EXPORT("mcw_max_height") uint32_t mcw_max_height(void) { return MAX_HEIGHT; }
+/* the model's depth: the bake's, or the stream's deepest complete level (0: nothing drawable) */
+EXPORT("mcw_depth") uint32_t mcw_depth(void) { return MODEL_OCTREE ? MODEL_OCTREE->depth : 0; }
+#ifndef MC_WEB_STREAM_BYTES
 EXPORT("mcw_name") const char *mcw_name(void) { return mc_app_model.model->name; }
+#endif
 EXPORT("mcw_rgba") const uint8_t *mcw_rgba(void) { return rgba; }
 /* the last frame's leaves drawn and the level drawn (mc_stats) */
 EXPORT("mcw_drawn") uint32_t mcw_drawn(void) { return last.points; }
 EXPORT("mcw_drawn_depth") uint32_t mcw_drawn_depth(void) { return last.depth; }
 
 /* Draws a w x h frame; returns MC_OK, a renderer's MC_ERR_*, or MC_ERR_ARG when the model has no
- * points or w x h exceeds the bake's screen. */
+ * points (a stream: nothing drawable yet) or w x h exceeds the bake's screen. */
 EXPORT("mcw_draw")
 int32_t mcw_draw(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoom, uint32_t max_error)
 {
-    const mc_octree *octree = mc_app_model.model->octree;
-    if (!octree || w < 1 || h < 1 || w > mc_app_model.max_width || h > mc_app_model.max_height ||
+    const mc_octree *octree = MODEL_OCTREE;
+    if (!octree || w < 1 || h < 1 || w > MAX_WIDTH || h > MAX_HEIGHT ||
         (uint64_t)w * h > (MC_WEB_MAX_PIXELS) || max_error > 0xFFFFu)
         return MC_ERR_ARG;
-    mc_target t = {mc_app_model.color, mc_app_model.depth, (uint16_t)w, (uint16_t)h};
+    mc_target t = {FRAME_COLOR, FRAME_DEPTH, (uint16_t)w, (uint16_t)h};
     mc_view v = mc_view_default();
     v.yaw = yaw;
     v.pitch = pitch;

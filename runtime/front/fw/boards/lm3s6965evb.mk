@@ -11,3 +11,11 @@ lm3s6965evb.screen := 160x128
 # 3840-byte stack, and the flash image is about 220 KiB of the 256.
 lm3s6965evb.mesh_screen := 128x96
 lm3s6965evb.mesh_faces := 2300
+# The stream receiver (make firmware-stream): UART0 is a PL011 (uart_pl011.c); SysTick runs at the
+# 12.5 MHz QEMU derives from the reset RCC value. Depth 6 at 96x72: bunny00's 23,687-byte stream
+# and 20,736 bytes of frame buffers leave some 16 KiB of the 64 free beside the stack (depth 7's
+# stream alone is 93 KB).
+lm3s6965evb.uart := pl011
+lm3s6965evb.clock_hz := 12500000
+lm3s6965evb.stream_depth := 6
+lm3s6965evb.stream_screen := 96x72

@@ -7,3 +7,10 @@ mps2-an386.screen := 320x240
 # The mesh bake (make firmware FW_MESH=1): the whole mesh at the same screen (mesh_faces 0: bunny00's
 # 75408 faces, about 2.7 MB of flash and 0.9 MB of RAM with its vertex cache).
 mps2-an386.mesh_faces := 0
+# The stream receiver (make firmware-stream): UART0 is a CMSDK APB UART (uart_cmsdk.c) on the 25 MHz
+# system clock. Depth 7 at 160x120 (93,051 bytes): QEMU hands this UART one byte per turn of its
+# main loop, some 20-40 KB/s, so depth 8's 369 KB (FW_STREAM_DEPTH=8) takes several times longer.
+mps2-an386.uart := cmsdk
+mps2-an386.clock_hz := 25000000
+mps2-an386.stream_depth := 7
+mps2-an386.stream_screen := 160x120

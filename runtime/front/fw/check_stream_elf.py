@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Checks the stream receiver's ELF (make firmware-stream) against its bake and its board.
+
+Promise: prints one line per check, "ok - fw: ..." or "not ok - fw: ...: why", and exits 1 if any
+failed. The checks:
+  1. no heap symbol (check_elf.py's list), as for every firmware;
+  2. no model: no symbol of the bake (mc_model_NAME, mc_octree_NAME, mc_NAME_*, mc_app_model), so
+     the model can only come over the wire;
+  3. the receive buffer is budget.json's stream bytes (MC_NAME_STREAM_BYTES), the frame buffers its
+     ram.color_buffer and ram.depth_buffer;
+  4. fits the board: flash and static RAM plus the stack reservation within the .ld's sizes;
+  5. the static stack bound (stack_bound.py, the renderer at the bake's depth) fits the reservation
+     and the RAM above the static data.
+Then one line "firmware NAME: flash F B, static RAM R B, ..." with the figures.
+Usage: check_stream_elf.py --elf ELF --budget budget.json --ld BOARD.ld --obj OBJDIR
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import check_elf  # noqa: E402
+import stack_bound  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--elf", required=True)
+    ap.add_argument("--budget", required=True)
+    ap.add_argument("--ld", required=True)
+    ap.add_argument("--obj", required=True)
+    a = ap.parse_args()
+    fails = 0
+
+    def check(name, problem):
+        nonlocal fails
+        print(f"not ok - fw: {name}: {problem}" if problem else f"ok - fw: {name}")
+        fails += bool(problem)
+
+    budget = json.load(open(a.budget))
+    board = check_elf.ld_symbols(a.ld)
+    elfname = os.path.basename(a.elf)
+    model = budget.get("model", "")
+    syms = {}
+    for line in check_elf.run("arm-none-eabi-nm", "-S", a.elf).splitlines():
+        f = line.split()
+        if len(f) == 4:
+            syms[f[3]] = int(f[1], 16)
+        elif len(f) >= 2:
+            syms.setdefault(f[-1], None)
+
+    heap = sorted(s for s in syms if check_elf.HEAP.match(s))
+    check(f"{elfname}: no heap symbols in arm-none-eabi-nm", "found " + " ".join(heap) if heap else "")
+    baked = re.compile(rf"^(mc_model_{model}|mc_octree_{model}|mc_{model}_\w+|mc_app_model)$")
+    found = sorted(s for s in syms if baked.match(s))
+    check(f"{elfname}: links no model (no mc_model_{model}, mc_{model}_*, mc_app_model symbol)",
+          "found " + " ".join(found[:5]) if found else "")
+
+    ram = budget.get("ram", {})
+    want = {"stream_buf": budget.get("stream", {}).get("bytes"), "color_buf": ram.get("color_buffer"),
+            "depth_buf": ram.get("depth_buffer")}
+    bad = [f"{k}: ELF {syms.get(k)} vs budget {v}" for k, v in want.items() if v is None or syms.get(k) != v]
+    check(f"{elfname}: receive buffer of budget.json's stream bytes ({want['stream_buf']}) and frame buffers "
+          f"of its sizes ({want['color_buf']} + {want['depth_buf']})", "; ".join(bad))
+
+    ram0, rs, fs = board.get("__ram", 0x20000000), board.get("__ram_size"), board.get("__flash_size")
+    flash = ram_static = stack_reserved = 0
+    for line in check_elf.run("arm-none-eabi-size", "-A", "-d", a.elf).splitlines()[2:]:
+        f = line.split()
+        if len(f) != 3 or not f[1].isdigit() or f[0].startswith((".debug", ".comment", ".ARM.attr")):
+            continue
+        name, size, addr = f[0], int(f[1]), int(f[2])
+        if addr < ram0:
+            flash += size
+        elif name == ".stack":
+            stack_reserved = size
+        else:
+            ram_static += size
+            if name in (".data", ".tdata"):
+                flash += size
+    check(f"{elfname}: fits the board: flash {flash} of {fs}, RAM {ram_static} + stack {stack_reserved} of {rs}",
+          "" if fs and rs and flash <= fs and ram_static + stack_reserved <= rs else "does not fit")
+
+    total, path, _ = stack_bound.bound(a.elf, a.obj, int(budget["depth"]))
+    room = rs - ram_static if rs else 0
+    print(f"# {elfname}: stack bound {total} bytes: " + " > ".join(n.split(":")[-1] for _, n in path))
+    check(f"{elfname}: stack bound {total} fits the reservation __stack_size {stack_reserved} and the "
+          f"{room} bytes of RAM above the static data",
+          "" if total <= stack_reserved and total <= room else f"bound {total} > reservation or room")
+    print(f"firmware {elfname}: flash {flash} B (runtime and receiver), static RAM {ram_static} B "
+          f"(stream {want['stream_buf']}, frames {(want['color_buf'] or 0) + (want['depth_buf'] or 0)}), "
+          f"stack bound {total} B, RAM with stack {ram_static + total} B of {rs}")
+    return 1 if fails else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
