@@ -130,6 +130,34 @@ rc=$?
     problems+="version 2: exit $rc, $(oneline <"$dir/version.err"); "
 check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 2: 'version at byte 4', no file; exit 1 both" "$problems"
 
+# interactive, in a tmux pane: levels drawn as they arrive over a FIFO, then damage: the error in
+# the status line and the last good level still on screen
+if command -v tmux >/dev/null; then
+    sock=mcstream$$
+    tm() { tmux -u -L "$sock" -f /dev/null "$@"; }
+    line() { tm capture-pane -p -t s 2>/dev/null | grep -E ' depth [0-9]+/[0-9]+ ' | tail -n 1; }
+    wait_for() {   # REGEX: the status line matches it within 20 s
+        for _ in $(seq 400); do line | grep -qE "$1" && return 0; sleep 0.05; done
+        return 1
+    }
+    mkfifo "$dir/ififo"
+    export TERM=xterm-256color LC_ALL=C.UTF-8
+    tm new-session -d -s s -x 200 -y 40 "$PWD/$view --stream $PWD/$dir/ififo"
+    exec 3>"$dir/ififo"
+    head -c "${ends[2]}" "$dir/flip.mcs" >&3
+    problems=""
+    wait_for "depth 3/3 .*stream: depth 3 of 7 after ${ends[2]} of $size bytes" || problems+="levels 1-3 sent: '$(line)'; "
+    tail -c +$((ends[2] + 1)) "$dir/flip.mcs" >&3
+    exec 3>&-
+    wait_for "depth 4/4 .*stream: crc at byte [0-9]+; drawing depth 4, the last complete level" || problems+="the rest, damaged: '$(line)'; "
+    tm send-keys -t s q
+    for _ in $(seq 100); do tm has-session -t s 2>/dev/null || break; sleep 0.05; done
+    tm kill-server 2>/dev/null
+    check_problems "interactive (tmux): depth 3 on screen once levels 1-3 came through a FIFO; after the rest with a flipped byte in level 5, the crc error in the status line and depth 4 drawn" "$problems"
+else
+    notok "interactive --stream" "tmux missing (make deps installs it)"
+fi
+
 # refusals: one line each, exit 2, no file
 problems=""
 for args in "plain/plain-view --stream $mcs" "bunny/bunny-view --stream $dir/none.mcs" "bunny/bunny-view --stream tcp:127.0.0.1:1" \
