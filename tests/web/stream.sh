@@ -34,31 +34,10 @@ grep -q "data-stream=\"$name.mcs\"" "$web/stream.html" || problems+="stream.html
 check_problems "web/ holds both pages, and $name.mcs is the bake's stream" "$problems"
 
 # the modules' imports, exports and sizes
-python3 - "$web/$name-stream.wasm" "$web/$name.wasm" "$bake/$name.mcs" >"$dir/module.txt" 2>&1 <<'EOF'
-import os, sys
-def sections(path):
-    data = open(path, 'rb').read()
-    def uleb(b, i):
-        v = s = 0
-        while True:
-            x = b[i]; i += 1; v |= (x & 0x7f) << s; s += 7
-            if x < 0x80: return v, i
-    assert data[:8] == b'\0asm\x01\0\0\0', path + ': not a wasm module'
-    i, imports, exports = 8, 0, []
-    while i < len(data):
-        sid = data[i]; size, j = uleb(data, i + 1); body = data[j:j + size]
-        if sid == 2: imports = uleb(body, 0)[0]
-        if sid == 7:
-            n, k = uleb(body, 0)
-            for _ in range(n):
-                ln, k = uleb(body, k); exports.append(body[k:k + ln].decode()); k += ln + 1; _, k = uleb(body, k)
-        i = j + size
-    return imports, exports, len(data)
-imports, exports, size = sections(sys.argv[1])
-print('imports', imports)
-print('exports', ' '.join(sorted(exports)))
-print('bytes', size, sections(sys.argv[2])[2], os.path.getsize(sys.argv[3]))
-EOF
+{
+    python3 tests/web/wasm_info.py "$web/$name-stream.wasm" | grep -v "^bytes "
+    echo "bytes $(stat -c %s "$web/$name-stream.wasm") $(stat -c %s "$web/$name.wasm") $(stat -c %s "$bake/$name.mcs")"
+} >"$dir/module.txt" 2>&1
 imports=$(sed -n 's/^imports //p' "$dir/module.txt")
 exports=$(sed -n 's/^exports //p' "$dir/module.txt")
 read -r sbytes bbytes mcs < <(sed -n 's/^bytes //p' "$dir/module.txt")

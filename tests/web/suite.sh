@@ -28,31 +28,11 @@ problems=""
 for f in index.html viewer.js $name.wasm $name.wasm.js; do [ -s "$web/$f" ] || problems+="$f missing; "; done
 for f in stream.html $name-stream.wasm $name.mcs; do [ ! -e "$web/$f" ] || problems+="$f, but the bake has no stream; "; done
 check_problems "build/$name/web/ holds index.html, viewer.js, $name.wasm and $name.wasm.js (no stream page: the bake has no stream)" "$problems"
-python3 - "$web/$name.wasm" "$web/$name.wasm.js" >"$dir/module.txt" 2>&1 <<'EOF'
-import base64, sys
-data = open(sys.argv[1], 'rb').read()
-def uleb(b, i):
-    v = s = 0
-    while True:
-        x = b[i]; i += 1; v |= (x & 0x7f) << s; s += 7
-        if x < 0x80: return v, i
-assert data[:8] == b'\0asm\x01\0\0\0', 'not a wasm module'
-i, imports, exports = 8, 0, []
-while i < len(data):
-    sid = data[i]; size, j = uleb(data, i + 1); body = data[j:j + size]
-    if sid == 2: imports = uleb(body, 0)[0]
-    if sid == 7:
-        n, k = uleb(body, 0)
-        for _ in range(n):
-            ln, k = uleb(body, k); exports.append(body[k:k + ln].decode()); k += ln + 1; _, k = uleb(body, k)
-    i = j + size
-print('imports', imports)
-print('exports', ' '.join(sorted(exports)))
-print('bytes', len(data))
-js = open(sys.argv[2]).read()
-b64 = js.split('"')[1]
-print('base64-same', base64.b64decode(b64) == data)
-EOF
+{
+    python3 tests/web/wasm_info.py "$web/$name.wasm"
+    python3 -c 'import base64, sys; print("base64-same", base64.b64decode(open(sys.argv[2]).read().split(chr(34))[1]) == open(sys.argv[1], "rb").read())' \
+        "$web/$name.wasm" "$web/$name.wasm.js"
+} >"$dir/module.txt" 2>&1
 imports=$(sed -n 's/^imports //p' "$dir/module.txt")
 [ "$imports" = 0 ] && ok "$name.wasm imports nothing ($(sed -n 's/^bytes //p' "$dir/module.txt") bytes)" ||
     notok "$name.wasm imports nothing" "$(oneline <"$dir/module.txt")"

@@ -74,6 +74,27 @@ def ld_symbols(path):
     return vals
 
 
+
+def section_totals(elf, ram0):
+    """(flash, static RAM, stack reservation) from arm-none-eabi-size -A: flash holds every allocated
+    section below the RAM's origin plus the initial values of .data; static RAM is every section in
+    the RAM region except the stack reservation (.stack)."""
+    flash = ram_static = stack_reserved = 0
+    for line in run("arm-none-eabi-size", "-A", "-d", elf).splitlines()[2:]:
+        f = line.split()
+        if len(f) != 3 or not f[1].isdigit() or f[0].startswith((".debug", ".comment", ".ARM.attr")):
+            continue
+        name, size, addr = f[0], int(f[1]), int(f[2])
+        if addr < ram0:
+            flash += size
+        elif name == ".stack":
+            stack_reserved = size
+        else:
+            ram_static += size
+            if name in (".data", ".tdata"):
+                flash += size
+    return flash, ram_static, stack_reserved
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--elf", required=True)
@@ -130,24 +151,11 @@ def main():
         check(f"{elfname}: the mesh part's RAM ({', '.join(mesh)}) has exactly budget.json's sizes",
               "; ".join(bad))
 
-    # 3. totals within the margins. Sections from arm-none-eabi-size -A: flash holds every allocated
+    # 3. totals within the margins (section_totals)
     # section below the RAM's origin plus the initial values of .data; static RAM is every section in
     # the RAM region except the stack reservation (.stack).
     ram0, rs, fs = board.get("__ram", 0x20000000), board.get("__ram_size"), board.get("__flash_size")
-    flash_used = ram_static = stack_reserved = 0
-    for line in run("arm-none-eabi-size", "-A", "-d", a.elf).splitlines()[2:]:
-        f = line.split()
-        if len(f) != 3 or not f[1].isdigit() or f[0].startswith((".debug", ".comment", ".ARM.attr")):
-            continue
-        name, size, addr = f[0], int(f[1]), int(f[2])
-        if addr < ram0:
-            flash_used += size
-        elif name == ".stack":
-            stack_reserved = size
-        else:
-            ram_static += size
-            if name in (".data", ".tdata"):
-                flash_used += size
+    flash_used, ram_static, stack_reserved = section_totals(a.elf, ram0)
     ram_used = ram_static
     fkey, mkey = ("image", "flash_image") if "image" in budget["flash"] else ("total", "flash")
     rkey = "image" if "image" in budget["ram"] else "total"

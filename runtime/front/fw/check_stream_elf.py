@@ -67,20 +67,7 @@ def main():
           f"of its sizes ({want['color_buf']} + {want['depth_buf']})", "; ".join(bad))
 
     ram0, rs, fs = board.get("__ram", 0x20000000), board.get("__ram_size"), board.get("__flash_size")
-    flash = ram_static = stack_reserved = 0
-    for line in check_elf.run("arm-none-eabi-size", "-A", "-d", a.elf).splitlines()[2:]:
-        f = line.split()
-        if len(f) != 3 or not f[1].isdigit() or f[0].startswith((".debug", ".comment", ".ARM.attr")):
-            continue
-        name, size, addr = f[0], int(f[1]), int(f[2])
-        if addr < ram0:
-            flash += size
-        elif name == ".stack":
-            stack_reserved = size
-        else:
-            ram_static += size
-            if name in (".data", ".tdata"):
-                flash += size
+    flash, ram_static, stack_reserved = check_elf.section_totals(a.elf, ram0)
     check(f"{elfname}: fits the board: flash {flash} of {fs}, RAM {ram_static} + stack {stack_reserved} of {rs}",
           "" if fs and rs and flash <= fs and ram_static + stack_reserved <= rs else "does not fit")
 
