@@ -37,9 +37,19 @@ else
 fi
 # under the sanitizers the renderer's leaves take their loop form (MC_LEAF_SWITCH=0: the same per-leaf
 # code; the switch compiles some 30 times slower there, and tests/render/ checks it under them)
+# The runtime's objects come from the shared object cache (tests/lib.sh cc_obj), compiled as the
+# Makefile compiles the runtime (RT_CFLAGS) plus the sanitizers: the same objects as the sanitized
+# viewer's (tests/sanitize/) and the unit suite's under SANITIZE=1, compiled once.
+san_rt=() san_ok=1
+rt_cflags=$(mkvar RT_CFLAGS)
+: >"$out/test_holes-san.build.log"
+for f in runtime/src/*.c; do
+    # shellcheck disable=SC2086
+    o=$(cc_obj "$f" gcc $SAN_FLAGS -DMC_LEAF_SWITCH=0 $rt_cflags 2>>"$out/test_holes-san.build.log") && san_rt+=("$o") || san_ok=0
+done
 # shellcheck disable=SC2086
-if gcc $CFLAGS_T $SAN_FLAGS -DMC_LEAF_SWITCH=0 \
-    -o "$out/test_holes-san" tests/finish/test_holes.c runtime/src/*.c >"$out/test_holes-san.build.log" 2>&1; then
+if [ "$san_ok" = 1 ] && gcc $CFLAGS_T $SAN_FLAGS -DMC_LEAF_SWITCH=0 \
+    -o "$out/test_holes-san" tests/finish/test_holes.c "${san_rt[@]}" >>"$out/test_holes-san.build.log" 2>&1; then
     "$out/test_holes-san" >"$out/test_holes-san.log" 2>&1
     rc=$?
     if [ "$rc" -eq 0 ]; then echo "ok - finish: test_holes under ASan + UBSan: no report, every check passes"

@@ -31,6 +31,9 @@ set -u
 cd "$(dirname "$0")/../.." || exit 1
 TAP_PREFIX="fw: "
 . tests/lib.sh
+# the firmware's compiles through the shared object cache (tests/fw/cc_cached.sh): the runtime's
+# objects are the same for a board's points, mesh and tracker firmware, and are compiled once
+arm_cc="ARM_CC=tests/fw/cc_cached.sh arm-none-eabi-gcc"
 out=build/tests/fw
 fresh_dir "$out"
 check() { check_problems "$@"; }   # check NAME PROBLEMS
@@ -116,7 +119,7 @@ for b in mps2-an386 lm3s6965evb; do
     elf=$dir/$model.elf
     # ---- build and the post-link checks (a fresh link, so its memory usage table is printed) -------
     rm -f "$elf"
-    make -s --no-print-directory firmware MODEL=$model BOARD=$b >"$out/$b.build.txt" 2>&1
+    make -s --no-print-directory "$arm_cc" firmware MODEL=$model BOARD=$b >"$out/$b.build.txt" 2>&1
     st=$?
     grep -E '^(ok|not ok) - fw: ' "$out/$b.build.txt" | sed "s/^\(ok\|not ok\) - fw: /\1 - fw: $b: /"
     grep -q '^not ok' "$out/$b.build.txt" && status=1
@@ -174,7 +177,7 @@ EOF
         "$([ $r -ne 0 ] && [ "$n" -eq 2 ] || echo "exit $r, $n failing budget lines: $(oneline <"$out/$b.wrong.txt")")"
 
     # ---- run under QEMU, compare with the host ---------------------------------------------------
-    make -s --no-print-directory firmware-run MODEL=$model BOARD=$b FW_QEMU_TIMEOUT=300 >"$out/$b.run.txt" 2>&1
+    make -s --no-print-directory "$arm_cc" firmware-run MODEL=$model BOARD=$b FW_QEMU_TIMEOUT=300 >"$out/$b.run.txt" 2>&1
     st=$?
     run=$dir/$model.run.txt
     check "$b: make firmware-run: QEMU runs the firmware to \"done\", exit status 0" \
@@ -229,7 +232,7 @@ for b in mps2-an386 lm3s6965evb; do
     elf=$dir/$model.elf
     t=$b-mesh
     rm -f "$elf"
-    make -s --no-print-directory firmware MODEL=$model BOARD=$b FW_MESH=1 >"$out/$t.build.txt" 2>&1
+    make -s --no-print-directory "$arm_cc" firmware MODEL=$model BOARD=$b FW_MESH=1 >"$out/$t.build.txt" 2>&1
     st=$?
     grep -E '^(ok|not ok) - fw: ' "$out/$t.build.txt" | sed "s/^\(ok\|not ok\) - fw: /\1 - fw: $b mesh: /"
     grep -q '^not ok' "$out/$t.build.txt" && status=1
@@ -259,7 +262,7 @@ for b in mps2-an386 lm3s6965evb; do
 
     # ---- run under QEMU, compare with the host ---------------------------------------------------
     start=$(date +%s)
-    make -s --no-print-directory firmware-run MODEL=$model BOARD=$b FW_MESH=1 FW_QEMU_TIMEOUT=120 >"$out/$t.run.txt" 2>&1
+    make -s --no-print-directory "$arm_cc" firmware-run MODEL=$model BOARD=$b FW_MESH=1 FW_QEMU_TIMEOUT=120 >"$out/$t.run.txt" 2>&1
     st=$?
     secs=$(($(date +%s) - start))
     run=$dir/$model.run.txt

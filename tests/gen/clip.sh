@@ -39,8 +39,22 @@ objs() {
 # the runtime: as the viewers have it (rt_objs), and under the sanitizers, built while the models bake
 rt=$(rt_objs | tr '\n' ' ')
 rt_san=$tmp/rt_san
-# shellcheck disable=SC2046
-objs "$rt_san" "$san" $(printf "$top/runtime/src/%s.c " $runtime) &
+# the sanitized runtime from the shared object cache (tests/lib.sh cc_obj), compiled as the Makefile
+# compiles the runtime (RT_CFLAGS) plus the sanitizers: the same objects as tests/sanitize/'s viewer,
+# tests/finish/'s and the unit suite's under SANITIZE=1; $rt_san.list names them
+san_runtime() {
+    local f o list=() rt_cflags
+    rt_cflags=$(mkvar RT_CFLAGS)
+    : >"$rt_san.log"
+    for f in $runtime; do
+        # shellcheck disable=SC2086
+        o=$(cc_obj "runtime/src/$f.c" gcc $SAN_FLAGS $rt_cflags 2>>"$rt_san.log") || { touch "$rt_san.fail"; return 1; }
+        list+=("$PWD/$o")
+    done
+    echo "${list[*]}" >"$rt_san.list"
+    touch "$rt_san.ok"
+}
+san_runtime &
 
 # wait_runtime: until the sanitized runtime is built (polled: a background subshell cannot wait for
 # its parent's jobs); fails when it failed
@@ -78,7 +92,7 @@ check_model() {
         ! gcc $opt $inc -o "$tmp/check_$name" tests/gen/clip_check.c $rt "$tmp/d_opt_$name"/*.o -lm \
             >"$tmp/$name.cc" 2>&1 ||
         ! { [ "$name" = bun ] || objs "$tmp/d_san_$name" "$san" "$tmp/$name"/*.c; } ||
-        ! gcc $san $inc -o "$tmp/check_$name-san" tests/gen/clip_check.c "$rt_san"/*.o "$tmp/d_${sandata}_$name"/*.o -lm \
+        ! gcc $san $inc -o "$tmp/check_$name-san" tests/gen/clip_check.c $(cat "$rt_san.list") "$tmp/d_${sandata}_$name"/*.o -lm \
             >"$tmp/$name.san.cc" 2>&1; then
         notok "$m: tests/gen/clip_check.c builds with the runtime and the bake (-O2, and $SAN_FLAGS)" \
             "$(cat "$rt_san.log" "$tmp"/d_*_"$name".log "$tmp/$name".*cc 2>/dev/null | head -n 3 | oneline)"

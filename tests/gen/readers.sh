@@ -12,10 +12,10 @@ modelc=${1:-build/bin/modelc}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/modelc-readers.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT
 TAP_PREFIX="readers: "
-. tests/tap.sh
+. tests/lib.sh
 
-dump=$tmp/model_dump
-if ! g++ -std=c++17 -O1 -Igen -o "$dump" tests/gen/model_dump.cpp gen/input/*.cpp -ltinygltf -lstb 2>"$tmp/cc.txt"; then
+# the dump tool, linked with the generator's own reader objects (tests/lib.sh model_dump_tool)
+if ! dump=$(model_dump_tool 2>"$tmp/cc.txt"); then
     notok "build the model dump tool" "$(oneline <"$tmp/cc.txt")"
     exit 1
 fi

@@ -169,20 +169,24 @@ raw = zlib.decompress(idat)
 stride = 3 * w
 if len(raw) != h * (stride + 1): sys.exit(print('image data %d bytes, want %d' % (len(raw), h * (stride + 1))))
 # unfilter (PNG filters 0-4) to compare the pixels with the PPM of the same view
+# (one loop per filter type, a = the byte 3 to the left, b = above, c = above left, 0 off the row)
 rows, prev = [], bytearray(stride)
 for y in range(h):
     ft, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-    for i in range(stride):
-        a = line[i - 3] if i >= 3 else 0
-        b, c = prev[i], (prev[i - 3] if i >= 3 else 0)
-        if ft == 1: line[i] = (line[i] + a) & 255
-        elif ft == 2: line[i] = (line[i] + b) & 255
-        elif ft == 3: line[i] = (line[i] + (a + b) // 2) & 255
-        elif ft == 4:
+    if ft == 1:
+        for i in range(3, stride): line[i] = (line[i] + line[i - 3]) & 255
+    elif ft == 2:
+        line = bytearray((x + b) & 255 for x, b in zip(line, prev))
+    elif ft == 3:
+        for i in range(stride): line[i] = (line[i] + ((line[i - 3] if i >= 3 else 0) + prev[i]) // 2) & 255
+    elif ft == 4:
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], (prev[i - 3] if i >= 3 else 0)
             p = a + b - c
             pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
             line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        elif ft != 0: sys.exit(print('row %d: filter type %d' % (y, ft)))
+    elif ft != 0: sys.exit(print('row %d: filter type %d' % (y, ft)))
     rows.append(bytes(line))
     prev = line
 if ppm:

@@ -150,7 +150,15 @@ else
     # the renderer's leaves in their loop form (MC_LEAF_SWITCH=0): the same per-leaf code as the
     # switch, which compiles some 30 times slower under the sanitizers (the render suite above checks
     # the switch under them); the pictures are compared with the normal viewer's, which has the switch
-    for f in runtime/src/*.c "build/$m"/*.c; do
+    # (the runtime through the shared object cache, tests/lib.sh cc_obj: the same sanitized objects as
+    # the unit suite's under SANITIZE=1, tests/finish/'s and tests/gen/clip.sh's, compiled once)
+    for f in runtime/src/*.c; do
+        log=$san/viewer/$(basename "$f" .c).o.log
+        # shellcheck disable=SC2086
+        if o=$(cc_obj "$f" $cc $SAN_FLAGS -DMC_LEAF_SWITCH=0 $rt_cflags 2>"$log"); then objs+=("$o")
+        else problems+="$f: $(head -n 2 "$log" | oneline); "; fi
+    done
+    for f in "build/$m"/*.c; do
         o=$san/viewer/$(basename "$f" .c).o
         # shellcheck disable=SC2086
         $cc $SAN_FLAGS -DMC_LEAF_SWITCH=0 $rt_cflags -c -o "$o" "$f" >"$o.log" 2>&1 || problems+="$f: $(head -n 2 "$o.log" | oneline); "

@@ -31,6 +31,7 @@ if [ "${SANITIZE:-0}" = 1 ]; then
 fi
 mkdir -p "$out"
 CC_UNIT=${CC_UNIT:-gcc}
+RT_CFLAGS=$(mkvar RT_CFLAGS)   # -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
 
 # ---- cmocka programs ---------------------------------------------------------------------------
 # The runtime is compiled into each test program. test_view's copy reports every plotted point to
@@ -101,13 +102,17 @@ runtime_archive() {
         rm -rf "$dir"
         mkdir -p "$dir"
         : >"$dir.log"
+        local objs=() o
         for f in runtime/src/*.c; do
             [ "$renderer" = 1 ] || [ "$(basename "$f")" != octree_render.c ] || continue
+            # compiled as the Makefile compiles the runtime (RT_CFLAGS: C99, freestanding), through the
+            # shared object cache (tests/lib.sh cc_obj): the sources the program's macros do not reach
+            # are compiled once for all the archives with these flags (and, under the sanitizers, for the
+            # other suites' sanitized runtimes: tests/sanitize/, finish/, gen/clip.sh)
             # shellcheck disable=SC2086
-            $CC_UNIT -std=gnu11 $flags -Wall -Wextra -Werror -Iruntime/include "$@" -c -o "$dir/$(basename "$f" .c).o" \
-                "$f" >>"$dir.log" 2>&1 || ok=0
+            o=$(cc_obj "$f" $CC_UNIT $flags $RT_CFLAGS "$@" 2>>"$dir.log") && objs+=("$o") || ok=0
         done
-        if [ "$ok" = 1 ] && ar rcs "$dir/libmodelc.a.tmp" "$dir"/*.o 2>>"$dir.log"; then
+        if [ "$ok" = 1 ] && ar rcs "$dir/libmodelc.a.tmp" "${objs[@]}" 2>>"$dir.log"; then
             mv "$dir/libmodelc.a.tmp" "$dir/libmodelc.a"
         fi
     fi
