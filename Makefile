@@ -44,7 +44,7 @@ GEN_LIBS := -lmstch -lOpenMeshTools -lOpenMeshCore -ltinygltf -lstb -lpthread
 DEB_PACKAGES := build-essential clang lld chromium libopenmesh-dev libcgal-dev libcgal-demo libeigen3-dev libboost-dev \
   libcli11-dev nlohmann-json3-dev libmstch-dev libstb-dev libtinygltf-dev libcmocka-dev valgrind tmux gnuplot-nox \
   libclang-rt-14-dev \
-  libosmesa6-dev draco python3 perl strace bsdutils coreutils \
+  libosmesa6-dev draco netpbm python3 perl strace bsdutils coreutils \
   gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm \
   visp-images-data assimp-testmodels
 # the benchmarks' big extras, not in every CI run: ViSP's tracker for tests/bench/visp_track.cpp (make deps-bench)
@@ -296,9 +296,9 @@ bench-accuracy: $(MODELC) models
 # 10^7 random views (tests/stress/stress.c), on two processes with their own seeds, plus the F=8/24
 # and ASan + UBSan runs of tests/stress/suite.sh
 STRESS_VIEWS ?= 10000000
-# and the freestanding builds of the runtime at every optimisation level, the leaf switch at each (make
-# test: -O0 -O2 -Os, the switch at -O2), and the unit tests under the sanitizers at every MC_FRAC_BITS
-# the plain run tests (make test: the default)
+# and the freestanding builds of the runtime at every optimisation level, the leaf switch at each
+# (make test: -O0 -O2 -Os on the Cortex-M0, fewer on x86-64, the switch at -O2), and the unit tests
+# under the sanitizers at every MC_FRAC_BITS the plain run tests (make test: the default)
 stress: $(MODELC) $(BUILD)/models/bunny00.off
 	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 STRESS_SAN_VIEWS=10000 tests/stress/suite.sh; s=$$?; \
 	  UNIT_SWITCH_ALL=1 UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh || s=1; \

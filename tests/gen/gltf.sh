@@ -93,20 +93,23 @@ for model in bunny00 fandisk; do
         same "TRIANGLE_STRIP in the spec's corner order; points and lines primitives skipped" "$d/strip.gltf" "$d/strip.off"
         same "TRIANGLE_FAN in the spec's corner order; points and lines primitives skipped" "$d/fan.gltf" "$d/fan.off"
     fi
-    # the bakes: the same bytes as the OFF's (the transforms are undone exactly: no tolerance)
+    # the bakes: the same bytes as the OFF's (the transforms are undone exactly: no tolerance); at the
+    # catalogue's depth for the plain .glb, at depth 6 for the rest (a bake is a function of the model
+    # read, which the dumps above compare bit for bit: the shallower bake shows the same at a quarter
+    # of the time)
     same_bake "$m bake of the .glb is the OFF's, byte for byte" "$d/plain.glb" "$off"
-    same_bake "$m bake of the transformed hierarchy is the OFF's" "$d/hierarchy.gltf" "$off"
+    same_bake "$m bake of the transformed hierarchy is the OFF's" "$d/hierarchy.gltf" "$off" --depth 6
     same_bake "$m bake of the mirrored .glb (--as both: orientation matters) is the OFF's" "$d/mirror.glb" "$off" --as both --depth 6
-    same_bake "$m bake with COLOR_0 is its COFF twin's" "$d/colour0.glb" "$d/colour0.off"
-    same_bake "$m bake with a texture is its COFF twin's" "$d/texture.glb" "$d/texture-glb.off"
-    if bake "$d/factor.gltf" "$tmp/bake-f"; then
+    same_bake "$m bake with COLOR_0 is its COFF twin's" "$d/colour0.glb" "$d/colour0.off" --depth 6
+    same_bake "$m bake with a texture is its COFF twin's" "$d/texture.glb" "$d/texture-glb.off" --depth 6
+    if bake "$d/factor.gltf" "$tmp/bake-f" --depth 6; then
         got=$(palette "$tmp/bake-f" | oneline)
         check_problems "$m a uniform baseColorFactor bakes a one-colour palette: $(cat "$d/factor.rgb") (linear 0.2 0.5 0.8)" \
             "$([ "$got" = "$(cat "$d/factor.rgb")" ] || echo "palette: $got")"
     else
         notok "$m bake of factor.gltf" "$(oneline <"$tmp/bake-f.log")"
     fi
-    if bake "$d/texture.gltf" "$tmp/bake-t"; then
+    if bake "$d/texture.gltf" "$tmp/bake-t" --depth 6; then
         n=$(palette "$tmp/bake-t" | wc -l)
         check_problems "$m a textured bake has the texture's colours (palette of $n entries)" \
             "$([ "$n" -ge 16 ] || echo "only $n palette entries")"

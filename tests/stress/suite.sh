@@ -40,6 +40,10 @@ fi
 # build OUTPUT FLAGS...: the runtime (the select form of the depth test, plus LEAVES) with the plot
 # hook into the test, and a second copy of octree_render.c (and target.c's mc_clear) in the form ALT
 # (named ALT_NAME; entry points renamed, no plot hook) that stress.c checks against it (check 5)
+# (the point renderer's modules only, not the mesh and tracker ones that stress.c never calls: each
+# build compiles them anew with its own flags; one missing fails the link)
+POINT_RT=()
+for f in camera finish fixed octree_render sintab target trig xform; do POINT_RT+=("runtime/src/$f.c"); done
 LEAVES=() ALT=(-DMC_DEPTH_SELECT=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)"
 build() {
     local prog=$1
@@ -54,7 +58,7 @@ build() {
     gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" "${LEAVES[@]}" -DMC_DEPTH_SELECT=1 -DSTRESS_ALT=1 \
         "-DSTRESS_ALT_FORM=\"$ALT_NAME; footprints over a pixel through the clipped path\"" -Wall -Wextra -Werror \
         -Iruntime/include -Iruntime/ref '-DMC_PLOT_HOOK(fx,fy,c)=stress_point(fx,fy,c)' -include tests/stress/hook.h \
-        -o "$prog" tests/stress/stress.c runtime/ref/ref.c runtime/src/*.c "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
+        -o "$prog" tests/stress/stress.c runtime/ref/ref.c "${POINT_RT[@]}" "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
 }
 
 # ---- optimised, JOBS processes with consecutive seeds ---------------------------------------------

@@ -15,9 +15,10 @@
 # MC_FRAC_BITS at its default only (UNIT_SAN_FORMATS="15 8 24" for all three).
 # UNIT_SWITCH_ALL=1: the renderer's leaf switch at every level and target of the freestanding builds
 # (by default at -O2 for gcc and the Cortex-M0 only; make stress sets it).
-# UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds, "-O0 -O2 -Os" by default (no
-# inlining, the firmware's level, the size level: where helper calls differ most); make stress
-# runs all five.
+# UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds for every target; by default
+# "-O0 -O2 -Os" for the Cortex-M0 (no inlining, the firmware's level, the size level: where a 32-bit
+# target's helper calls differ most), "-O0 -O2" for gcc on x86-64 and "-O2" for clang there (the
+# no-floating-point build; x86-64 needs no arithmetic helpers); make stress runs all five everywhere.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
 
@@ -196,7 +197,6 @@ if [ "${SANITIZE:-0}" != 1 ]; then
     # Not the memory functions (memcpy, memset, __aeabi_memcpy...): those come from a libc.
     helpers='^(__(u?(div|mod|mul)[sdt]i3|u?divmod[sdt]i4|(ash[lr]|lshr)[sdt]i3|(popcount|ctz|clz|parity|ffs|bswap)[sdt]i2|cmp[dt]i2|ucmp[dt]i2|neg[dt]i2|aeabi_(l|ui|i|ul)(div|divmod|mul|asr|lsl|lsr|cmp|ucmp)|aeabi_(idiv|uidiv|idivmod|uidivmod|ldivmod|uldivmod|lmul|llsl|llsr|lasr|lcmp|ulcmp))|_GLOBAL_OFFSET_TABLE_)$'
 
-    base_levels=${UNIT_OPT_LEVELS:--O0 -O2 -Os}
     # fs_build TAG "CC FLAGS...": compiles every runtime/src/*.c at several optimisation levels into
     # $fs/TAG/O*/, with only the compiler's own headers on the include path (-nostdinc), and prints
     # the problems, if any. On x86-64 (tags gcc and clang) the -O2 build also has
@@ -243,17 +243,17 @@ if [ "${SANITIZE:-0}" != 1 ]; then
         done
     }
 
-    targets=("gcc|gcc|ld|nm" "clang|clang|ld|nm")
+    targets=("gcc|gcc|ld|nm|-O0 -O2" "clang|clang|ld|nm|-O2")
     # a 32-bit target where 64-bit arithmetic needs helpers: a Cortex-M0 (no divide, no long
     # multiply), when clang supports it (tests/fw/ links the runtime for Cortex-M3 and M4 with gcc,
     # where a helper outside libgcc would fail the link)
     if echo 'int x;' | clang --target=thumbv6m-none-eabi -ffreestanding -x c -c -o /dev/null - 2>/dev/null &&
         command -v ld.lld >/dev/null; then
-        targets+=("clang-cortex-m0|clang --target=thumbv6m-none-eabi -mcpu=cortex-m0|ld.lld|llvm-nm")
+        targets+=("clang-cortex-m0|clang --target=thumbv6m-none-eabi -mcpu=cortex-m0|ld.lld|llvm-nm|-O0 -O2 -Os")
     fi
     for t in "${targets[@]}"; do
-        IFS='|' read -r tag cc ld nm <<<"$t"
-        levels=$base_levels   # (x86-64 adds -O2 below for its no-floating-point build)
+        IFS='|' read -r tag cc ld nm levels <<<"$t"
+        levels=${UNIT_OPT_LEVELS:-$levels}   # (x86-64 adds -O2 below for its no-floating-point build)
         nofloat_name="unit: freestanding: $tag builds runtime/src with -mgeneral-regs-only (no floating point)"
         case $tag in gcc | clang) [[ " $levels " == *" -O2 "* ]] || levels+=" -O2" ;; *) nofloat_name="" ;; esac
         problems=$(fs_build "$tag" "$cc")
