@@ -36,7 +36,8 @@ else
     notok "test_holes build" "$(head -n 3 "$out/test_holes.build.log" | oneline)"
 fi
 # under the sanitizers the renderer's leaves take their loop form (MC_LEAF_SWITCH=0: the same per-leaf
-# code; the switch compiles some 30 times slower there, and tests/render/ checks it under them)
+# code; the switch compiles some 30 times slower there, and make stress checks it under them:
+# tests/render/ with RENDER_SAN_SWITCH=1)
 # The runtime's objects come from the shared object cache (tests/lib.sh cc_obj), compiled as the
 # Makefile compiles the runtime (RT_CFLAGS) plus the sanitizers: the same objects as the sanitized
 # viewer's (tests/sanitize/) and the unit suite's under SANITIZE=1, compiled once.

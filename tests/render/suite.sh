@@ -16,6 +16,12 @@ models=$(make -s -f models/catalogue.mk -f - <<<'print: ; @echo $(CATALOGUE)' pr
 # and a point set with normals, stands for the catalogue: each comparison runs several times slower
 # under ASan + UBSan, and the plain run of this suite compares all eight.
 [ "${SANITIZE:-0}" = 1 ] && models=${RENDER_SAN_MODELS:-bunny00 b9_training kitten}
+# Under them the leaves take the loop form (MC_LEAF_SWITCH=0) unless RENDER_SAN_SWITCH=1 (make stress):
+# the switch's cases are the loop's body for one mask each, and it takes some 30 s of CPU to compile
+# under the sanitizers; make test checks the switch against the loop byte for byte in tests/stress/,
+# with guard zones, and the loop here under ASan + UBSan.
+default_flags=()
+[ "${SANITIZE:-0}" = 1 ] && [ "${RENDER_SAN_SWITCH:-0}" != 1 ] && default_flags=(-DMC_LEAF_SWITCH=0)
 status=0
 hook=('-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h)
 # compile FORM FILE FLAGS...: FILE's object for one form of the renderer, built once (the runtime,
@@ -62,7 +68,7 @@ for m in $models; do
         echo "not ok - $m: not baked (run make views)"; status=1; continue
     fi
     # the runtime is compiled into the test with the plot hook pointing at the recorder
-    if ! why=$(build default- "$m"); then
+    if ! why=$(build default- "$m" "${default_flags[@]}"); then
         echo "not ok - $m: test build failed: $why"; status=1; continue
     fi
     "$out/compare-$m" || status=1
@@ -72,8 +78,8 @@ done
 # (measurement only; compare.c holds it to its own bound): the same comparison, names prefixed with
 # the form. Not under the sanitizers: the stress suite's runs under them take these forms already
 # (the loop with the select and with the branch, and the float build with float-cast-overflow too,
-# over random views), and the default form above is the one only this suite checks there (the
-# switch, some 30 times slower to compile under them than the loop).
+# over random views), and the default form above, the switch, is checked under them by make stress
+# (RENDER_SAN_SWITCH=1).
 m=bunny00
 # (the float build: tests/accuracy/pos_single.h in place of runtime/src/pos.h, MC_FLOAT for the test)
 float_flags=(-DMC_FLOAT=1 '-DMC_POS_HEADER="pos_single.h"' -Itests/accuracy)

@@ -148,8 +148,9 @@ else
     problems=""
     objs=()
     # the renderer's leaves in their loop form (MC_LEAF_SWITCH=0): the same per-leaf code as the
-    # switch, which compiles some 30 times slower under the sanitizers (the render suite above checks
-    # the switch under them); the pictures are compared with the normal viewer's, which has the switch
+    # switch, which compiles some 30 times slower under the sanitizers (make stress checks the
+    # switch under them, tests/render/ with RENDER_SAN_SWITCH=1); the pictures are compared with
+    # the normal viewer's, which has the switch
     # (the runtime through the shared object cache, tests/lib.sh cc_obj: the same sanitized objects as
     # the unit suite's under SANITIZE=1, tests/finish/'s and tests/gen/clip.sh's, compiled once)
     for f in runtime/src/*.c; do

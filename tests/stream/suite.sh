@@ -18,7 +18,7 @@ SAN="-std=c99 $SAN_FLAGS -Wall -Wextra -Werror -Iruntime/include"
 
 # the runtime once for every program here; the renderer's leaves in their loop form (MC_LEAF_SWITCH=0:
 # the same per-leaf code; the switch compiles some 30 times slower under the sanitizers, and
-# tests/render/ checks it under them)
+# make stress checks it under them)
 mkdir -p "$dir/rt"
 rt=()
 for f in runtime/src/*.c; do

@@ -140,7 +140,7 @@ san_run() {
     fi
 }
 # Both copies take the loop walk of the leaves there (the same per-leaf code as the switch, which
-# compiles some 30 times slower under the sanitizers; tests/render/ checks the switch under them).
+# compiles some 30 times slower under the sanitizers; make stress checks the switch under them).
 if [ "$SAN_VIEWS" -gt 0 ]; then
     LEAVES=(-DMC_LEAF_SWITCH=0)
     ALT=(-DMC_DEPTH_SELECT=0 -DMC_LEAF_SWITCH=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)"

@@ -178,7 +178,7 @@ build_and_run "unit: track input: " test_track_input runtime/front/track/track_i
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to
-# compile there; tests/render/ and the sanitized viewer check the switch under them.
+# compile there; make stress checks the switch under them (tests/render/, RENDER_SAN_SWITCH=1).
 leaves=()
 [ "${SANITIZE:-0}" = 1 ] && leaves=(-DMC_LEAF_SWITCH=0)
 for f in $formats; do
