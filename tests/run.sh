@@ -8,6 +8,8 @@
 # those suites.
 set -u
 cd "$(dirname "$0")/.."
+# Debian's programs first, as the Makefile has them (run.sh may be started without make)
+case ":$PATH:" in :/usr/bin:/bin:*) ;; *) export PATH=/usr/bin:/bin:$PATH ;; esac
 logdir=build/tests
 mkdir -p "$logdir"
 

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # The test suite once more under AddressSanitizer and UndefinedBehaviorSanitizer:
-#   - tests/unit/suite.sh and tests/render/suite.sh (if present) with SANITIZE=1: each builds its own
-#     programs with the sanitizers into build/san/...
+#   - tests/render/suite.sh (if present) with SANITIZE=1: it builds its own programs with the
+#     sanitizers into build/san/render (tests/unit/suite.sh runs its programs at the default
+#     MC_FRAC_BITS under them itself)
 #   - a sanitized generator build/san/bin/modelc (the Makefile's GEN_SRC + build/gen/templates.cpp,
 #     compiled as the Makefile does plus the sanitizer flags): tests/gen/errors.sh (if present) with it, and one real
 #     bake of nefertiti, which must give the same files as the normal generator's bake; and the
 #     fuzzers' findings (tests/fuzz/suite.sh) replayed through it
 #   - a sanitized bunny00 viewer (the renderer's leaves in their loop form): a few views, --png and
 #     --bench 20, with the same pictures as the normal viewer
-# SAN_PARTS chooses: "runtime" (the default, in make test: unit, render, viewer) and/or "generator"
+# SAN_PARTS chooses: "runtime" (the default, in make test: render, viewer) and/or "generator"
 # (make fuzz runs it: the sanitized generator takes minutes to compile, and the fuzzers run the
 # generator under the same sanitizers).
 # Any sanitizer report fails the check it happens in (the programs halt on the first one).
@@ -37,10 +38,8 @@ pass_through() {
     fi
 }
 
-# ---- the unit and render suites ----------------------------------------------------------------
+# ---- the render suite ---------------------------------------------------------------------------
 if has_part runtime; then
-SANITIZE=1 tests/unit/suite.sh >"$san/unit-suite.log" 2>&1
-pass_through "unit suite" "$san/unit-suite.log" $?
 if [ -e tests/render/suite.sh ]; then
     SANITIZE=1 tests/render/suite.sh >"$san/render-suite.log" 2>&1
     pass_through "render suite" "$san/render-suite.log" $? "render: "

@@ -11,8 +11,13 @@
 # tests/unit/test_*.c), and the freestanding build of runtime/src under gcc and clang.
 #
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why", and exits non-zero if any failed.
-# SANITIZE=1 builds the test programs with ASan + UBSan into build/san/unit (else build/tests/unit), with
-# MC_FRAC_BITS at its default only (UNIT_SAN_FORMATS="15 8 24" for all three).
+# How the programs are built (each check runs once in make test):
+#   by default, the programs at config.h's MC_FRAC_BITS (15: every program) with ASan + UBSan into
+#   build/san/unit, and fixed point and views at the extreme formats 8 and 24 plain (-O2) into
+#   build/tests/unit; then the freestanding builds;
+#   SANITIZE=1: every program with ASan + UBSan, at the formats in UNIT_SAN_FORMATS (default 15;
+#   make stress: "15 8 24"), no freestanding builds;
+#   SANITIZE=0: every program plain (-O2), at 15, 8 and 24, and the freestanding builds.
 # UNIT_SWITCH_ALL=1: the renderer's leaf switch at every level and target of the freestanding builds
 # (by default at -O2 for gcc and the Cortex-M0 only; make stress sets it).
 # UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds for every target; by default
@@ -24,13 +29,22 @@ cd "$(dirname "$0")/../.." || exit 1
 
 TAP_PREFIX=""
 . tests/lib.sh
-out=build/tests/unit
-flags="-O2 -g"
-if [ "${SANITIZE:-0}" = 1 ]; then
-    out=build/san/unit
-    flags=$SAN_FLAGS
-fi
-mkdir -p "$out"
+# use_build san|plain: the flags and directory the programs built next take; under the sanitizers
+# the renderer takes its loop form (leaves, below)
+use_build() {
+    if [ "$1" = san ]; then out=build/san/unit flags=$SAN_FLAGS leaves=(-DMC_LEAF_SWITCH=0)
+    else out=build/tests/unit flags="-O2 -g" leaves=(); fi
+    mkdir -p "$out"
+}
+# build_for FORMAT: the build the programs at that MC_FRAC_BITS take
+build_for() {
+    case ${SANITIZE:-} in
+        1) use_build san ;;
+        0) use_build plain ;;
+        *) if [ "$1" = 15 ]; then use_build san; else use_build plain; fi ;;
+    esac
+}
+build_for 15
 CC_UNIT=${CC_UNIT:-gcc}
 RT_CFLAGS=$(mkvar RT_CFLAGS)   # -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
 
@@ -151,12 +165,14 @@ build_and_run() {   # build_and_run PREFIX NAME EXTRA_FLAGS...
 # other formats change the numbers, not how memory is used, and each is a runtime archive to
 # compile with them (the plain run checks all three).
 formats="15 8 24"
-[ "${SANITIZE:-0}" = 1 ] && formats=${UNIT_SAN_FORMATS:-15}
+[ "${SANITIZE:-}" = 1 ] && formats=${UNIT_SAN_FORMATS:-15}
 for f in $formats; do
+    build_for "$f"
     fb=()
     [ "$f" = 15 ] || fb=(-DMC_FRAC_BITS=$f)
     build_and_run "unit: fixed F=$f: " "test_fixed-f$f" "${fb[@]}"
 done
+build_for 15
 build_and_run "unit: trig: " test_trig
 build_and_run "unit: bits, rng, chunk: " test_bits
 build_and_run "unit: pmesh: " test_pmesh
@@ -179,15 +195,15 @@ build_and_run "unit: track input: " test_track_input runtime/front/track/track_i
 # (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
 # form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to
 # compile there; make stress checks the switch under them (tests/render/, RENDER_SAN_SWITCH=1).
-leaves=()
-[ "${SANITIZE:-0}" = 1 ] && leaves=(-DMC_LEAF_SWITCH=0)
 for f in $formats; do
+    build_for "$f"
     build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f -DMC_SPLAT_DEFAULT_MODE=1 "${leaves[@]}" "$hook"
 done
 
 # ---- freestanding builds -----------------------------------------------------------------------
 # (not repeated under SANITIZE=1: they check the compilers' output, not run anything)
-if [ "${SANITIZE:-0}" != 1 ]; then
+if [ "${SANITIZE:-}" != 1 ]; then
+    use_build plain
     fs=$out/freestanding
     rm -rf "$fs"
     mkdir -p "$fs"
