@@ -64,50 +64,13 @@ model_file() {
     echo "$f"
 }
 
-# cc_obj SRC CC FLAGS...: SRC compiled (-c) with that compiler and those flags, through a cache of
-# objects shared by every suite (build/tests/objcache/); prints the object's path, or fails with the
-# compiler's messages on stderr. The cache is keyed by the compiler and the flags that are not
-# preprocessor flags (everything but -D, -U, -I, -include, -isystem, in the order given) and by the
-# preprocessed source (gcc -E): two compiles whose preprocessed text and code-generation flags are the
-# same make the same code, so the second takes the first one's object (a runtime source that a test's
-# macro, MC_FRAC_BITS, the plot hook or the leaf switch, does not reach is compiled once, not once per
-# test program or form). The object is written to a temporary name and moved, as two suites run at once.
-# Objects unused for a week are removed. (Preprocessing costs about as much as compiling a small file:
-# the cache pays off for the sanitized builds and the renderer's leaf switch.)
-CC_OBJ_GCC=$(readlink -f "$(command -v gcc)" 2>/dev/null || echo gcc)   # (resolved once)
-CC_OBJ_CC=$(readlink -f "$(command -v cc)" 2>/dev/null || echo cc)
+# cc_obj SRC CC FLAGS...: SRC compiled (-c) with that compiler and those flags, through the tests'
+# shared object cache (tests/cc_cached.sh, which says how it is keyed); prints the object's path, or
+# fails with the compiler's messages on stderr.
 cc_obj() {
-    local src=$1 a skip=0 key dir=build/tests/objcache obj
+    local src=$1
     shift
-    local nonpp=()
-    for a in "$@"; do
-        if [ "$skip" = 1 ]; then skip=0; continue; fi
-        case $a in
-            -include | -isystem | -imacros | -iquote | -idirafter) skip=1 ;;
-            -D* | -U* | -I*) ;;
-            *) nonpp+=("$a") ;;
-        esac
-    done
-    # the compiler by its real path (cc and gcc are one compiler)
-    case $1 in
-        gcc) nonpp[0]=$CC_OBJ_GCC ;;
-        cc) nonpp[0]=$CC_OBJ_CC ;;
-        *) nonpp[0]=$(readlink -f "$(command -v "$1")" 2>/dev/null || echo "$1") ;;
-    esac
-    key=$({ echo "${nonpp[*]} | $src"; "$@" -E "$src" 2>/dev/null || echo "preprocessing failed $BASHPID $RANDOM"; } | md5sum)
-    obj=${src##*/}
-    obj=$dir/${obj%.*}-${key:0:24}.o
-    if [ -f "$obj" ]; then
-        touch "$obj"
-        echo "$obj"
-        return 0
-    fi
-    mkdir -p "$dir"
-    # entries unused for a week go (a hit touches its object)
-    find "$dir" -type f -mtime +7 -delete 2>/dev/null
-    "$@" -c -o "$obj.$BASHPID.tmp" "$src" || { rm -f "$obj.$BASHPID.tmp"; return 1; }
-    mv "$obj.$BASHPID.tmp" "$obj"
-    echo "$obj"
+    tests/cc_cached.sh --print "$@" "$src"
 }
 
 # model_dump_tool: the path of tests/gen/model_dump.cpp's program (what a reader makes of a file,

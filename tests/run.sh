@@ -22,10 +22,10 @@ fi
 
 # longest first (CPU seconds in tests/README.md), so that the two job slots finish together
 suites=(
-    tests/sanitize/suite.sh   # the render and unit tests again under ASan + UBSan
-    tests/unit/suite.sh       # fixed point, sine table, freestanding builds
+    tests/unit/suite.sh       # fixed point, sine table, ... under ASan + UBSan; freestanding builds
     tests/gen/suite.sh        # determinism, chunks, budget
     tests/stress/suite.sh     # 2x10^4 random views: guard zones, error bound, ASan + UBSan run
+    tests/sanitize/suite.sh   # the render tests and a viewer again under ASan + UBSan
     tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
     tests/gen/pmesh.sh        # the progressive mesh: every level valid, levels equal OpenMesh's decimation
     tests/gen/qi.sh           # hidden lines by quantitative invisibility: exact in integers, a double reference

@@ -40,7 +40,7 @@ fi
 # tests/render/ with RENDER_SAN_SWITCH=1)
 # The runtime's objects come from the shared object cache (tests/lib.sh cc_obj), compiled as the
 # Makefile compiles the runtime (RT_CFLAGS) plus the sanitizers: the same objects as the sanitized
-# viewer's (tests/sanitize/) and the unit suite's under SANITIZE=1, compiled once.
+# viewer's (tests/sanitize/) and the unit suite's sanitized programs, compiled once.
 san_rt=() san_ok=1
 rt_cflags=$(mkvar RT_CFLAGS)
 : >"$out/test_holes-san.build.log"

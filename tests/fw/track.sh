@@ -24,9 +24,9 @@ set -u
 cd "$(dirname "$0")/../.." || exit 1
 TAP_PREFIX="fw: track: "
 . tests/lib.sh
-# the firmware's compiles through the shared object cache (tests/fw/cc_cached.sh): the runtime's
+# the firmware's compiles through the shared object cache (tests/cc_cached.sh): the runtime's
 # objects are the same for a board's points, mesh and tracker firmware, and are compiled once
-arm_cc="ARM_CC=tests/fw/cc_cached.sh arm-none-eabi-gcc"
+arm_cc="ARM_CC=tests/cc_cached.sh arm-none-eabi-gcc"
 out=build/tests/fw-track
 fresh_dir "$out"
 check() { check_problems "$@"; }

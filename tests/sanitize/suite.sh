@@ -151,7 +151,7 @@ else
     # switch under them, tests/render/ with RENDER_SAN_SWITCH=1); the pictures are compared with
     # the normal viewer's, which has the switch
     # (the runtime through the shared object cache, tests/lib.sh cc_obj: the same sanitized objects as
-    # the unit suite's under SANITIZE=1, tests/finish/'s and tests/gen/clip.sh's, compiled once)
+    # the unit suite's sanitized programs, tests/finish/'s and tests/gen/clip.sh's, compiled once)
     for f in runtime/src/*.c; do
         log=$san/viewer/$(basename "$f" .c).o.log
         # shellcheck disable=SC2086
