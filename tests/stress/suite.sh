@@ -123,7 +123,7 @@ san_run() {
     local name=$1 seed_off=$2 what=$3 san=$4
     shift 4
     # shellcheck disable=SC2068
-    if build "$out/stress-$name" -O1 -g "$@" -fsanitize="$san" -fno-sanitize-recover=all -fno-omit-frame-pointer; then
+    if build "$out/stress-$name" -O1 -g1 "$@" -fsanitize="$san" -fno-sanitize-recover=all -fno-omit-frame-pointer; then
         "$out/stress-$name" "$SAN_VIEWS" $((SEED + seed_off)) "stress $name" >"$out/run.$name.log" 2>&1
         local rc=$? rep
         grep -E '^(ok|not ok) ' "$out/run.$name.log" | sed 's/^\(ok\|not ok\) - /&stress: /'
