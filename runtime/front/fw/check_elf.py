@@ -75,6 +75,29 @@ def ld_symbols(path):
 
 
 
+def nm_symbols(elf):
+    """Every symbol of the ELF: its size in bytes (arm-none-eabi-nm -S), or None where nm gives none."""
+    syms = {}
+    for line in run("arm-none-eabi-nm", "-S", elf).splitlines():
+        f = line.split()
+        if len(f) == 4:
+            syms[f[3]] = int(f[1], 16)
+        elif len(f) >= 2:
+            syms.setdefault(f[-1], None)
+    return syms
+
+
+class Checks:
+    """checks(name, problem): prints "ok - fw: name", or "not ok - fw: name: problem" and counts it."""
+
+    def __init__(self):
+        self.fails = 0
+
+    def __call__(self, name, problem):
+        print(f"not ok - fw: {name}: {problem}" if problem else f"ok - fw: {name}")
+        self.fails += bool(problem)
+
+
 def section_totals(elf, ram0):
     """(flash, static RAM, stack reservation) from arm-none-eabi-size -A: flash holds every allocated
     section below the RAM's origin plus the initial values of .data; static RAM is every section in
@@ -103,28 +126,14 @@ def main():
     ap.add_argument("--obj", required=True)
     ap.add_argument("--depth", type=int, required=True)
     a = ap.parse_args()
-    fails = 0
-
-    def check(name, problem):
-        nonlocal fails
-        if problem:
-            print(f"not ok - fw: {name}: {problem}")
-            fails += 1
-        else:
-            print(f"ok - fw: {name}")
+    check = Checks()
 
     budget = json.load(open(a.budget))
     board = ld_symbols(a.ld)
     elfname = os.path.basename(a.elf)
 
     # 1. no heap
-    syms = {}
-    for line in run("arm-none-eabi-nm", "-S", a.elf).splitlines():
-        f = line.split()
-        if len(f) == 4:
-            syms[f[3]] = int(f[1], 16)
-        elif len(f) >= 2:
-            syms.setdefault(f[-1], None)
+    syms = nm_symbols(a.elf)
     heap = sorted(s for s in syms if HEAP.match(s))
     check(f"{elfname}: no heap symbols in arm-none-eabi-nm (malloc, free, _sbrk, _malloc_r, __wrap_...)",
           "found " + " ".join(heap) if heap else "")
@@ -191,7 +200,7 @@ def main():
           "" if total <= stack_reserved and total <= room else f"bound {total} > reservation or room")
     print(f"firmware {elfname}: flash {flash_used} B, static RAM {ram_used} B, stack bound {total} B, "
           f"RAM with stack {ram_used + total} B")
-    return 1 if fails else 0
+    return 1 if check.fails else 0
 
 
 if __name__ == "__main__":

@@ -33,24 +33,13 @@ def main():
     ap.add_argument("--ld", required=True)
     ap.add_argument("--obj", required=True)
     a = ap.parse_args()
-    fails = 0
-
-    def check(name, problem):
-        nonlocal fails
-        print(f"not ok - fw: {name}: {problem}" if problem else f"ok - fw: {name}")
-        fails += bool(problem)
+    check = check_elf.Checks()
 
     budget = json.load(open(a.budget))
     board = check_elf.ld_symbols(a.ld)
     elfname = os.path.basename(a.elf)
     model = budget.get("model", "")
-    syms = {}
-    for line in check_elf.run("arm-none-eabi-nm", "-S", a.elf).splitlines():
-        f = line.split()
-        if len(f) == 4:
-            syms[f[3]] = int(f[1], 16)
-        elif len(f) >= 2:
-            syms.setdefault(f[-1], None)
+    syms = check_elf.nm_symbols(a.elf)
 
     heap = sorted(s for s in syms if check_elf.HEAP.match(s))
     check(f"{elfname}: no heap symbols in arm-none-eabi-nm", "found " + " ".join(heap) if heap else "")
@@ -80,7 +69,7 @@ def main():
     print(f"firmware {elfname}: flash {flash} B (runtime and receiver), static RAM {ram_static} B "
           f"(stream {want['stream_buf']}, frames {(want['color_buf'] or 0) + (want['depth_buf'] or 0)}), "
           f"stack bound {total} B, RAM with stack {ram_static + total} B of {rs}")
-    return 1 if fails else 0
+    return 1 if check.fails else 0
 
 
 if __name__ == "__main__":
