@@ -364,12 +364,12 @@ $(FUZZ_DIR)/fuzz-track_input: tests/fuzz/fuzz_track_input.c runtime/front/track/
 	$(FUZZ_CC) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer -Wall -Wextra -Werror -Iruntime/include -o $@ \
 	  tests/fuzz/fuzz_track_input.c runtime/front/track/track_input.c -lm
 
-# the stream reader (runtime/src/stream.c: C) and the renderer on what it takes; its findings are
+# the stream reader (runtime/src/stream.c, stream_mesh.c: C) and the renderers on what it takes; its findings are
 # replayed by tests/stream/suite.sh
-$(FUZZ_DIR)/fuzz-stream: tests/fuzz/fuzz_stream.c tests/stream/forge.h $(RT_SRC) $(RT_HDR)
+$(FUZZ_DIR)/fuzz-stream: tests/fuzz/fuzz_stream.c tests/stream/forge.h runtime/front/common/mesh_frame.c $(RT_SRC) $(RT_HDR)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer -Wall -Wextra -Werror -Iruntime/include -o $@ \
-	  tests/fuzz/fuzz_stream.c $(RT_SRC)
+	  tests/fuzz/fuzz_stream.c runtime/front/common/mesh_frame.c $(RT_SRC)
 
 .PHONY: fuzz fuzz-build
 fuzz-build: $(FUZZ_BINS)

@@ -396,8 +396,8 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     Stream st;
     EmitOptions opt = options;
     if (opt.stream) {
-        st = octree_stream(t);
-        opt.stream_bytes = st.bytes.size();
+        st = bake_stream(t, opt.pmesh);
+        opt.stream_bytes = st.buffer;
     }
     const Plan plan = make_plan(t, opt);
     const Budget bud = budget_of(t, opt, plan);
@@ -409,10 +409,21 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
         nlohmann::json b = nlohmann::json::parse(budget_text);
         b["stream"] = {{"file", opt.name + ".mcs"},
                        {"bytes", st.bytes.size()},
+                       {"buffer", st.buffer},
                        {"drawable_at", st.drawable_at},
                        {"note", "drawable_at[i]: the bytes a reader needs to draw depth i + 1 (stream.h); "
-                                "a receiver's buffer holds all bytes (NAME.h MC_NAME_STREAM_BYTES; the app binding's "
-                                "stream_buf, RAM not counted in ram.image, which is the baked model's)"}};
+                                "a receiver's buffer (buffer: NAME.h MC_NAME_STREAM_BYTES; the app binding's "
+                                "stream_buf, RAM not counted in ram.image, which is the baked model's) holds all "
+                                "bytes, and with a mesh part its arrays after them"}};
+        if (opt.pmesh) {
+            nlohmann::json levels = nlohmann::json::array();
+            for (const auto &[at, level] : st.mesh_levels) levels.push_back({{"at", at}, {"level", level}});
+            b["stream"]["mesh_levels"] = levels;
+            b["stream"]["mesh_lines_at"] = st.lines_at;
+            b["stream"]["note_mesh"] = "mesh_levels: the bytes after which the mesh draws at that level (the "
+                                       "shaded style: base, then each batch of splits); mesh_lines_at: after which "
+                                       "the line styles draw (the adjacency)";
+        }
         budget_text = b.dump(2) + "\n";
         out.emplace_back(opt.name + ".mcs", std::move(st.bytes));
     }

@@ -23,8 +23,8 @@ struct EmitOptions {
     size_t file_bytes = 262144;
     int screen_w = 640, screen_h = 480;
     bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
-    bool stream = false;       // --emit stream: also NAME.mcs, the octree as one stream (stream.h)
-    size_t stream_bytes = 0;   // its size, set by emit_model: NAME.h's MC_NAME_STREAM_BYTES and the app's buffer
+    bool stream = false;       // --emit stream: also NAME.mcs, the bake as one stream (stream.h)
+    size_t stream_bytes = 0;   // its receive buffer, set by emit_model: NAME.h's MC_NAME_STREAM_BYTES and the app's
     UpAxis up = UpAxis::y;     // the file's axis shown as up (--up): recorded in the model descriptor
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
     Limits limits;             // recorded in budget.json (checked by the caller)
@@ -34,13 +34,21 @@ struct EmitOptions {
     size_t particles = 300;    // --as edges: particles the app binding's static arrays hold
 };
 
-// The octree as a stream (runtime/include/modelc/stream.h, version 1): its bytes, and the bytes a
-// reader needs to draw depth 1, 2, ..., D (the end of each level's record).
+// The bake as a stream (runtime/include/modelc/stream.h): version 1 for the octree alone, version 2
+// with the mesh part after it. Its bytes; the bytes a reader needs to draw depth 1, 2, ..., D (the
+// end of each level's record); with a mesh, where each of its records that raises the drawable level
+// ends and that level (the base's, then each batch of splits'), and where the adjacency ends (the
+// line styles then draw); and the receive buffer the reader needs (the stream, then the mesh's
+// arrays: MC_NAME_STREAM_BYTES).
 struct Stream {
     std::string bytes;
     std::vector<size_t> drawable_at;
+    std::vector<std::pair<size_t, size_t>> mesh_levels;   // (end of record, mesh level)
+    size_t lines_at = 0;
+    size_t buffer = 0;
 };
-Stream octree_stream(const Octree &tree);
+struct PMesh;
+Stream bake_stream(const Octree &tree, const PMesh *pmesh);
 
 // The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where
 // they are laid out; the cost rules are budget.hpp's).

@@ -91,7 +91,8 @@ int main(int argc, char **argv) {
         ->capture_default_str();
     app.add_option("--emit", emit_kind, "app: the model and NAME_app.c with static frame buffers for a front end; "
                    "lib: only the model's .c/.h, for an existing firmware project; stream: app and NAME.mcs, the "
-                   "octree as one binary stream, coarse levels first (runtime/include/modelc/stream.h)")
+                   "bake as one binary stream, coarse first: the octree's levels, then with --as both the mesh's "
+                   "base and splits (runtime/include/modelc/stream.h)")
         ->check(CLI::IsMember({"app", "lib", "stream"}))->capture_default_str();
     app.add_option("--flash-budget", flash_budget, "fail (exit 1, no output) unless data, descriptors and the "
                    "runtime's code fit SIZE bytes (e.g. 262144, 256K, 1M)");

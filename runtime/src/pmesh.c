@@ -25,10 +25,12 @@ void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc)
     lod->anc = anc;
     lod->level = pm->base_vertices;
     lod->faces = pm->base_faces;
-    /* depth-first order: a parent comes before its children, so its root is already known */
-    for (uint32_t v = 0; v < pm->vertices; v++) {
-        uint32_t p = tree_field(pm, v, 0);
-        anc_fill(lod, v, 1, p == v ? v : mc_pmesh_lod_vertex(lod, p));
+    /* depth-first order: the roots' subtrees tile 0 .. V-1, each root first in its own; only the
+     * roots' tree records are read, so a mesh still arriving (stream.h) starts the same way */
+    for (uint32_t v = 0, size; v < pm->vertices; v += size) {
+        size = tree_field(pm, v, 1);
+        if (size < 1 || size > pm->vertices - v) size = pm->vertices - v;   /* never with the generator's arrays */
+        anc_fill(lod, v, size, v);
     }
 }
 

@@ -5,7 +5,9 @@
 # level as it becomes drawable); cuts at every level's end, a byte before it and at random: the
 # frame of the deepest complete level, the truncation reported, exit status 1, and no file when
 # nothing was drawable; a flipped byte and a wrong version: the error and its byte, the last good
-# level drawn; --stream refused by a bake without a stream buffer.
+# level drawn; --stream refused by a bake without a stream buffer. And a version-2 stream (bunny00
+# --as both at depth 4): its mesh drawn shaded and in lines as the compiled-in mesh at the level
+# that came (--lod), whole and cut after mesh records; a mesh larger than the viewer's buffers.
 set -u
 cd "$(dirname "$0")/../.."
 TAP_PREFIX="stream: host: "
@@ -114,7 +116,7 @@ flip[at] ^= 0x40
 open(sys.argv[2] + '/flip.mcs', 'wb').write(flip)
 open(sys.argv[2] + '/flip.at', 'w').write('%d %d\n' % (at, ends[3]))
 ver = bytearray(data)
-ver[4:6] = struct.pack('<H', 2)
+ver[4:6] = struct.pack('<H', 3)
 ver[16:20] = struct.pack('<I', zlib.crc32(bytes(ver[:16])))
 open(sys.argv[2] + '/version.mcs', 'wb').write(ver)
 EOF
@@ -127,8 +129,8 @@ rm -f "$dir/version.ppm"
 "$view" --stream - --ppm "$dir/version.ppm" <"$dir/version.mcs" >/dev/null 2>"$dir/version.err"
 rc=$?
 [ $rc -eq 1 ] && grep -q "^bunny-view: stream: version at byte 4; nothing was drawable" "$dir/version.err" && [ ! -e "$dir/version.ppm" ] ||
-    problems+="version 2: exit $rc, $(oneline <"$dir/version.err"); "
-check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 2: 'version at byte 4', no file; exit 1 both" "$problems"
+    problems+="version 3: exit $rc, $(oneline <"$dir/version.err"); "
+check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 3: 'version at byte 4', no file; exit 1 both" "$problems"
 
 # interactive, in a tmux pane: levels drawn as they arrive over a FIFO, then damage: the error in
 # the status line and the last good level still on screen
@@ -156,6 +158,67 @@ if command -v tmux >/dev/null; then
     check_problems "interactive (tmux): depth 3 on screen once levels 1-3 came through a FIFO; after the rest with a flipped byte in level 5, the crc error in the status line and depth 4 drawn" "$problems"
 else
     notok "interactive --stream" "tmux missing (make deps installs it)"
+fi
+
+# the mesh part (--as both: a version-2 stream), against the same viewer's compiled-in mesh at --lod L:
+# whole, cut after mesh records (shaded; lines drawn shaded until the adjacency), --lod below what came
+if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit stream -q >"$dir/mesh-bake.log" 2>&1 && link mesh &&
+    build/bin/modelc "$model" -o "$dir" --name small --depth 8 --as both --max-faces 2000 --emit stream -q >>"$dir/mesh-bake.log" 2>&1 &&
+    link small && build/bin/modelc "$model" -o "$dir" --name other --depth 2 --as both --max-faces 6000 --emit stream -q >>"$dir/mesh-bake.log" 2>&1; then
+    mview=$dir/mesh/mesh-view
+    mmcs=$dir/mesh/mesh.mcs
+    msize=$(stat -c %s "$mmcs")
+    read -r full lines_at < <(python3 -c "import json,sys; b=json.load(open(sys.argv[1])); print(b['pmesh']['vertices'], b['stream']['mesh_lines_at'])" "$dir/mesh/budget.json")
+    mapfile -t mlevels < <(python3 -c "import json,sys; [print(m['at'], m['level']) for m in json.load(open(sys.argv[1]))['stream']['mesh_levels']]" "$dir/mesh/budget.json")
+    problems=""
+    for m in shaded lines; do
+        "$mview" --mode $m --yaw 30 --pitch 20 --ppm "$dir/mref-$m.ppm" >/dev/null
+        "$mview" --stream - --mode $m --yaw 30 --pitch 20 --ppm "$dir/mwhole-$m.ppm" <"$mmcs" >"$dir/mwhole.out" 2>&1
+        rc=$?
+        [ $rc -eq 0 ] && cmp -s "$dir/mwhole-$m.ppm" "$dir/mref-$m.ppm" && grep -q "^stream: mesh level $full of $full after" "$dir/mwhole.out" &&
+            grep -q "^stream: mesh lines after $msize of $msize bytes" "$dir/mwhole.out" || problems+="whole, $m: exit $rc, $(oneline <"$dir/mwhole.out"); "
+    done
+    check_problems "mesh: the whole version-2 stream on standard input, --mode shaded and lines: a line for the mesh's level and its lines, frames equal the compiled-in mesh's" "$problems"
+    problems=""
+    n=${#mlevels[@]}
+    for i in 0 1 $((n / 2)) $((n - 2)); do
+        read -r at level <<<"${mlevels[$i]}"
+        head -c "$at" "$mmcs" >"$dir/mcut.mcs"
+        "$mview" --mode shaded --lod "$level" --yaw 30 --pitch 20 --ppm "$dir/mref.ppm" >/dev/null
+        for m in shaded lines; do
+            "$mview" --stream "$dir/mcut.mcs" --mode $m --yaw 30 --pitch 20 --ppm "$dir/mcut.ppm" >"$dir/mcut.out" 2>"$dir/mcut.err"
+            rc=$?
+            [ $rc -eq 1 ] && cmp -s "$dir/mcut.ppm" "$dir/mref.ppm" && grep -q "truncated at byte $at; .*mesh level $level$" "$dir/mcut.err" &&
+                { [ $m = shaded ] || grep -q "drawing shaded: the line styles need the mesh's adjacency" "$dir/mcut.err"; } ||
+                problems+="cut $at ($m): exit $rc, $(oneline <"$dir/mcut.err"); "
+        done
+    done
+    read -r at level <<<"${mlevels[$((n / 2))]}"
+    low=$((level / 2))
+    head -c $((at + 7)) "$mmcs" >"$dir/mcut.mcs"
+    "$mview" --mode shaded --lod "$low" --yaw 30 --pitch 20 --ppm "$dir/mref.ppm" >/dev/null
+    "$mview" --stream "$dir/mcut.mcs" --mode shaded --lod "$low" --yaw 30 --pitch 20 --ppm "$dir/mcut.ppm" >/dev/null 2>&1
+    cmp -s "$dir/mcut.ppm" "$dir/mref.ppm" || problems+="--lod $low of $level come: not --lod $low's frame; "
+    head -c $((lines_at - 1)) "$mmcs" >"$dir/mcut.mcs"
+    "$mview" --stream "$dir/mcut.mcs" --mode lines --yaw 30 --pitch 20 --ppm "$dir/mcut.ppm" >/dev/null 2>"$dir/mcut.err"
+    "$mview" --mode shaded --yaw 30 --pitch 20 --ppm "$dir/mref.ppm" >/dev/null
+    cmp -s "$dir/mcut.ppm" "$dir/mref.ppm" && grep -q "mesh level $full$" "$dir/mcut.err" || problems+="a byte short of the adjacency: $(oneline <"$dir/mcut.err"); "
+    check_problems "mesh: cut after the base, a batch of splits, the middle one and the last: exit 1, 'truncated at byte k', the frame of the compiled-in mesh at that level (--lod), shaded and (lines) drawn shaded with a note; --lod below what came; a byte short of the adjacency: the full level, shaded" "$problems"
+    problems=""
+    rm -f "$dir/refused.ppm"
+    "$mview" --stream "$mcs" --mode shaded --ppm "$dir/refused.ppm" >/dev/null 2>"$dir/refused.err"
+    rc=$?
+    [ $rc -eq 2 ] && grep -q "the stream has no mesh part" "$dir/refused.err" && [ ! -e "$dir/refused.ppm" ] || problems+="a points stream in a mesh mode: exit $rc, $(oneline <"$dir/refused.err"); "
+    "$dir/small/small-view" --stream "$dir/other/other.mcs" --mode shaded --ppm "$dir/refused.ppm" >/dev/null 2>"$dir/refused.err"
+    rc=$?
+    [ $rc -eq 1 ] && grep -q "stream: its mesh (3002 vertices, 6000 faces) is larger than this viewer's mesh buffers; drawing depth 2" "$dir/refused.err" &&
+        [ ! -e "$dir/refused.ppm" ] || problems+="a mesh larger than the viewer's: exit $rc, $(oneline <"$dir/refused.err"); "
+    "$mview" --stream "$mmcs" --lod auto --mode shaded --ppm "$dir/refused.ppm" >/dev/null 2>"$dir/refused.err"
+    rc=$?
+    [ $rc -eq 2 ] && grep -q "exclude each other" "$dir/refused.err" || problems+="--lod auto: exit $rc, $(oneline <"$dir/refused.err"); "
+    check_problems "mesh: a points-only stream read in a mesh mode (exit 2), a stream whose mesh is larger than the viewer's buffers (exit 1, nothing drawn in the mesh mode), --lod auto with --stream (exit 2): each one line" "$problems"
+else
+    notok "mesh bakes with --as both --emit stream and their viewers" "$(cat "$dir/mesh-bake.log" "$dir"/*.link.log 2>/dev/null | tail -n 5 | oneline)"
 fi
 
 # refusals: one line each, exit 2, no file

@@ -14,8 +14,14 @@
  *       again (what CRCs cannot catch): each is refused by a check of what the renderer relies on, or
  *       taken and drawn at every depth it offers without a fault (ASan + UBSan); prints how many each
  *       check refused
+ *   stream_check mesh FILE.mcs N SEED       (a version-2 stream, bake --as both) N random cuts in its
+ *       mesh part, and every mesh record's end and a byte either side: the prefix draws exactly the
+ *       mesh level the bytes allow, and its frames equal the baked mesh's at that level (--lod):
+ *       shaded at two views, and once the adjacency is in, lines at one
  *   stream_check first FILE.mcs             prints the bytes before the first drawable level and each
- *       further level, as shares of the stream
+ *       further level, as shares of the stream (and the mesh's first level and lines, if any)
+ * With a mesh part, the corrupt and forged modes check the mesh level as the octree's depth: never
+ * one the damage reached, equal to the bake's; whatever a forged stream offers drawn without a fault.
  * Prints one "ok ..." or "FAIL ..." line per mode; exits non-zero on a failure.
  */
 #include <stdint.h>
@@ -27,6 +33,7 @@
 #include <modelc/modelc.h>
 #include <modelc/stream.h>
 #include "forge.h"
+#include "../../runtime/front/common/mesh_frame.h"
 
 #define W 160
 #define H 120
@@ -38,7 +45,12 @@ static uint8_t *work;   /* a damaged copy */
 static uint8_t *buf;    /* the reader's buffer */
 static uint32_t level_end[MC_MAX_DEPTH + 2];   /* level_end[d]: bytes that make depth d drawable */
 static unsigned depth_max;
-static int views_all = 1;   /* check_drawn: all four views, or one at random (the corrupt mode's many cases) */
+static int views_all = 1;
+/* the mesh part's records that raise its drawable level: where each ends, and the level */
+static uint32_t mesh_end[256], mesh_level_at[256], lines_end;
+static unsigned mesh_records;
+static void *anc_stream, *anc_bake;   /* ancestor maps of the stream's mesh and the bake's */
+static uint8_t *facing_stream, *facing_bake;   /* check_drawn: all four views, or one at random (the corrupt mode's many cases) */
 
 static uint64_t rng = 1;
 static uint32_t rnd(uint32_t n)
@@ -54,11 +66,19 @@ static int index_file(void)
 {
     if (file_len < MC_STREAM_HEADER_BYTES) return -1;
     depth_max = file[6];
-    uint32_t at = MC_STREAM_HEADER_BYTES;
+    uint32_t at = MC_STREAM_HEADER_BYTES, base = 0;
     while (at + 8 <= file_len) {
         const unsigned kind = file[at], level = file[at + 1];
+        const uint8_t *p = file + at + 8;
         at += 12 + le32(file + at + 4);
+        if (at > file_len) break;
         if (kind == 2 && level <= MC_MAX_DEPTH) level_end[level] = at;
+        if (kind == 4) base = le32(p + 4);
+        if ((kind == 5 || kind == 6) && mesh_records < 256) {
+            mesh_end[mesh_records] = at;
+            mesh_level_at[mesh_records++] = base + (kind == 6 ? le32(p) + le32(p + 4) : 0);
+        }
+        if (kind == 7) lines_end = at;
     }
     return at == file_len ? 0 : -1;
 }
@@ -69,6 +89,14 @@ static unsigned expected_depth(uint32_t cut)
     for (unsigned l = 1; l <= depth_max; l++)
         if (level_end[l] && level_end[l] <= cut) d = l;
     return d;
+}
+
+static uint32_t expected_mesh_level(uint32_t cut)
+{
+    uint32_t level = 0;
+    for (unsigned i = 0; i < mesh_records; i++)
+        if (mesh_end[i] <= cut) level = mesh_level_at[i];
+    return level;
 }
 
 static int feed_pieces(mc_stream *s, const uint8_t *p, uint32_t n)
@@ -99,8 +127,59 @@ static int frames_equal(const mc_octree *o, unsigned d, int view)
     return ra == rb && !memcmp(fb_a, fb_b, sizeof fb_a) && !memcmp(zb_a, zb_b, sizeof zb_a);
 }
 
+static mc_view mesh_view(int view)
+{
+    mc_view v = mc_view_default();
+    v.yaw = view * 1500 + 200;
+    v.pitch = view * 500 - 300;
+    v.zoom = 65536 + view * 12000;
+    v.projection = view & 1 ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
+    return v;
+}
+
+/* The stream's mesh and the bake's at level `level`, drawn in a style at one view: equal? */
+static int mesh_equal(const mc_pmesh *pm, uint32_t level, mc_front_style style, int view)
+{
+    const mc_pmesh *bake = mc_app_model.model->pmesh;
+    mc_pmesh_lod a, b;
+    mc_pmesh_lod_init(&a, pm, anc_stream);
+    mc_pmesh_lod_init(&b, bake, anc_bake);
+    if (mc_pmesh_lod_set(&a, level) != level || mc_pmesh_lod_set(&b, level) != level || a.faces != b.faces) return 0;
+    const mc_view v = mesh_view(view);
+    const mc_target ta = {fb_a, zb_a, W, H}, tb = {fb_b, zb_b, W, H};
+    memset(facing_stream, 0, MC_MESH_LINES_BYTES(bake->faces));
+    memset(facing_bake, 0, MC_MESH_LINES_BYTES(bake->faces));
+    const int ra = mc_front_mesh_frame(&a, facing_stream, NULL, NULL, &v, style, &ta, NULL);
+    const int rb = mc_front_mesh_frame(&b, facing_bake, NULL, NULL, &v, style, &tb, NULL);
+    return ra == MC_OK && rb == MC_OK && !memcmp(fb_a, fb_b, sizeof fb_a) && !memcmp(zb_a, zb_b, sizeof zb_a);
+}
+
+/* The stream's mesh part against the bake: its level, its adjacency, its frames. */
+static int check_mesh(const mc_stream *s, const char *what, uint32_t arg, int views)
+{
+    const uint32_t level = mc_stream_mesh_level(s);
+    const mc_pmesh *pm = mc_stream_pmesh(s);
+    if (!level) return pm ? printf("FAIL %s %u: a mesh descriptor before its base\n", what, arg), -1 : 0;
+    const mc_pmesh *bake = mc_app_model.model->pmesh;
+    if (!pm || pm->vertices != bake->vertices || pm->base_vertices != bake->base_vertices || pm->faces != bake->faces ||
+        pm->closed != bake->closed || pm->palette_size != bake->palette_size ||
+        memcmp(pm->palette, bake->palette, 3u * pm->palette_size) || pm->crease_cos != bake->crease_cos) {
+        printf("FAIL %s %u: the mesh descriptor at level %u is not the bake's\n", what, arg, level);
+        return -1;
+    }
+    for (int view = 0; view < views; view++) {
+        const int lines = pm->opposite && view == views - 1;
+        if (!mesh_equal(pm, level, lines ? MC_FRONT_LINES : MC_FRONT_SHADED, views == 1 ? (int)rnd(3) : view)) {
+            printf("FAIL %s %u: mesh level %u %s differs from the bake's\n", what, arg, level, lines ? "lines" : "shaded");
+            return -1;
+        }
+    }
+    return 0;
+}
+
 static int check_drawn(const mc_stream *s, const char *what, uint32_t arg)
 {
+    if (mc_app_model.model->pmesh && check_mesh(s, what, arg, views_all ? 2 : 1)) return -1;
     const unsigned d = mc_stream_depth(s);
     if (!d) return 0;
     const mc_octree *o = mc_stream_octree(s);
@@ -130,7 +209,7 @@ static int prefixes(int n)
     for (int i = 0; i < nc + n; i++) {
         const uint32_t cut = i < nc ? cuts[i] : rnd(file_len + 1);
         mc_stream s;
-        mc_stream_init(&s, buf, file_len);
+        mc_stream_init(&s, buf, mc_app_model.stream_cap);
         const int rc = feed_pieces(&s, file, cut);
         const int end = mc_stream_end(&s);
         if (rc != MC_STREAM_OK || (cut == file_len) != (end == MC_STREAM_OK) ||
@@ -147,6 +226,37 @@ static int prefixes(int n)
     }
     printf("ok prefixes: %d cuts (every level's end and a byte either side, then random), each the depth its bytes allow, frames equal the bake's at 4 views\n",
            checked);
+    return 0;
+}
+
+static int mesh_prefixes(int n)
+{
+    if (!mesh_records || !mc_app_model.model->pmesh) {
+        printf("FAIL mesh: the stream or the bake has no mesh part\n");
+        return -1;
+    }
+    uint32_t cuts[3 * 256 + 3];
+    int nc = 0;
+    for (unsigned r = 0; r < mesh_records; r++) cuts[nc++] = mesh_end[r] - 1, cuts[nc++] = mesh_end[r], cuts[nc++] = mesh_end[r] + 1;
+    cuts[nc++] = lines_end - 1, cuts[nc++] = lines_end;
+    const uint32_t from = mesh_end[0] - 1;
+    for (int i = 0; i < nc + n; i++) {
+        const uint32_t cut = i < nc ? cuts[i] : from + rnd(file_len - from + 1);
+        mc_stream s;
+        mc_stream_init(&s, buf, mc_app_model.stream_cap);
+        const int rc = feed_pieces(&s, file, cut);
+        if (rc != MC_STREAM_OK) {
+            printf("FAIL mesh prefix %u: feed %s at byte %u\n", cut, mc_stream_error_name(rc), s.error_at);
+            return -1;
+        }
+        if (mc_stream_mesh_level(&s) != expected_mesh_level(cut) || (mc_stream_pmesh(&s) && (mc_stream_pmesh(&s)->opposite != 0) != (cut >= lines_end))) {
+            printf("FAIL mesh prefix %u: mesh level %u, the bytes allow %u\n", cut, mc_stream_mesh_level(&s), expected_mesh_level(cut));
+            return -1;
+        }
+        if (check_mesh(&s, "mesh prefix", cut, 2)) return -1;
+    }
+    printf("ok mesh: %d cuts (every mesh record's end and a byte either side, then random in the mesh part), each the mesh level its bytes allow (%u records, levels %u to %u), frames equal the bake's at that level: shaded at 2 views, lines at 1 once the adjacency is in\n",
+           nc + n, mesh_records, mesh_level_at[0], mesh_level_at[mesh_records - 1]);
     return 0;
 }
 
@@ -181,7 +291,7 @@ static int corrupt(int n)
             len = file_len - 1;
             break;
         case 4: { /* another version, the header's CRC made valid */
-            work[4] = (uint8_t)(2 + rnd(200));
+            do work[4] = (uint8_t)(1 + rnd(200)); while (work[4] == file[4]);
             const uint32_t c = mc_stream_crc32(0, work, 16);
             work[16] = (uint8_t)c; work[17] = (uint8_t)(c >> 8); work[18] = (uint8_t)(c >> 16); work[19] = (uint8_t)(c >> 24);
             first_bad = 4;
@@ -202,7 +312,7 @@ static int corrupt(int n)
             break;
         }
         mc_stream s;
-        mc_stream_init(&s, buf, file_len + 2000);
+        mc_stream_init(&s, buf, mc_app_model.stream_cap + 2000);
         const int rc = feed_pieces(&s, work, len);
         const int end = mc_stream_end(&s);
         if (end == MC_STREAM_OK) {
@@ -215,6 +325,17 @@ static int corrupt(int n)
         if (d && level_end[d] > first_bad) {
             printf("FAIL corrupt case %d (kind %d at byte %u): draws depth %u, whose bytes end at %u\n", i, kind, first_bad, d,
                    level_end[d]);
+            return -1;
+        }
+        const uint32_t ml = mc_stream_mesh_level(&s);
+        for (unsigned r = 0; ml && r < mesh_records; r++)
+            if (mesh_level_at[r] == ml && mesh_end[r] > first_bad) {
+                printf("FAIL corrupt case %d (kind %d at byte %u): draws mesh level %u, whose bytes end at %u\n", i, kind,
+                       first_bad, ml, mesh_end[r]);
+                return -1;
+            }
+        if (mc_stream_pmesh(&s) && mc_stream_pmesh(&s)->opposite && lines_end > first_bad) {
+            printf("FAIL corrupt case %d (kind %d at byte %u): took the adjacency, which ends at %u\n", i, kind, first_bad, lines_end);
             return -1;
         }
         if (i % 8 == 0 && check_drawn(&s, "corrupt case", (uint32_t)i)) return -1;
@@ -234,11 +355,25 @@ static int forged(int n)
         work[at] = (uint8_t)(rnd(4) == 0 ? 0 : work[at] ^ (1u << rnd(8)));
         forge_crcs(work, file_len);
         mc_stream s;
-        mc_stream_init(&s, buf, file_len + 2000);
+        mc_stream_init(&s, buf, mc_app_model.stream_cap + 2000);
         feed_pieces(&s, work, file_len);
         const int end = mc_stream_end(&s);
         if (end == MC_STREAM_OK) taken++;
         else refused[-end & 15]++;
+        const mc_pmesh *pm = mc_stream_pmesh(&s);
+        if (pm) {   /* its mesh at the level it offers, shaded and (with the adjacency) in lines */
+            mc_pmesh_lod lod;
+            mc_pmesh_lod_init(&lod, pm, anc_stream);
+            mc_pmesh_lod_set(&lod, mc_stream_mesh_level(&s));
+            const mc_view v = mesh_view((int)rnd(3));
+            const mc_target t = {fb_a, zb_a, W, H};
+            memset(facing_stream, 0, MC_MESH_LINES_BYTES(pm->faces));
+            for (int style = 1; style <= (pm->opposite ? 3 : 1); style++)
+                if (mc_front_mesh_frame(&lod, facing_stream, NULL, NULL, &v, (mc_front_style)style, &t, NULL) != MC_OK) {
+                    printf("FAIL forged case %d (byte %u): its mesh does not render in style %d\n", i, at, style);
+                    return -1;
+                }
+        }
         const mc_octree *o = mc_stream_octree(&s);
         for (unsigned d = 1; o && d <= o->depth; d++) {   /* whatever was taken draws without a fault */
             mc_view v = mc_view_default();
@@ -251,8 +386,8 @@ static int forged(int n)
             }
         }
     }
-    printf("ok forged: %d streams with a byte changed and valid CRCs: %d taken (a colour or cone axis changed, or the "
-           "change undone) and drawn at every depth without a fault; refused:", n, taken);
+    printf("ok forged: %d streams with a byte changed and valid CRCs: %d taken (a colour, cone axis, vertex position or "
+           "corner changed, or the change undone) and drawn at every depth (and a mesh part at its level in every style it offers) without a fault; refused:", n, taken);
     for (int e = 1; e < 16; e++)
         if (refused[e]) printf(" %s %d", mc_stream_error_name(-e), refused[e]);
     printf("\n");
@@ -271,8 +406,16 @@ int main(int argc, char **argv)
     file_len = (uint32_t)ftell(f);
     fseek(f, 0, SEEK_SET);
     file = malloc(file_len + 1);
+    const uint32_t cap = (mc_app_model.stream_cap > file_len ? mc_app_model.stream_cap : file_len) + 2000;
     work = malloc(file_len + 2000);
-    buf = malloc(file_len + 2000);
+    buf = malloc(cap);
+    if (mc_app_model.model->pmesh) {
+        const mc_pmesh *pm = mc_app_model.model->pmesh;
+        anc_stream = malloc(MC_PMESH_LOD_BYTES(pm->vertices, 4));
+        anc_bake = malloc(MC_PMESH_LOD_BYTES(pm->vertices, 4));
+        facing_stream = malloc(MC_MESH_LINES_BYTES(pm->faces));
+        facing_bake = malloc(MC_MESH_LINES_BYTES(pm->faces));
+    }
     if (!file || !work || !buf || fread(file, 1, file_len, f) != file_len) { fprintf(stderr, "cannot read %s\n", argv[2]); return 2; }
     fclose(f);
     if (index_file()) { printf("FAIL %s: its records do not end at its end\n", argv[2]); return 1; }
@@ -281,9 +424,13 @@ int main(int argc, char **argv)
     if (!strcmp(argv[1], "prefixes")) return prefixes(n) ? 1 : 0;
     if (!strcmp(argv[1], "corrupt")) return corrupt(n) ? 1 : 0;
     if (!strcmp(argv[1], "forged")) return forged(n) ? 1 : 0;
+    if (!strcmp(argv[1], "mesh")) return mesh_prefixes(n) ? 1 : 0;
     if (!strcmp(argv[1], "first")) {
         printf("bytes %u", file_len);
         for (unsigned l = 1; l <= depth_max; l++) printf(" depth%u %u %.2f%%", l, level_end[l], 100.0 * level_end[l] / file_len);
+        if (mesh_records)
+            printf(" mesh%u %u %.2f%% lines %u %.2f%%", mesh_level_at[0], mesh_end[0], 100.0 * mesh_end[0] / file_len, lines_end,
+                   100.0 * lines_end / file_len);
         printf("\n");
         return 0;
     }

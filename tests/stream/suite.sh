@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Streamed bakes (modelc --emit stream, runtime/src/stream.c): bunny00 at depth 8 (cones, 218 colours)
-# and kitten at depth 6 with one palette entry (a point set: no cones, no colours). budget.json's
+# Streamed bakes (modelc --emit stream, runtime/src/stream.c, stream_mesh.c): bunny00 at depth 8 (cones,
+# 218 colours), kitten at depth 6 with one palette entry (a point set: no cones, no colours), and
+# bunny00 --as both (version 2: the progressive mesh too, 6,000 faces; every mesh prefix draws its
+# level as the bake's --lod, shaded, and lines once the adjacency is in). budget.json's
 # stream figures against the file; every prefix draws its deepest complete level exactly as the bake
 # does; damaged streams (10^4 of kitten's, 2,000 of bunny00's) refused without a fault; forged streams (valid CRCs) refused by the
 # reader's checks or drawn without a fault; the first picture's share of the bytes; the fuzzer's
@@ -39,13 +41,14 @@ bake() {   # NAME MODEL ARGS...
     fi
 }
 
-for spec in "bunny00 $(model_file bunny00) --depth 8" "kitten $(model_file kitten) --depth 6 --palette 1"; do
+for spec in "bunny00 $(model_file bunny00) --depth 8" "kitten $(model_file kitten) --depth 6 --palette 1" \
+    "bunnymesh $(model_file bunny00) --depth 6 --as both --max-faces 6000"; do
     read -r name model args <<<"$spec"
     # shellcheck disable=SC2086
     bake "$name" "$model" $args || continue
     mcs=$dir/$name/$name.mcs
     # shellcheck disable=SC2086
-    if ! cc $SAN -o "$dir/check-$name" tests/stream/stream_check.c "$dir/$name"/*.c "${rt[@]}" 2>"$dir/cc-$name.log"; then
+    if ! cc $SAN -o "$dir/check-$name" tests/stream/stream_check.c runtime/front/common/mesh_frame.c "$dir/$name"/*.c "${rt[@]}" 2>"$dir/cc-$name.log"; then
         notok "$name: stream_check builds" "$(oneline <"$dir/cc-$name.log")"
         continue
     fi
@@ -54,24 +57,49 @@ for spec in "bunny00 $(model_file bunny00) --depth 8" "kitten $(model_file kitte
 import json, os, sys
 b = json.load(open(sys.argv[1]))['stream']
 f = sys.argv[3].split()
-ends = [int(f[i + 1]) for i in range(2, len(f), 3)]
+ends = {f[i]: int(f[i + 1]) for i in range(2, len(f), 3)}
+depths = [ends[k] for k in ends if k.startswith('depth')]
 p = []
-if b['bytes'] != os.path.getsize(sys.argv[2]): p.append('bytes %d, file %d' % (b['bytes'], os.path.getsize(sys.argv[2])))
-if b['drawable_at'] != ends: p.append('drawable_at %s, the records end at %s' % (b['drawable_at'], ends))
+size = os.path.getsize(sys.argv[2])
+if b['bytes'] != size: p.append('bytes %d, file %d' % (b['bytes'], size))
+if b['drawable_at'] != depths: p.append('drawable_at %s, the records end at %s' % (b['drawable_at'], depths))
+bud = json.load(open(sys.argv[1]))
+if 'pmesh' in bud:   # the buffer: the stream, then the mesh arrays (stream.h MC_STREAM_MESH_BYTES)
+    m = bud['pmesh']
+    V, V0, F, ib = m['vertices'], m['base_vertices'], m['faces'], m['index_bytes']
+    want = (size + 3) // 4 * 4 + 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F
+    first = [k for k in ends if k.startswith('mesh')]
+    if b['buffer'] != want: p.append('buffer %d, the stream and its mesh arrays need %d' % (b['buffer'], want))
+    if not first or b['mesh_levels'][0] != {'at': ends[first[0]], 'level': V0} or b['mesh_levels'][-1]['level'] != V:
+        p.append('mesh_levels %s..%s, the base record ends at %s' % (b['mesh_levels'][0], b['mesh_levels'][-1], first and ends[first[0]]))
+    if b['mesh_lines_at'] != ends.get('lines'): p.append('mesh_lines_at %s, the adjacency ends at %s' % (b['mesh_lines_at'], ends.get('lines')))
+elif b['buffer'] != size: p.append('buffer %d for a stream of %d bytes' % (b['buffer'], size))
 print('; '.join(p))
 EOF
 )
-    check_problems "$name: budget.json's stream bytes and drawable_at are the file's size and its level records' ends" "$problems"
+    check_problems "$name: budget.json's stream bytes, buffer and drawable_at (and mesh_levels, mesh_lines_at) are the file's size, what the reader needs and its records' ends" "$problems"
     read -r share deep < <(echo "$first" | python3 -c '
 import sys
-f = sys.stdin.read().split()
+f = [w for w in sys.stdin.read().split()]
+f = f[:f.index([w for w in f if w.startswith("mesh")][0])] if any(w.startswith("mesh") for w in f) else f
 d = (len(f) - 2) // 3
 print(f[4], "depth %d after %s of the bytes" % (d - 2, f[3 * (d - 2) + 1]) if d >= 3 else "")')
     python3 -c "import sys; sys.exit(0 if float('${share%\%}') <= 10 else 1)" &&
         ok "$name: the first picture (depth 1) after $share of the stream's bytes (at most 10 %); $deep" ||
         notok "$name: the first picture after at most 10 % of the bytes" "$first"
+    if [ "$name" = bunnymesh ]; then
+        read -r mshare lshare < <(echo "$first" | python3 -c '
+import sys
+f = sys.stdin.read().split()
+m = [i for i, w in enumerate(f) if w.startswith("mesh")][0]
+print(f[m + 2], f[m + 5])')
+        python3 -c "import sys; sys.exit(0 if float('${mshare%\%}') <= 10 else 1)" &&
+            ok "$name: the mesh's first picture (its base) after $mshare of the stream's bytes (at most 10 %); its line styles after $lshare" ||
+            notok "$name: the mesh's first picture after at most 10 % of the bytes" "$first"
+    fi
     runs="prefixes 60|corrupt 2000|forged 500"
-    [ "$name" = bunny00 ] || runs="prefixes 100|corrupt 10000|forged 1000"
+    [ "$name" = kitten ] && runs="prefixes 100|corrupt 10000|forged 1000"
+    [ "$name" = bunnymesh ] && runs="mesh 40|prefixes 20|corrupt 2000|forged 500"
     IFS='|' read -r -a modes <<<"$runs"
     for mode in "${modes[@]}"; do
         read -r m n <<<"$mode"
@@ -90,12 +118,13 @@ fi
 
 # the stream fuzzer's findings (make fuzz FUZZ_TARGETS=stream), replayed under the sanitizers
 # shellcheck disable=SC2086
-if cc $SAN -DMC_FUZZ_STREAM_MAIN -o "$dir/replay" tests/fuzz/fuzz_stream.c "${rt[@]}" 2>"$dir/cc-replay.log"; then
+if cc $SAN -DMC_FUZZ_STREAM_MAIN -o "$dir/replay" tests/fuzz/fuzz_stream.c runtime/front/common/mesh_frame.c "${rt[@]}" 2>"$dir/cc-replay.log"; then
     files=(tests/fuzz/regress/stream/*)
     [ -e "${files[0]}" ] || files=()
     { printf '\0'; cat "$dir/bunny00/bunny00.mcs"; } >"$dir/whole.in"
-    if out=$("$dir/replay" "${files[@]}" "$dir/whole.in" 2>&1); then
-        ok "the fuzz target's check replays ${#files[@]} finding(s) and a whole stream without a fault"
+    { printf '\0'; cat "$dir/bunnymesh/bunnymesh.mcs"; } >"$dir/whole-mesh.in"
+    if out=$("$dir/replay" "${files[@]}" "$dir/whole.in" "$dir/whole-mesh.in" 2>&1); then
+        ok "the fuzz target's check replays ${#files[@]} finding(s) and two whole streams (points; points and mesh) without a fault"
     else
         notok "fuzz findings replayed" "$(echo "$out" | head -c 300 | oneline)"
     fi

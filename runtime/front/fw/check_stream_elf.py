@@ -6,7 +6,7 @@ failed. The checks:
   1. no heap symbol (check_elf.py's list), as for every firmware;
   2. no model: no symbol of the bake (mc_model_NAME, mc_octree_NAME, mc_NAME_*, mc_app_model), so
      the model can only come over the wire;
-  3. the receive buffer is budget.json's stream bytes (MC_NAME_STREAM_BYTES), the frame buffers its
+  3. the receive buffer is budget.json's stream buffer (MC_NAME_STREAM_BYTES), the frame buffers its
      ram.color_buffer and ram.depth_buffer;
   4. fits the board: flash and static RAM plus the stack reservation within the .ld's sizes;
   5. the static stack bound (stack_bound.py, the renderer at the bake's depth) fits the reservation
@@ -49,10 +49,10 @@ def main():
           "found " + " ".join(found[:5]) if found else "")
 
     ram = budget.get("ram", {})
-    want = {"stream_buf": budget.get("stream", {}).get("bytes"), "color_buf": ram.get("color_buffer"),
+    want = {"stream_buf": budget.get("stream", {}).get("buffer"), "color_buf": ram.get("color_buffer"),
             "depth_buf": ram.get("depth_buffer")}
     bad = [f"{k}: ELF {syms.get(k)} vs budget {v}" for k, v in want.items() if v is None or syms.get(k) != v]
-    check(f"{elfname}: receive buffer of budget.json's stream bytes ({want['stream_buf']}) and frame buffers "
+    check(f"{elfname}: receive buffer of budget.json's stream buffer ({want['stream_buf']}) and frame buffers "
           f"of its sizes ({want['color_buf']} + {want['depth_buf']})", "; ".join(bad))
 
     ram0, rs, fs = board.get("__ram", 0x20000000), board.get("__ram_size"), board.get("__flash_size")

@@ -34,11 +34,37 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
     s->drawn_depth = 0;
     s->culled = 0;
     s->fill = fill;
+    s->lod_want = UINT32_MAX;
     if (mc_host_scene_has_mesh(s)) {
         mc_pmesh_lod_init(&s->lod, app->model->pmesh, app->pmesh_anc);
         mc_pmesh_lod_set(&s->lod, app->model->pmesh->vertices);
     }
     return mode == MC_HOST_POINTS || mc_host_scene_has_mesh(s) ? 0 : -1;
+}
+
+static void set_level(mc_host_scene *s)
+{
+    if (!s->lod.pm) return;
+    uint32_t level = s->lod_want;
+    if (s->lod_cap && level > s->lod_cap) level = s->lod_cap;
+    mc_pmesh_lod_set(&s->lod, level);
+}
+
+void mc_host_scene_set_level(mc_host_scene *s, uint32_t level)
+{
+    s->lod_want = level;
+    set_level(s);
+}
+
+void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t level)
+{
+    if (!pm) {
+        s->lod.pm = NULL;
+        return;
+    }
+    if (s->lod.pm != pm) mc_pmesh_lod_init(&s->lod, pm, s->app->pmesh_anc);
+    s->lod_cap = level;
+    set_level(s);
 }
 
 void mc_host_scene_auto(mc_host_scene *s, double target_ms)
@@ -62,6 +88,13 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
         return rc;
     }
     mc_front_mesh_stats st;
+    if (!s->lod.pm) {   /* a streamed mesh whose base has not come */
+        mc_clear(t);
+        *drawn = 0;
+        return MC_OK;
+    }
+    mc_front_style style = (mc_front_style)s->mode;
+    if (!s->lod.pm->opposite) style = MC_FRONT_SHADED;   /* a streamed mesh before its adjacency */
     const double t0 = mc_host_now_ms();
     if (s->target_ms > 0) {
         if (s->face_ms > 0) {
@@ -70,7 +103,7 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
         }
     }
     int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, s->app->pmesh_sdepth, v,
-                                 (mc_front_style)s->mode, t, &st);
+                                 style, t, &st);
     if (s->target_ms > 0) {
         const double ms = mc_host_now_ms() - t0;
         const double per = ms / (s->lod.faces ? s->lod.faces : 1u);
@@ -82,5 +115,5 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
 
 const uint8_t *mc_host_scene_palette(const mc_host_scene *s)
 {
-    return s->mode == MC_HOST_POINTS ? s->octree->palette : s->app->model->pmesh->palette;
+    return s->mode == MC_HOST_POINTS ? s->octree->palette : s->lod.pm ? s->lod.pm->palette : s->app->model->pmesh->palette;
 }

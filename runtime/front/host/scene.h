@@ -39,7 +39,10 @@ typedef struct mc_host_scene {
     unsigned drawn_depth;    /* points: the level the last frame drew (opt.max_error may draw shallower) */
     uint32_t culled;         /* points: the back-facing nodes it skipped (opt.cull) */
     mc_fill fill;            /* points */
-    mc_pmesh_lod lod;        /* the mesh part's level of detail (when the model has one) */
+    mc_pmesh_lod lod;        /* the mesh part's level of detail (when the model has one; a stream's:
+                                lod.pm NULL until its base has come) */
+    uint32_t lod_want;       /* the level asked for (--lod, the keys); drawn as far as it has come */
+    uint32_t lod_cap;        /* a streamed mesh: the finest level that has come (0: the whole mesh) */
     double target_ms;        /* > 0: automatic level of detail for this frame time */
     double face_ms;          /* its measured time per face (0: none yet) */
 } mc_host_scene;
@@ -58,6 +61,16 @@ void mc_host_scene_auto(mc_host_scene *s, double target_ms);
 
 /* Whether the model has a mesh part. */
 int mc_host_scene_has_mesh(const mc_host_scene *s);
+
+/* Sets the mesh's level of detail as asked (clamped to what the mesh has, and for a streamed mesh
+ * to what has come). */
+void mc_host_scene_set_level(mc_host_scene *s, uint32_t level);
+
+/* Draws a streamed mesh (stream.h) instead of the bake's in the mesh modes: pm, whose levels up to
+ * `level` have come (pm NULL: nothing yet; the mesh modes then draw an empty frame). Call it again
+ * as more comes. Until pm has its adjacency the line styles draw shaded. Not with --lod auto, whose
+ * search moves past what has come. */
+void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t level);
 
 /* Draws one frame into t; depth: the octree depth (points). *drawn: points (points) or faces drawn
  * (mesh). abort: polled by the point renderer only. Returns the renderer's MC_OK or MC_ERR_*; 1 when

@@ -55,6 +55,7 @@ int mc_host_stream_open(mc_host_stream *s, const mc_app *app, const char *src, c
         return -1;
     }
     mc_stream_init(&s->reader, app->stream_buf, app->stream_cap);
+    s->app = app;
     int fd;
     if (!strcmp(src, "-")) fd = STDIN_FILENO;
     else if (!strncmp(src, "tcp:", 4)) fd = connect_tcp(src + 4, why, why_n);
@@ -102,7 +103,21 @@ int mc_host_stream_pump(mc_host_stream *s, int block)
         }
     }
     s->depth = mc_stream_depth(&s->reader);
-    return s->depth > before;
+    const uint32_t level_before = s->mesh_level;
+    const int lines_before = s->mesh_lines;
+    const mc_pmesh *pm = mc_stream_pmesh(&s->reader), *bake = s->app->model->pmesh;
+    if (pm && s->error != 2) {
+        /* the app binding's mesh memory is sized for the bake's mesh (app.h) */
+        if (!bake || !s->app->pmesh_anc || !s->app->pmesh_facing || pm->vertices > bake->vertices ||
+            pm->faces > bake->faces || pm->index_bytes > bake->index_bytes) {
+            if (!s->done) finish(s, 2, 0);
+            else s->error = 2;
+        } else {
+            s->mesh_level = mc_stream_mesh_level(&s->reader);
+            s->mesh_lines = pm->opposite != 0;
+        }
+    }
+    return s->depth > before || s->mesh_level > level_before || s->mesh_lines > lines_before;
 }
 
 void mc_host_stream_drain(mc_host_stream *s)
@@ -112,23 +127,37 @@ void mc_host_stream_drain(mc_host_stream *s)
 
 const mc_octree *mc_host_stream_octree(const mc_host_stream *s) { return mc_stream_octree(&s->reader); }
 
+const mc_pmesh *mc_host_stream_pmesh(const mc_host_stream *s)
+{
+    return s->mesh_level ? mc_stream_pmesh(&s->reader) : NULL;
+}
+
 int mc_host_stream_ok(const mc_host_stream *s) { return s->done && s->error == MC_STREAM_OK; }
 
 void mc_host_stream_status(const mc_host_stream *s, char *line, size_t n)
 {
     const mc_stream *r = &s->reader;
-    char kept[64];
+    char kept[128], mesh[64] = "";
     if (s->depth) snprintf(kept, sizeof kept, "drawing depth %u, the last complete level", s->depth);
     else snprintf(kept, sizeof kept, "nothing was drawable");
-    if (s->error == 1)
+    if (s->mesh_level) {
+        const size_t k = strlen(kept);
+        snprintf(kept + k, sizeof kept - k, ", mesh level %lu", (unsigned long)s->mesh_level);
+        snprintf(mesh, sizeof mesh, ", mesh %lu of %lu vertices%s", (unsigned long)s->mesh_level,
+                 (unsigned long)r->pmesh.vertices, s->mesh_lines ? "" : " (no lines yet)");
+    }
+    if (s->error == 2)
+        snprintf(line, n, "stream: its mesh (%lu vertices, %lu faces) is larger than this viewer's mesh buffers; %s",
+                 (unsigned long)r->pmesh.vertices, (unsigned long)r->pmesh.faces, kept);
+    else if (s->error == 1)
         snprintf(line, n, "stream: read failed after %lu bytes: %s; %s", (unsigned long)r->len,
                  strerror(s->errno_at_fail), kept);
     else if (s->error)
         snprintf(line, n, "stream: %s at byte %lu; %s", mc_stream_error_name(s->error), (unsigned long)r->error_at,
                  kept);
     else if (s->done)
-        snprintf(line, n, "stream: complete, depth %u, %lu bytes", s->depth, (unsigned long)r->len);
+        snprintf(line, n, "stream: complete, depth %u%s, %lu bytes", s->depth, mesh, (unsigned long)r->len);
     else
-        snprintf(line, n, "stream: depth %u of %u after %lu of %lu bytes", s->depth, (unsigned)r->depth,
+        snprintf(line, n, "stream: depth %u of %u%s after %lu of %lu bytes", s->depth, (unsigned)r->depth, mesh,
                  (unsigned long)r->len, (unsigned long)r->total);
 }

@@ -189,8 +189,9 @@ static void put_status(const term_state *s)
                            s->app->model->name, s->drawn_depth, (unsigned)s->octree->depth, (unsigned)s->lay.w,
                            (unsigned)s->lay.h, s->frame_ms, (unsigned long)s->points, s->zoom, keys)
                 : snprintf(line, sizeof line, " %s | %s | %u/%u vertices | %.1f ms | %lu faces | zoom %.2f | %s",
-                           s->app->model->name, mc_host_mode_name(sc->mode), (unsigned)sc->lod.level,
-                           (unsigned)sc->lod.pm->vertices, s->frame_ms, (unsigned long)s->points, s->zoom, keys);
+                           s->app->model->name, mc_host_mode_name(sc->mode), sc->lod.pm ? (unsigned)sc->lod.level : 0u,
+                           sc->lod.pm ? (unsigned)sc->lod.pm->vertices : 0u, s->frame_ms, (unsigned long)s->points,
+                           s->zoom, keys);
     if (n < 0) n = 0;
     if (n > (int)sizeof line - 1) n = (int)sizeof line - 1;
     if (n > s->lay.cols) n = s->lay.cols;
@@ -280,11 +281,11 @@ static void handle_char(void *user, unsigned char c)
         if (mc_host_scene_has_mesh(s->scene)) s->scene->mode = (mc_host_mode)((s->scene->mode + 1) % 4);
         break;
     case '[': case ']':   /* half or twice the splits above the base mesh */
-        if (mc_host_scene_has_mesh(s->scene)) {
-            mc_pmesh_lod *lod = &s->scene->lod;
+        if (mc_host_scene_has_mesh(s->scene) && s->scene->lod.pm) {
+            const mc_pmesh_lod *lod = &s->scene->lod;
             uint32_t base = lod->pm->base_vertices, splits = lod->level - base;
             splits = c == '[' ? splits / 2 : splits ? splits * 2 : 1;
-            mc_pmesh_lod_set(lod, splits > lod->pm->vertices - base ? lod->pm->vertices : base + splits);
+            mc_host_scene_set_level(s->scene, splits > lod->pm->vertices - base ? lod->pm->vertices : base + splits);
         }
         break;
     default: break;
@@ -358,11 +359,12 @@ static int step(term_state *s, double *prev)
     if (s->stream && !s->stream->done) {
         if (mc_host_stream_pump(s->stream, 0)) {
             s->octree = s->scene->octree = mc_host_stream_octree(s->stream);
+            mc_host_scene_stream_mesh(s->scene, mc_host_stream_pmesh(s->stream), s->stream->mesh_level);
             s->fine_needed = 1;
         }
         if (s->stream->done) s->fine_needed = 1;   /* the status line changes */
     }
-    if (!s->octree) {   /* a stream with nothing drawable yet */
+    if (!s->octree) {   /* a stream with no drawable octree yet (the mesh modes wait for it too) */
         s->drawn_depth = 0;
         mc_tio_wait(s->stream->done ? -1 : 20);
         return read_keys(s, now_s()) < 0 || s->quit ? -1 : 0;

@@ -5,7 +5,7 @@
  *              --error PX --cull on|off --mode points|shaded|lines|shaded+lines --lod N]
  *   NAME-view --bench N [...]
  *   NAME-view --checksums [--ppm FILE | --png FILE] [--depth N --size WxH]
- *   NAME-view --stream SRC [...]   the points from a streamed bake (modelc --emit stream)
+ *   NAME-view --stream SRC [...]   a streamed bake (modelc --emit stream): its points, or its mesh
  *   NAME-view            interactive, when stdout is a terminal
  *
  * The model is compiled in; --stream reads its stream instead (stream_in.h). Host-only code (stdio, clocks, terminal) lives here,
@@ -67,9 +67,11 @@ static void usage(FILE *f)
             "  --lod N|auto    the mesh's level of detail: N vertices, from its base to its full count, or\n"
             "                  auto: the finest that keeps frames at --target-ms (default full)\n"
             "  --target-ms T   the frame time --lod auto holds (default 16.7)\n"
-            "  --stream SRC    draw the points from the model's stream (a bake with modelc --emit stream)\n"
-            "                  as it arrives from SRC: - (standard input), a file or FIFO, or tcp:HOST:PORT;\n"
-            "                  the deepest complete level is drawn (a line per level on stdout); a stream\n"
+            "  --stream SRC    draw the model's stream (a bake with modelc --emit stream) as it arrives from\n"
+            "                  SRC: - (standard input), a file or FIFO, or tcp:HOST:PORT; the points at the\n"
+            "                  deepest complete level, or (--mode, with --as both) the mesh at the finest\n"
+            "                  level that has come, at most --lod N (a line per level on stdout; the line\n"
+            "                  styles draw shaded until the mesh's adjacency, which comes last); a stream\n"
             "                  that ends early or fails its checks is reported and its last complete level\n"
             "                  drawn (exit status 1)\n"
             "  --help          this text\n"
@@ -263,7 +265,7 @@ int main(int argc, char **argv)
         if (!strcmp(lod_arg, "auto")) mc_host_scene_auto(&scene, target_ms);
         else if (parse_double(lod_arg, pm->base_vertices, pm->vertices, &dv) || dv != (uint32_t)dv)
             return die("--lod expects auto or a vertex count from the mesh's base to its full count", lod_arg);
-        else mc_pmesh_lod_set(&scene.lod, (uint32_t)dv);
+        else mc_host_scene_set_level(&scene, (uint32_t)dv);
     }
 
     if (check && !sized) {
@@ -276,26 +278,48 @@ int main(int argc, char **argv)
     if (stream_src) {
         char why[512];
         if (frames) return die("--stream and --bench exclude each other", NULL);
-        if (mode != MC_HOST_POINTS) return die("--stream draws points only", mc_host_mode_name(mode));
+        if (scene.target_ms > 0) return die("--stream and --lod auto exclude each other", NULL);
         if (mc_host_stream_open(&stream, &mc_app_model, stream_src, why, sizeof why)) return die(why, NULL);
         scene.octree = NULL;
+        mc_host_scene_stream_mesh(&scene, NULL, 0);
         if (check || png || ppm || !isatty(STDOUT_FILENO)) {
-            /* one-shot: read it all, a line per level as it becomes drawable */
-            while (!stream.done)
-                if (mc_host_stream_pump(&stream, 1))
+            /* one-shot: read it all, a line per level (octree depth, mesh level) as it becomes drawable */
+            unsigned depth_shown = 0;
+            uint32_t mesh_shown = 0;
+            int lines_shown = 0;
+            while (!stream.done) {
+                if (!mc_host_stream_pump(&stream, 1)) continue;
+                const unsigned long len = stream.reader.len, total = stream.reader.total;
+                if (stream.depth > depth_shown)
                     printf("stream: depth %u of %u after %lu of %lu bytes\n", stream.depth, (unsigned)stream.reader.depth,
-                           (unsigned long)stream.reader.len, (unsigned long)stream.reader.total);
+                           len, total);
+                if (stream.mesh_level > mesh_shown)
+                    printf("stream: mesh level %lu of %lu after %lu of %lu bytes\n", (unsigned long)stream.mesh_level,
+                           (unsigned long)stream.reader.pmesh.vertices, len, total);
+                if (stream.mesh_lines > lines_shown) printf("stream: mesh lines after %lu of %lu bytes\n", len, total);
+                depth_shown = stream.depth, mesh_shown = stream.mesh_level, lines_shown = stream.mesh_lines;
+            }
             if (mc_host_stream_ok(&stream))
                 printf("stream: complete, depth %u, %lu bytes\n", stream.depth, (unsigned long)stream.reader.len);
             fflush(stdout);
+            const int drawable = mode == MC_HOST_POINTS ? stream.depth != 0 : stream.mesh_level != 0;
             if (!mc_host_stream_ok(&stream)) {
-                char line[200];
+                char line[300];
                 mc_host_stream_status(&stream, line, sizeof line);
                 fprintf(stderr, "%s-view: %s\n", model->name, line);
-                if (!stream.depth) return 1;
+                if (!drawable) return 1;
                 stream_failed = 1;
+            } else if (!drawable) {   /* a whole stream of a points bake, read by a mesh mode */
+                return die("the stream has no mesh part (bake it with modelc --as both --emit stream)", stream_src);
             }
-            scene.octree = octree = mc_host_stream_octree(&stream);
+            if (mode != MC_HOST_POINTS) {
+                mc_host_scene_stream_mesh(&scene, mc_host_stream_pmesh(&stream), stream.mesh_level);
+                if (mode != MC_HOST_SHADED && !stream.mesh_lines)
+                    fprintf(stderr, "%s-view: drawing shaded: the line styles need the mesh's adjacency, which had not come\n",
+                            model->name);
+            }
+            scene.octree = mc_host_stream_octree(&stream);
+            if (scene.octree) octree = scene.octree;
             if (depth > octree->depth) depth = octree->depth;
         }
     }
@@ -330,6 +354,6 @@ int main(int argc, char **argv)
         printf("model %s depth %u size %ux%u points %u ms %.3f\n", model->name, scene.drawn_depth, w, h, drawn, ms);
     else
         printf("model %s mode %s lod %u of %u vertices, %u faces size %ux%u faces drawn %u ms %.3f\n", model->name,
-               mc_host_mode_name(mode), scene.lod.level, model->pmesh->vertices, scene.lod.faces, w, h, drawn, ms);
+               mc_host_mode_name(mode), scene.lod.level, scene.lod.pm->vertices, scene.lod.faces, w, h, drawn, ms);
     return stream_failed;
 }

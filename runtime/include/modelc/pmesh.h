@@ -88,7 +88,7 @@ typedef struct mc_pmesh_lod {
 #define MC_PMESH_LOD_BYTES(vertices, index_bytes) ((uint32_t)(vertices) * (uint32_t)(index_bytes))
 
 /* Starts at the base level: anc (MC_PMESH_LOD_BYTES, aligned for its entries) maps every vertex to
- * its root. Work: V. */
+ * its root. Reads the base vertices' tree records only. Work: V. */
 void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc);
 
 /* Refines or coarsens to level (clamped to V0 .. V); returns the level set. */

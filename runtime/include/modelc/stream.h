@@ -1,4 +1,4 @@
-/* Streamed octrees: a bake as one binary stream, coarse levels first, and its reader.
+/* Streamed bakes: a bake as one binary stream, coarse first, and its reader.
  *
  * Promise: mc_stream_feed takes a stream in pieces of any size (bytes as they arrive from a file, a
  * pipe, a socket, a fetch or a UART) into the caller's buffer, checks every complete record as it
@@ -7,14 +7,25 @@
  * octree at depth d (the same masks, colours, palette and cones, so the same pixels). Everything the
  * renderer relies on is checked before a level counts, with a CRC-32 on each record besides: node
  * counts against the masks above, no empty mask, colour indices within the palette, each cone's
- * subtree counts against the masks below it (they come with the level three below theirs). A stream that turns out truncated, corrupted, of
- * another version or larger than the buffer stops the reader with an error (sticky, with the byte
- * offset where it was found); what was drawable before stays drawable, so a front end keeps its last
- * good frame. No heap: the caller owns the buffer (sized at bake time: budget.json "stream") and
- * the mc_stream. Freestanding; work proportional to the bytes fed.
+ * subtree counts against the masks below it (they come with the level three below theirs).
+ * A version-2 stream then carries the bake's progressive mesh (pmesh.h), base mesh first, then its
+ * splits in order: mc_stream_pmesh describes it as soon as the base has come, and every level from
+ * the base to mc_stream_mesh_level is the baked mesh's level, vertex for vertex and face for face
+ * (so the shaded style draws the same pixels as the bake at that --lod); the line styles also need
+ * the adjacency, which comes last. The mesh's records are checked for what the level of detail and
+ * the renderers index with (every index in range, a split's vertex new and inside its parent's
+ * subtree, the parent already present, face counts, opposites that pair up), so a forged stream
+ * can draw wrong but never out of bounds.
+ * A stream that turns out truncated, corrupted, of another version or larger than the buffer stops
+ * the reader with an error (sticky, with the byte offset where it was found); what was drawable
+ * before stays drawable, so a front end keeps its last good frame. No heap: the caller owns the
+ * buffer (sized at bake time: budget.json "stream", MC_NAME_STREAM_BYTES: the stream, and for a
+ * mesh its arrays, MC_STREAM_MESH_BYTES, after it) and the mc_stream. Freestanding; work
+ * proportional to the bytes fed.
  *
- * The format, version 1 (all integers little-endian):
- *   header, 20 bytes:  "mcs" 0x1A | u16 version (1) | u8 depth D (1..MC_MAX_DEPTH) | u8 flags (0) |
+ * The format, versions 1 and 2 (all integers little-endian):
+ *   header, 20 bytes:  "mcs" 0x1A | u16 version (1 or 2) | u8 depth D (1..MC_MAX_DEPTH) |
+ *                      u8 flags (version 1: 0; version 2: 1, a mesh part follows the octree) |
  *                      u16 palette entries P (1..256) | u16 0 | u32 total bytes of the stream |
  *                      u32 CRC-32 of the 16 bytes before it
  *   then records:      u8 kind | u8 level | u16 0 | u32 payload bytes n | n bytes | u32 CRC-32 of the
@@ -24,10 +35,28 @@
  *                      N palette indices (l >= 1 and P > 1) | the 7-byte normal cones of level l-3's
  *                      nodes (octree.h), the first depth that culls with them, for l-3 >= 1 where the
  *                      bake has cones (told apart by n)
- *     kind 3, end:     no payload; last, and the stream's total is where it ends
- * A prefix that holds the header, the palette and the levels 0..d is a drawable model of depth d:
- * each level costs about four times the one above it, so the first picture comes after a small
- * part of the bytes. The generator writes it with --emit stream (gen/emit_stream.cpp).
+ *   version 2 only, after the palette, in this order among themselves but interleaved with the
+ *   levels (level 0; ib, hb: the index and half-edge widths):
+ *     kind 4, mesh:    u32 V, V0, F, F0, E | u8 ib (2: V <= 65535, else 4) | u8 hb (2: 4 F + 3 <
+ *                      65535, else 4) | u8 closed (0, 1) | u8 0 | i16 crease cosine (Q14) |
+ *                      u16 palette entries Pm (1..256) | Pm RGB triplets (mesh_render.h)
+ *     kind 5, base:    per base vertex, in index order: u[ib] index (the first 0, each next the
+ *                      one before plus its subtree size) | 6-byte position | u[ib] subtree size
+ *                      (the sizes add up to V); then F0 faces of 3 u[ib] corners
+ *     kind 6, splits:  u32 first split (the splits before it all read) | u32 count k >= 1 | per
+ *                      split: u[ib] vertex | u8 faces it adds (1, 2) | 6-byte position |
+ *                      u[ib] parent | u[ib] subtree size | its faces' 3 u[ib] corners each;
+ *                      until all V - V0 splits and F faces have come
+ *     kind 7, adjacency: F records of 3 u[hb] opposites, then E u[hb] half-edges: the edge order
+ *   kind 3, end:       no payload; last, and the stream's total is where it ends
+ * The mesh records hold pmesh.h's arrays in split order: the base and each batch of splits bring
+ * their vertices' position and tree records (placed at their indices in the buffer's mesh arrays)
+ * and their faces (appended). A prefix that holds the header, the palette and the levels 0..d is a
+ * drawable octree of depth d: each level costs about four times the one above it, so the first
+ * picture comes after a small part of the bytes. The generator (--emit stream, gen/emit_stream.cpp;
+ * version 2 for bakes --as both) puts the mesh header and base right after the palette and then
+ * merges the levels with the batches of splits, each next record from the part that has had fewer
+ * bytes so far, so both parts' pictures refine from the first bytes; the adjacency comes last.
  */
 #ifndef MODELC_STREAM_H
 #define MODELC_STREAM_H
@@ -35,10 +64,18 @@
 #include <stdint.h>
 #include "config.h"
 #include "octree.h"
+#include "pmesh.h"
 
-#define MC_STREAM_VERSION 1
+#define MC_STREAM_VERSION 2   /* the newest this reader takes (it takes 1 too) */
 #define MC_STREAM_HEADER_BYTES 20
 #define MC_STREAM_RECORD_BYTES 12   /* a record's own bytes around its payload */
+
+/* A version-2 stream's mesh arrays in the buffer, after the stream's bytes (rounded up to 4):
+ * positions, tree records, splits and corners of a mesh of V vertices (V0 in the base), F faces,
+ * index width ib. The adjacency is read where it lies in the stream. */
+#define MC_STREAM_MESH_BYTES(V, V0, F, ib) \
+    (6u * (uint32_t)(V) + 2u * (ib) * (uint32_t)(V) + ((ib) + 1u) * ((uint32_t)(V) - (uint32_t)(V0)) + \
+     3u * (ib) * (uint32_t)(F))
 
 enum {
     MC_STREAM_OK = 0,
@@ -53,7 +90,8 @@ enum {
     MC_STREAM_ERR_CONE = -9,       /* a cone's subtree counts not what the masks below it say */
     MC_STREAM_ERR_TRAILING = -10,  /* bytes after the end record */
     MC_STREAM_ERR_TRUNCATED = -11, /* the input ended before the end record (mc_stream_end) */
-    MC_STREAM_ERR_ARG = -12        /* a NULL pointer */
+    MC_STREAM_ERR_ARG = -12,       /* a NULL pointer */
+    MC_STREAM_ERR_MESH = -13       /* a mesh record whose indices or counts do not fit the mesh */
 };
 
 typedef struct mc_stream {
@@ -75,6 +113,12 @@ typedef struct mc_stream {
     mc_octree octree;
     mc_octree_level level[MC_MAX_DEPTH + 1];
     mc_chunk chunks[MC_MAX_DEPTH + 1][3][2];   /* per level: masks, colours, cones; one chunk each */
+    /* the mesh part (version 2): its descriptor, once its header has come; one chunk per array */
+    uint8_t version, has_mesh;
+    uint8_t mesh_state;            /* 0 none yet, 1 header, 2 base, 3 adjacency (complete) */
+    uint32_t splits_read, faces_read;
+    mc_pmesh pmesh;
+    mc_chunk mesh_chunks[6][2];    /* positions, tree, splits, corners, opposite, edge order */
 } mc_stream;
 
 /* Starts reading a stream into buf (cap bytes). */
@@ -92,6 +136,14 @@ int mc_stream_end(mc_stream *s);
  * valid while s and its buffer live; feeding more may deepen it. */
 unsigned mc_stream_depth(const mc_stream *s);
 const mc_octree *mc_stream_octree(const mc_stream *s);
+
+/* A version-2 stream's mesh part: NULL before its base has come. Its levels from the base to
+ * mc_stream_mesh_level are drawable (mc_pmesh_lod_init, then mc_pmesh_lod_set up to that level: the
+ * descriptor's vertices is the full mesh's, so a front end clamps); its opposite and edge_order
+ * are NULL until the adjacency has come, and the line styles need them. Valid while s and its
+ * buffer live; feeding more raises the level. */
+const mc_pmesh *mc_stream_pmesh(const mc_stream *s);
+uint32_t mc_stream_mesh_level(const mc_stream *s);
 
 /* A short name of an MC_STREAM_* code ("ok", "crc", ...). */
 const char *mc_stream_error_name(int error);
