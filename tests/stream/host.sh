@@ -204,6 +204,29 @@ if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit st
     "$mview" --mode shaded --yaw 30 --pitch 20 --ppm "$dir/mref.ppm" >/dev/null
     cmp -s "$dir/mcut.ppm" "$dir/mref.ppm" && grep -q "mesh level $full$" "$dir/mcut.err" || problems+="a byte short of the adjacency: $(oneline <"$dir/mcut.err"); "
     check_problems "mesh: cut after the base, a batch of splits, the middle one and the last: exit 1, 'truncated at byte k', the frame of the compiled-in mesh at that level (--lod), shaded and (lines) drawn shaded with a note; --lod below what came; a byte short of the adjacency: the full level, shaded" "$problems"
+    if command -v tmux >/dev/null; then   # interactive: the mesh drawn as its levels come
+        sock=mcmesh$$
+        tm() { tmux -u -L "$sock" -f /dev/null "$@"; }
+        mline() { tm capture-pane -p -t s 2>/dev/null | grep -E ' shaded \| [0-9]+/[0-9]+ vertices ' | tail -n 1; }
+        mwait() { for _ in $(seq 400); do mline | grep -qE "$1" && return 0; sleep 0.05; done; return 1; }
+        rm -f "$dir/mfifo" && mkfifo "$dir/mfifo"
+        export TERM=xterm-256color LC_ALL=C.UTF-8
+        tm new-session -d -s s -x 200 -y 40 "$PWD/$mview --stream $PWD/$dir/mfifo --mode shaded"
+        exec 3>"$dir/mfifo"
+        read -r at level <<<"${mlevels[$((n / 2))]}"
+        head -c "$at" "$mmcs" >&3
+        problems=""
+        mwait " shaded \| $level/$full vertices .*mesh $level of $full vertices \(no lines yet\)" || problems+="half sent: '$(mline)'; "
+        tail -c +$((at + 1)) "$mmcs" >&3
+        exec 3>&-
+        mwait " shaded \| $full/$full vertices .*stream: complete" || problems+="the rest sent: '$(mline)'; "
+        tm send-keys -t s q
+        for _ in $(seq 100); do tm has-session -t s 2>/dev/null || break; sleep 0.05; done
+        tm kill-server 2>/dev/null
+        check_problems "mesh, interactive (tmux, --mode shaded): level $level of $full on screen once the stream came up to its batch, then the full level when the rest came" "$problems"
+    else
+        notok "interactive --stream --mode shaded" "tmux missing (make deps installs it)"
+    fi
     problems=""
     rm -f "$dir/refused.ppm"
     "$mview" --stream "$mcs" --mode shaded --ppm "$dir/refused.ppm" >/dev/null 2>"$dir/refused.err"
