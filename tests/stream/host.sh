@@ -132,29 +132,35 @@ rc=$?
     problems+="version 3: exit $rc, $(oneline <"$dir/version.err"); "
 check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 3: 'version at byte 4', no file; exit 1 both" "$problems"
 
-# interactive, in a tmux pane: levels drawn as they arrive over a FIFO, then damage: the error in
-# the status line and the last good level still on screen
-if command -v tmux >/dev/null; then
-    sock=mcstream$$
+# interactive FILE CUT STATUS FIRST REST VIEWER ARGS...: the viewer in a tmux pane reading a FIFO; FILE's
+# first CUT bytes sent, the status line (the last line matching STATUS) must match FIRST within 20 s;
+# then the rest sent, and it must match REST. Prints the problems, if any.
+interactive() {
+    local file=$1 cut=$2 status_re=$3 first=$4 rest=$5 sock=mcstream$$ fifo=$dir/ififo$$ problems=""
+    shift 5
     tm() { tmux -u -L "$sock" -f /dev/null "$@"; }
-    line() { tm capture-pane -p -t s 2>/dev/null | grep -E ' depth [0-9]+/[0-9]+ ' | tail -n 1; }
-    wait_for() {   # REGEX: the status line matches it within 20 s
-        for _ in $(seq 400); do line | grep -qE "$1" && return 0; sleep 0.05; done
-        return 1
-    }
-    mkfifo "$dir/ififo"
-    export TERM=xterm-256color LC_ALL=C.UTF-8
-    tm new-session -d -s s -x 200 -y 40 "$PWD/$view --stream $PWD/$dir/ififo"
-    exec 3>"$dir/ififo"
-    head -c "${ends[2]}" "$dir/flip.mcs" >&3
-    problems=""
-    wait_for "depth 3/3 .*stream: depth 3 of 7 after ${ends[2]} of $size bytes" || problems+="levels 1-3 sent: '$(line)'; "
-    tail -c +$((ends[2] + 1)) "$dir/flip.mcs" >&3
+    line() { tm capture-pane -p -t s 2>/dev/null | grep -E "$status_re" | tail -n 1; }
+    wait_for() { for _ in $(seq 400); do line | grep -qE "$1" && return 0; sleep 0.05; done; return 1; }
+    rm -f "$fifo" && mkfifo "$fifo"
+    TERM=xterm-256color LC_ALL=C.UTF-8 tm new-session -d -s s -x 200 -y 40 "$* --stream $PWD/$fifo"
+    exec 3>"$fifo"
+    head -c "$cut" "$file" >&3
+    wait_for "$first" || problems+="the first $cut bytes sent: '$(line)'; "
+    tail -c +$((cut + 1)) "$file" >&3
     exec 3>&-
-    wait_for "depth 4/4 .*stream: crc at byte [0-9]+; drawing depth 4, the last complete level" || problems+="the rest, damaged: '$(line)'; "
+    wait_for "$rest" || problems+="the rest sent: '$(line)'; "
     tm send-keys -t s q
     for _ in $(seq 100); do tm has-session -t s 2>/dev/null || break; sleep 0.05; done
     tm kill-server 2>/dev/null
+    echo "$problems"
+}
+
+# interactive, in a tmux pane: levels drawn as they arrive over a FIFO, then damage: the error in
+# the status line and the last good level still on screen
+if command -v tmux >/dev/null; then
+    problems=$(interactive "$dir/flip.mcs" "${ends[2]}" ' depth [0-9]+/[0-9]+ ' \
+        "depth 3/3 .*stream: depth 3 of 7 after ${ends[2]} of $size bytes" \
+        "depth 4/4 .*stream: crc at byte [0-9]+; drawing depth 4, the last complete level" "$PWD/$view")
     check_problems "interactive (tmux): depth 3 on screen once levels 1-3 came through a FIFO; after the rest with a flipped byte in level 5, the crc error in the status line and depth 4 drawn" "$problems"
 else
     notok "interactive --stream" "tmux missing (make deps installs it)"
@@ -205,24 +211,10 @@ if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit st
     cmp -s "$dir/mcut.ppm" "$dir/mref.ppm" && grep -q "mesh level $full$" "$dir/mcut.err" || problems+="a byte short of the adjacency: $(oneline <"$dir/mcut.err"); "
     check_problems "mesh: cut after the base, a batch of splits, the middle one and the last: exit 1, 'truncated at byte k', the frame of the compiled-in mesh at that level (--lod), shaded and (lines) drawn shaded with a note; --lod below what came; a byte short of the adjacency: the full level, shaded" "$problems"
     if command -v tmux >/dev/null; then   # interactive: the mesh drawn as its levels come
-        sock=mcmesh$$
-        tm() { tmux -u -L "$sock" -f /dev/null "$@"; }
-        mline() { tm capture-pane -p -t s 2>/dev/null | grep -E ' shaded \| [0-9]+/[0-9]+ vertices ' | tail -n 1; }
-        mwait() { for _ in $(seq 400); do mline | grep -qE "$1" && return 0; sleep 0.05; done; return 1; }
-        rm -f "$dir/mfifo" && mkfifo "$dir/mfifo"
-        export TERM=xterm-256color LC_ALL=C.UTF-8
-        tm new-session -d -s s -x 200 -y 40 "$PWD/$mview --stream $PWD/$dir/mfifo --mode shaded"
-        exec 3>"$dir/mfifo"
         read -r at level <<<"${mlevels[$((n / 2))]}"
-        head -c "$at" "$mmcs" >&3
-        problems=""
-        mwait " shaded \| $level/$full vertices .*mesh $level of $full vertices \(no lines yet\)" || problems+="half sent: '$(mline)'; "
-        tail -c +$((at + 1)) "$mmcs" >&3
-        exec 3>&-
-        mwait " shaded \| $full/$full vertices .*stream: complete" || problems+="the rest sent: '$(mline)'; "
-        tm send-keys -t s q
-        for _ in $(seq 100); do tm has-session -t s 2>/dev/null || break; sleep 0.05; done
-        tm kill-server 2>/dev/null
+        problems=$(interactive "$mmcs" "$at" ' shaded \| [0-9]+/[0-9]+ vertices ' \
+            " shaded \| $level/$full vertices .*mesh $level of $full vertices \(no lines yet\)" \
+            " shaded \| $full/$full vertices .*stream: complete" "$PWD/$mview" --mode shaded)
         check_problems "mesh, interactive (tmux, --mode shaded): level $level of $full on screen once the stream came up to its batch, then the full level when the rest came" "$problems"
     else
         notok "interactive --stream --mode shaded" "tmux missing (make deps installs it)"
