@@ -304,14 +304,15 @@ STRESS_VIEWS ?= 10000000
 # and the freestanding builds of the runtime at every optimisation level, the leaf switch at each
 # (make test: -O0 -O2 -Os on the Cortex-M0, fewer on x86-64, the switch at -O2), and the unit tests
 # under the sanitizers at every MC_FRAC_BITS the plain run tests (make test: the default), and the
-# renders with the leaf switch under the sanitizers (make test: the loop form there), and the
-# generator suite with a depth-10 bake's levels checked too
+# renders with the leaf switch under the sanitizers (make test: the loop form there), the
+# generator suite with a depth-10 bake's levels checked too, and every point set of tests/points
 stress: $(MODELC) $(BUILD)/models/bunny00.off
-	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 STRESS_SAN_VIEWS=10000 tests/stress/suite.sh; s=$$?; \
+	@STRESS_VIEWS=$(STRESS_VIEWS) STRESS_JOBS=2 STRESS_F_VIEWS=100000 STRESS_SAN_VIEWS=10000 STRESS_ALT_SWITCH=1 tests/stress/suite.sh; s=$$?; \
 	  UNIT_SWITCH_ALL=1 UNIT_OPT_LEVELS="-O0 -O1 -O2 -O3 -Os" tests/unit/suite.sh || s=1; \
 	  SANITIZE=1 UNIT_SAN_FORMATS="15 8 24" tests/unit/suite.sh || s=1; \
 	  SANITIZE=1 RENDER_SAN_SWITCH=1 tests/render/suite.sh || s=1; \
-	  GEN_DEEP=1 tests/gen/suite.sh || s=1; exit $$s
+	  GEN_DEEP=1 tests/gen/suite.sh || s=1; \
+	  POINTS_ALL=1 tests/points/suite.sh || s=1; exit $$s
 
 clean:
 	rm -rf $(BUILD)

@@ -43,22 +43,36 @@ if [ "$compile" != 1 ] || [ -z "$out" ] || [ -z "$src" ] || [ "${src#several}" !
     exec "$cc" "$@"
 fi
 dir=build/tests/objcache
-mkdir -p "$dir"
-real=$(readlink -f "$(command -v "$cc")" 2>/dev/null || echo "$cc")
-key=$({ echo "$real ${nonpp[*]} | $src"; "$cc" "${args[@]}" -E 2>/dev/null || echo "preprocessing failed $$ $RANDOM"; } |
-    md5sum | cut -c1-24)
-base=$dir/$(basename "${src%.*}")-$key
-if [ ! -f "$base.o" ]; then
-    find "$dir" -maxdepth 1 -type f -mtime +7 -delete 2>/dev/null
+[ -d "$dir" ] || mkdir -p "$dir"
+# (a hit runs the preprocessor and md5sum, and copies or prints: no other program, as most calls hit)
+real=$(type -P -- "$cc") || real=$cc
+[ -L "$real" ] && real=$(readlink -f "$real")
+key=$({ echo "$real ${nonpp[*]} | $src"; "$cc" "${args[@]}" -E 2>/dev/null || echo "preprocessing failed $$ $RANDOM"; } | md5sum)
+name=${src##*/}
+base=$dir/${name%.*}-${key:0:24}
+# what the compile writes: the object, and with -fstack-usage and -fcallgraph-info its .su and .ci
+files=("$base.o")
+[[ " ${nonpp[*]} " == *" -fstack-usage "* ]] && files+=("$base.su")
+[[ " ${nonpp[*]} " == *" -fcallgraph-info"* ]] && files+=("$base.ci")
+hit=1
+for f in "${files[@]}"; do [ -f "$f" ] || hit=0; done
+if [ "$hit" = 0 ]; then
+    # $dir/.day: a day older than the last miss (an object touched since is newer); files unused for
+    # a week are removed
+    touch -d '1 day ago' "$dir/.day"
+    find "$dir" -maxdepth 1 -type f ! -name .day -mtime +7 -delete 2>/dev/null
     tmpd=$(mktemp -d "$dir/tmp.XXXXXX") || exit 1
     "$cc" "${args[@]}" -c -o "$tmpd/o.o" || { st=$?; rm -rf "$tmpd"; exit $st; }
     for x in su ci; do [ -f "$tmpd/o.$x" ] && mv "$tmpd/o.$x" "$base.$x"; done
     mv "$tmpd/o.o" "$base.o"
     rm -rf "$tmpd"
-else
-    touch "$base.o"
+elif [ "$base.o" -ot "$dir/.day" ]; then
+    touch "${files[@]}"   # in use: kept a week more (touched at most once a day)
 fi
 if [ "$print" = 1 ]; then echo "$base.o"; exit 0; fi
 cp "$base.o" "$out"
-for x in su ci; do [ -f "$base.$x" ] && cp "$base.$x" "${out%.o}.$x"; done
+# the .su and .ci beside it: small text files, copied without a program
+for x in su ci; do
+    if [ -f "$base.$x" ]; then IFS= read -r -d '' text <"$base.$x"; printf '%s' "$text" >"${out%.o}.$x"; fi
+done
 exit 0

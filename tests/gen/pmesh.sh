@@ -29,6 +29,13 @@ TAP_PREFIX="pmesh: "
 temp_dir
 out=$tmp/out
 rt=$(rt_objs | tr '\n' ' ')   # the runtime as the viewers have it
+# the double-precision references the checker links, compiled once (the same for every bake)
+ref_objs=""
+for f in raster_ref xform_ref; do
+    gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include -c -o "$tmp/$f.o" "runtime/ref/$f.c" 2>"$tmp/$f.cc" ||
+        { notok "runtime/ref/$f.c compiles" "$(head -n 3 "$tmp/$f.cc" | oneline)"; exit 1; }
+    ref_objs+=" $tmp/$f.o"
+done
 
 # canon FILE: the faces of a dump, each rotated to start at its smallest corner (orientation kept),
 # sorted: two dumps of the same oriented faces give the same text
@@ -56,14 +63,19 @@ bake_check() {
         return 1
     fi
     checker=$tmp/check_$name
-    if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
-        -o "$checker" tests/gen/pmesh_check.c runtime/ref/{raster_ref,xform_ref}.c $rt "$bake"/*.c -lm \
-        >"$tmp/$name.cc" 2>&1; then
+    # the bake's files compiled once, for both checkers
+    local bobjs=$tmp/objs-$name
+    mkdir -p "$bobjs"
+    # shellcheck disable=SC2086
+    if ! (cd "$bobjs" && gcc -std=c99 -O2 -Wall -Wextra -Werror -I"$OLDPWD/runtime/include" -c "$bake"/*.c) \
+        >"$tmp/$name.cc" 2>&1 ||
+        ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
+            -o "$checker" tests/gen/pmesh_check.c $ref_objs $rt "$bobjs"/*.o -lm >>"$tmp/$name.cc" 2>&1; then
         notok "$label: the bake compiles with the runtime (-Wall -Wextra -Werror)" "$(head -n 3 "$tmp/$name.cc" | oneline)"
         return 1
     fi
     if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
-        -o "$checker-sil" tests/gen/sil_check.c $rt "$bake"/*.c -lm >"$tmp/$name.sil.cc" 2>&1; then
+        -o "$checker-sil" tests/gen/sil_check.c $rt "$bobjs"/*.o -lm >"$tmp/$name.sil.cc" 2>&1; then
         notok "$label: the silhouette checker compiles" "$(head -n 3 "$tmp/$name.sil.cc" | oneline)"
         return 1
     fi
@@ -109,8 +121,8 @@ same_as_openmesh() {
     local label=$1 file=$2 n=$3 name
     shift 3
     name=$(echo "$label" | tr -c 'a-z0-9\n' '_')
-    if [ $# -eq 0 ] && [ -s "$tmp/openmesh-$name-$n.txt" ]; then
-        # dumped by bake_check's bake of the same file with the same options
+    if [ -s "$tmp/openmesh-$name-$n.txt" ]; then
+        # dumped by bake_check's bake of the same file with the same options (the same label)
         cp "$tmp/openmesh-$name-$n.txt" "$tmp/openmesh.txt"
     elif ! "$modelc" "$file" -o "$tmp/dump" --name "$name" --depth 5 --as both -q "$@" \
         --dump-pmesh-level "$n:$tmp/openmesh.txt" >"$tmp/dump.log" 2>&1; then
@@ -233,7 +245,9 @@ check_problems "components: every one of the 40 tetrahedra keeps at least one ve
 
 # ---- --max-faces ---------------------------------------------------------------------------------
 src=$(model_file bunny00)
-if bake_check "bunny00 --max-faces 10000" "$src" --max-faces 10000; then
+# (bunny00 is closed, of genus 0: 10000 faces have 5002 vertices, the level same_as_openmesh checks
+# below, so the bake dumps OpenMesh's decimation at it; at another finest level it bakes its own dump)
+if dump_level=5002 bake_check "bunny00 --max-faces 10000" "$src" --max-faces 10000; then
     r=$(python3 -c "import json; p=json.load(open('$bake/budget.json'))['pmesh']; print(p['faces'], p['vertices'])")
     read -r F V <<<"$r"
     check_problems "bunny00 --max-faces 10000: the finest level has 9999 or 10000 faces" \

@@ -28,9 +28,13 @@ rt=$(rt_objs | tr '\n' ' ')
 link() { gcc -std=c99 -O1 -Iruntime/include -o "$2" tests/gen/dump.c $rt "$1"/*.c; }
 
 # chunking: small chunks and small files must change nothing but the split (at depth 7: 64-byte
-# chunks of depth 8 make some 1,500 files, and compiling them was most of this suite's time)
+# chunks of depth 8 make some 1,500 files, and compiling them was most of this suite's time). A
+# file holds 4 chunks (--file-bytes), the 64-byte chunks' 32 (2048 bytes: 49 files, not 404, each a
+# compiler run; the 1000-byte chunks check --file-bytes), with GEN_DEEP=1 (make stress) 4 too
 for limit in 64 1000 65536; do
-    "$modelc" build/models/bunny00.off -o "$tmp/chunk$limit" --name bunny -q --depth 7 --chunk-bytes $limit --file-bytes $((limit * 4))
+    fbytes=$((limit * 4))
+    [ "$fbytes" -lt 2048 ] && [ "${GEN_DEEP:-0}" != 1 ] && fbytes=2048
+    "$modelc" build/models/bunny00.off -o "$tmp/chunk$limit" --name bunny -q --depth 7 --chunk-bytes $limit --file-bytes $fbytes
     if link "$tmp/chunk$limit/bunny" "$tmp/dump$limit" && "$tmp/dump$limit" $limit >"$tmp/dump$limit.txt"; then
         ok "--chunk-bytes $limit: every chunk within the limit, counts add up, chunks end between the groups read at once"
     else

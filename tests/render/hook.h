@@ -1,4 +1,6 @@
-/* Forced into every file of the render test so the runtime's MC_PLOT_HOOK can call the recorder. */
+/* Forced into octree_render.c (the one source that calls MC_PLOT_HOOK) and the other files of the
+ * render and stress tests, so that the runtime's MC_PLOT_HOOK can call the recorder each defines:
+ * one name and one header for both, so that their runtime objects are the same (tests/cc_cached.sh). */
 #include <stdint.h>
 #if defined(MC_FLOAT) && MC_FLOAT
 void record_point(float fx, float fy, const uint8_t *color);   /* float pixels (config.h) */

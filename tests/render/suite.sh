@@ -24,22 +24,28 @@ default_flags=()
 [ "${SANITIZE:-0}" = 1 ] && [ "${RENDER_SAN_SWITCH:-0}" != 1 ] && default_flags=(-DMC_LEAF_SWITCH=0)
 status=0
 hook=('-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h)
+rt_cflags=$(mkvar RT_CFLAGS)   # -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
+# obj_of FORM FILE: where FILE's object for that form is kept
+obj_of() { local f=${2%.c}; echo "$out/obj-$1/${f//\//_}.o"; }
 # compile FORM FILE FLAGS...: FILE's object for one form of the renderer, built once (the runtime,
 # the reference and compare.c are the same for every model: only the model's data is linked anew)
-# (runtime/src through the shared object cache, tests/lib.sh cc_obj: a runtime source the form's macros
-# do not reach, every one but octree_render.c for the branch, select and loop forms, is compiled once)
+# The runtime is compiled as the Makefile compiles it (RT_CFLAGS), through the shared object cache
+# (tests/lib.sh cc_obj), the plot hook in octree_render.c only (no other source calls it): a source
+# the form's macros do not reach is compiled once for every form, and with the same flags elsewhere
+# (tests/stress/suite.sh, which has the same hook; under the sanitizers tests/unit/suite.sh's
+# runtime archive) once for the whole run. The object is linked into the form's directory, so that
+# the form's next models do not ask the cache again.
 compile() {
-    local form=$1 src=$2 obj
+    local form=$1 src=$2 obj o h=()
     shift 2
-    if [ "${src#runtime/src/}" != "$src" ]; then
-        # shellcheck disable=SC2086
-        cc_obj "$src" gcc -std=c99 $flags -Wall -Wextra -Werror "$@" -Iruntime/include -Iruntime/ref "${hook[@]}" \
-            2>>"$out/build-$form.log"
-        return
-    fi
-    obj=$out/obj-$form/$(echo "${src%.c}" | tr '/' '_').o
+    obj=$(obj_of "$form" "$src")
     mkdir -p "$out/obj-$form"
-    if [ ! -f "$obj" ]; then
+    if [ "${src#runtime/src/}" != "$src" ]; then
+        [ "$src" = runtime/src/octree_render.c ] && h=("${hook[@]}")
+        # shellcheck disable=SC2086
+        o=$(cc_obj "$src" gcc $flags $rt_cflags "$@" "${h[@]}" 2>>"$out/build-$form.log") &&
+            ln -sf "$PWD/$o" "$obj" || return 1
+    else
         # shellcheck disable=SC2086
         gcc -std=c99 $flags -Wall -Wextra -Werror "$@" -Iruntime/include -Iruntime/ref "${hook[@]}" \
             -c -o "$obj.tmp" "$src" 2>>"$out/build-$form.log" && mv "$obj.tmp" "$obj" || return 1
@@ -52,7 +58,8 @@ build() {
     shift 2
     rm -rf "$out/obj-$form-$m"
     for f in tests/render/compare.c runtime/ref/ref.c runtime/src/*.c; do
-        o=$(compile "$form" "$f" "$@") || { head -n 3 "$out/build-$form.log" | tr '\n' ' '; return 1; }
+        o=$(obj_of "$form" "$f")
+        [ -f "$o" ] || o=$(compile "$form" "$f" "$@") || { head -n 3 "$out/build-$form.log" | tr '\n' ' '; return 1; }
         objs+=("$o")
     done
     for f in "build/$m"/*.c; do

@@ -4,7 +4,8 @@
  *                        property and a summary line "# views ... seconds ..."
  *
  * Linked with one model's generated files and a runtime compiled with MC_PLOT_HOOK pointing at
- * stress_point below (see tests/stress/suite.sh), so every point mc_octree_render puts on screen is
+ * record_point below (see tests/stress/suite.sh; the hook tests/render/ uses too, so that the two
+ * suites share the runtime's objects), so every point mc_octree_render puts on screen is
  * recorded with its Q F position and the address of its palette index (which names the leaf).
  *
  * Views: every angle (mostly one turn, sometimes any int32), zoom log-uniform over [1/64, 64] and
@@ -115,13 +116,13 @@ static mc_ref_point ref_pts[MAX_PTS];
 static size_t n_ref;
 
 #if MC_FLOAT
-void stress_point(float fx, float fy, const uint8_t *color)
+void record_point(float fx, float fy, const uint8_t *color)
 {
     if (n_fixed < MAX_PTS) fixed_pts[n_fixed] = (fpt){color, fx, fy};
     n_fixed++;
 }
 #else
-void stress_point(int32_t fx, int32_t fy, const uint8_t *color)
+void record_point(int32_t fx, int32_t fy, const uint8_t *color)
 {
     if (n_fixed < MAX_PTS)
         fixed_pts[n_fixed] = (fpt){color, fx / (double)(1 << MC_FRAC_BITS), fy / (double)(1 << MC_FRAC_BITS)};

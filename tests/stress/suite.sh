@@ -9,7 +9,9 @@
 #   STRESS_F_VIEWS views of each of three more optimised runs: MC_FRAC_BITS 8 and 24, and the float
 #                  build (tests/accuracy/pos_single.h; default STRESS_VIEWS / 10)
 #   STRESS_SEED    first seed (default 1)
-# make stress runs it with 10^7 views on two processes.
+#   STRESS_ALT_SWITCH=1  the float build against the branch depth test with the leaf switch (default:
+#                  with the loop, one compile of the switch fewer)
+# make stress runs it with 10^7 views on two processes and STRESS_ALT_SWITCH=1.
 # Prints one line per check, "ok - NAME" or "not ok - NAME: why"; exits non-zero if any failed.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
@@ -40,13 +42,17 @@ fi
 # build OUTPUT FLAGS...: the runtime (the select form of the depth test, plus LEAVES) with the plot
 # hook into the test, and a second copy of octree_render.c (and target.c's mc_clear) in the form ALT
 # (named ALT_NAME; entry points renamed, no plot hook) that stress.c checks against it (check 5)
-# (the point renderer's modules only, not the mesh and tracker ones that stress.c never calls: each
-# build compiles them anew with its own flags; one missing fails the link)
-POINT_RT=()
-for f in camera finish fixed octree_render sintab target trig xform; do POINT_RT+=("runtime/src/$f.c"); done
+# (the point renderer's modules only, not the mesh and tracker ones that stress.c never calls: one
+# missing fails the link). The runtime is compiled as the Makefile compiles it (RT_CFLAGS), with
+# tests/render/'s plot hook in octree_render.c, through the shared object cache (tests/lib.sh cc_obj):
+# the -O2 and float builds' objects are tests/render/suite.sh's default and float forms', the
+# sanitized build's its sanitized run's and tests/unit/suite.sh's, compiled once for the whole run.
+POINT_RT=(camera finish fixed octree_render sintab target trig xform)
+rt_cflags=$(mkvar RT_CFLAGS)   # -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include
+hook=('-DMC_PLOT_HOOK(fx,fy,c)=record_point(fx,fy,c)' -include tests/render/hook.h)
 LEAVES=() ALT=(-DMC_DEPTH_SELECT=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)"
 build() {
-    local prog=$1
+    local prog=$1 f o h objs=()
     shift
     # shellcheck disable=SC2068
     gcc -std=c99 "$@" "${ALT[@]}" -DMC_TEST_CLIPPED_SQUARES=1 -Dmc_octree_render=mc_octree_render_alt -Dmc_octree_lod_depth=mc_octree_lod_depth_alt -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
@@ -54,11 +60,18 @@ build() {
     # shellcheck disable=SC2068
     gcc -std=c99 "$@" -Dmc_clear=mc_clear_alt -Wall -Wextra -Werror \
         -Iruntime/include -c -o "$prog.alt-target.o" runtime/src/target.c >>"$prog.log" 2>&1 || return 1
-    # shellcheck disable=SC2068
-    gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" "${LEAVES[@]}" -DMC_DEPTH_SELECT=1 -DSTRESS_ALT=1 \
+    for f in "${POINT_RT[@]}"; do
+        h=()
+        [ "$f" = octree_render ] && h=("${hook[@]}")
+        # shellcheck disable=SC2086
+        o=$(cc_obj "runtime/src/$f.c" gcc "$@" $rt_cflags "${LEAVES[@]}" -DMC_DEPTH_SELECT=1 "${h[@]}" 2>>"$prog.log") ||
+            return 1
+        objs+=("$o")
+    done
+    gcc -std=c99 -D_POSIX_C_SOURCE=200809L "$@" -DSTRESS_ALT=1 \
         "-DSTRESS_ALT_FORM=\"$ALT_NAME; footprints over a pixel through the clipped path\"" -Wall -Wextra -Werror \
-        -Iruntime/include -Iruntime/ref '-DMC_PLOT_HOOK(fx,fy,c)=stress_point(fx,fy,c)' -include tests/stress/hook.h \
-        -o "$prog" tests/stress/stress.c runtime/ref/ref.c "${POINT_RT[@]}" "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
+        -Iruntime/include -Iruntime/ref "${hook[@]}" \
+        -o "$prog" tests/stress/stress.c runtime/ref/ref.c "${objs[@]}" "$prog.alt.o" "$prog.alt-target.o" "$bake"/*.c -lm >>"$prog.log" 2>&1
 }
 
 # ---- optimised, JOBS processes with consecutive seeds ---------------------------------------------
@@ -92,6 +105,8 @@ fi
 float_flags=(-DMC_FLOAT=1 '-DMC_POS_HEADER="pos_single.h"' -Itests/accuracy)
 for name in F=8 F=24 float; do
     # each against another form: the loop walk of the leaves at F=8, the loop and the branch at F=24
+    # and in the float build (the branch against the select, both with the switch, is the -O2 run's;
+    # STRESS_ALT_SWITCH=1, make stress: the float build's too, a switch more to compile)
     case $name in
         F=8) vflags=(-DMC_FRAC_BITS=8) seed_off=108
             ALT=(-DMC_DEPTH_SELECT=1 -DMC_LEAF_SWITCH=0) ALT_NAME="the unrolled leaf loop (MC_LEAF_SWITCH=0)" ;;
@@ -99,7 +114,9 @@ for name in F=8 F=24 float; do
             ALT=(-DMC_DEPTH_SELECT=0 -DMC_LEAF_SWITCH=0)
             ALT_NAME="the unrolled leaf loop with the branch depth test (MC_LEAF_SWITCH=0, MC_DEPTH_SELECT=0)" ;;
         float) vflags=("${float_flags[@]}") seed_off=200
-            ALT=(-DMC_DEPTH_SELECT=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)" ;;
+            ALT=(-DMC_DEPTH_SELECT=0 -DMC_LEAF_SWITCH=0)
+            ALT_NAME="the unrolled leaf loop with the branch depth test (MC_LEAF_SWITCH=0, MC_DEPTH_SELECT=0)"
+            [ "${STRESS_ALT_SWITCH:-0}" = 1 ] && ALT=(-DMC_DEPTH_SELECT=0) ALT_NAME="the branch depth test (MC_DEPTH_SELECT=0)" ;;
     esac
     flag="${vflags[*]}"
     if build "$out/stress-$name" -O2 -g "${vflags[@]}"; then

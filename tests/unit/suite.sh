@@ -19,7 +19,8 @@
 #   make stress: "15 8 24"), no freestanding builds;
 #   SANITIZE=0: every program plain (-O2), at 15, 8 and 24, and the freestanding builds.
 # UNIT_SWITCH_ALL=1: the renderer's leaf switch at every level and target of the freestanding builds
-# (by default at -O2 for gcc and the Cortex-M0 only; make stress sets it).
+# (by default at -O2 for gcc and the Cortex-M0 only), and in the plain test_view programs (by default
+# the loop form, as under the sanitizers); make stress sets it.
 # UNIT_OPT_LEVELS: the optimisation levels of the freestanding builds for every target (make stress:
 # all five). By default "-O0 -O2 -Os" for the Cortex-M0 (no inlining, the firmware's level, the size
 # level: where a 32-bit target's helper calls differ most, and clang's warnings and its soft-float
@@ -31,11 +32,12 @@ cd "$(dirname "$0")/../.." || exit 1
 
 TAP_PREFIX=""
 . tests/lib.sh
-# use_build san|plain: the flags and directory the programs built next take; under the sanitizers
-# the renderer takes its loop form (leaves, below)
+# use_build san|plain: the flags and directory the programs built next take; the renderer takes its
+# loop form (leaves, below; plain builds with UNIT_SWITCH_ALL=1: the switch)
 use_build() {
     if [ "$1" = san ]; then out=build/san/unit flags=$SAN_FLAGS leaves=(-DMC_LEAF_SWITCH=0)
-    else out=build/tests/unit flags="-O2 -g" leaves=(); fi
+    else out=build/tests/unit flags="-O2 -g" leaves=(-DMC_LEAF_SWITCH=0); fi
+    [ "$1" = plain ] && [ "${UNIT_SWITCH_ALL:-0}" = 1 ] && leaves=()
     mkdir -p "$out"
 }
 # build_for FORMAT: the build the programs at that MC_FRAC_BITS take
@@ -105,11 +107,14 @@ run_cmocka() {
 # draw, so theirs leaves it out: its leaf switch is most of the compile time (several times more
 # under the sanitizers). A test that needs a left-out file fails to link.
 # runtime_archive WITH_RENDERER FLAGS...: prints the archive's path; the compiler's messages go to
-# ARCHIVE.log
+# ARCHIVE.log. With RT_ONLY set (runtime/src basenames), the archive holds those sources only: the
+# programs at the extreme formats have an archive each, and the rest of runtime/src compiled at
+# that format would be linked by no program (a source such a program comes to need fails its link,
+# and is added to its RT_ONLY below).
 runtime_archive() {
     local renderer=$1 key dir f ok=1
     shift
-    key=$(echo "$CC_UNIT $flags $renderer $*" | md5sum | cut -c1-12)
+    key=$(echo "$CC_UNIT $flags $renderer ${RT_ONLY:-} $*" | md5sum | cut -c1-12)
     dir=$out/rt-$key
     # made again when a runtime source or header changed since
     if [ -f "$dir/libmodelc.a" ] && [ -n "$(find runtime/src runtime/include -newer "$dir/libmodelc.a" -print -quit)" ]; then
@@ -122,6 +127,7 @@ runtime_archive() {
         local objs=() o
         for f in runtime/src/*.c; do
             [ "$renderer" = 1 ] || [ "$(basename "$f")" != octree_render.c ] || continue
+            [ -z "${RT_ONLY:-}" ] || [[ " $RT_ONLY " == *" $(basename "$f" .c) "* ]] || continue
             # compiled as the Makefile compiles the runtime (RT_CFLAGS: C99, freestanding), through the
             # shared object cache (tests/lib.sh cc_obj): the sources the program's macros do not reach
             # are compiled once for all the archives with these flags (and, under the sanitizers, for the
@@ -170,9 +176,9 @@ formats="15 8 24"
 [ "${SANITIZE:-}" = 1 ] && formats=${UNIT_SAN_FORMATS:-15}
 for f in $formats; do
     build_for "$f"
-    fb=()
-    [ "$f" = 15 ] || fb=(-DMC_FRAC_BITS=$f)
-    build_and_run "unit: fixed F=$f: " "test_fixed-f$f" "${fb[@]}"
+    fb=() only=""
+    [ "$f" = 15 ] || fb=(-DMC_FRAC_BITS=$f) only=fixed
+    RT_ONLY=$only build_and_run "unit: fixed F=$f: " "test_fixed-f$f" "${fb[@]}"
 done
 build_for 15
 build_and_run "unit: trig: " test_trig
@@ -194,12 +200,16 @@ build_and_run "unit: particles: " test_particles
 # fuzzer's check, which replays its findings (tests/fuzz/regress/track_input/)
 build_and_run "unit: track input: " test_track_input runtime/front/track/track_input.c tests/fuzz/fuzz_track_input.c
 # test_view checks the one-pixel-per-leaf contract, so its views default to one-pixel splats
-# (footprints: tests/finish/ and tests/stress/). Under the sanitizers the renderer takes its loop
-# form (MC_LEAF_SWITCH=0): the same per-leaf code as the switch, which takes some 30 times longer to
-# compile there; make stress checks the switch under them (tests/render/, RENDER_SAN_SWITCH=1).
+# (footprints: tests/finish/ and tests/stress/). The renderer takes its loop form (MC_LEAF_SWITCH=0):
+# the same per-leaf code as the switch, which takes some 30 times longer to compile under the
+# sanitizers and 6 s of CPU at -O2 for each format; tests/stress/ checks the switch against the loop
+# byte for byte at F=8 and 24 and against the reference, and make stress checks it here
+# (UNIT_SWITCH_ALL=1: in the plain builds) and under the sanitizers (tests/render/, RENDER_SAN_SWITCH=1).
 for f in $formats; do
     build_for "$f"
-    build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f -DMC_SPLAT_DEFAULT_MODE=1 "${leaves[@]}" "$hook"
+    only=""
+    [ "$f" = 15 ] || only="finish fixed octree_render sintab target trig xform"
+    RT_ONLY=$only build_and_run "unit: view F=$f: " "test_view-f$f" -DMC_FRAC_BITS=$f -DMC_SPLAT_DEFAULT_MODE=1 "${leaves[@]}" "$hook"
 done
 
 # ---- freestanding builds -----------------------------------------------------------------------
@@ -300,12 +310,17 @@ if [ "${SANITIZE:-}" != 1 ]; then
     # the runtime's sources and headers, comments removed: no float/double types, no float literals
     # (another number type for positions is a test-side header: config.h MC_POS_HEADER)
     problems=""
-    for f in runtime/src/*.c runtime/src/*.h runtime/include/modelc/*.h; do
-        hits=$(gcc -fpreprocessed -dD -E -P "$f" 2>/dev/null | sed 's/"\([^"\\]\|\\.\)*"/""/g' |
-            grep -nP '\b(float|double|_Complex|_Imaginary|__float128|_Float\d+x?)\b|(?<![\w.])(\d+\.\d*|\.\d+|\d+[eE][+-]?\d+)(?![\w.])' |
-            head -n 3 | oneline)
-        [ -n "$hits" ] && problems+="$f: $hits "
-    done
+    float_re='\b(float|double|_Complex|_Imaginary|__float128|_Float\d+x?)\b|(?<![\w.])(\d+\.\d*|\.\d+|\d+[eE][+-]?\d+)(?![\w.])'
+    rt_files=(runtime/src/*.c runtime/src/*.h runtime/include/modelc/*.h)
+    # all the files through one gcc first; only when something is found, file by file to name them
+    if gcc -fpreprocessed -dD -E -P "${rt_files[@]}" 2>/dev/null | sed 's/"\([^"\\]\|\\.\)*"/""/g' | grep -qP "$float_re"; then
+        for f in "${rt_files[@]}"; do
+            hits=$(gcc -fpreprocessed -dD -E -P "$f" 2>/dev/null | sed 's/"\([^"\\]\|\\.\)*"/""/g' | grep -nP "$float_re" |
+                head -n 3 | oneline)
+            [ -n "$hits" ] && problems+="$f: $hits "
+        done
+        [ -n "$problems" ] || problems="found in the files together, in none alone"
+    fi
     if [ -z "$problems" ]; then ok "unit: freestanding: no float, double or floating literal in runtime/src and runtime/include"
     else notok "unit: freestanding: no float, double or floating literal in runtime/src and runtime/include" "$problems"; fi
 
