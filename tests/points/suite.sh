@@ -20,8 +20,8 @@
 #     depth is no reference) seen straight down, counting background only;
 #   - the metric itself: each mesh's own dense bake (the catalogue's) scores under 2 %.
 # In make test two of fandisk's and man's six sets are measured (POINTS_ALL=1, make stress: all).
-# Prints one line per check and "# " lines with the shares; about 45 s of CPU (the helper's first
-# compile adds 11 s).
+# Prints one line per check and "# " lines with the shares; about 55 s of CPU, 11 of them the
+# helper's first compile.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
 TAP_PREFIX="points: "
@@ -44,7 +44,7 @@ for f in tests/points/cover.c runtime/ref/mesh_ref.c runtime/ref/ref.c; do
 done
 recon=$tools/reconstruct
 if [ ! -x "$recon" ] || [ tests/points/reconstruct.cpp -nt "$recon" ]; then
-    # by clang++ (make deps installs clang): CGAL's templates compile in 11 s of CPU against g++'s 21,
+    # by clang++ (make deps installs clang): CGAL's templates compile in 11 s of CPU against g++'s 15,
     # and the program runs faster
     # shellcheck disable=SC2046
     clang++ -std=c++17 -O1 $(mkvar GEN_CXXFLAGS | tr ' ' '\n' | grep -E '^-D') -o "$recon.tmp" tests/points/reconstruct.cpp \
