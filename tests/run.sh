@@ -12,6 +12,8 @@ cd "$(dirname "$0")/.."
 case ":$PATH:" in :/usr/bin:/bin:*) ;; *) export PATH=/usr/bin:/bin:$PATH ;; esac
 logdir=build/tests
 mkdir -p "$logdir"
+# a suite is reported once its status file appears: none may be left from an earlier run
+rm -f "$logdir"/*.log.status "$logdir"/*.log.status.tmp
 
 echo "building the generator, the runtime, the catalogue's viewers and the cube's tracker..."
 if ! make -s -j"$(nproc)" gen views build/cube/cube-track >"$logdir/build.log" 2>&1; then
