@@ -1,3 +1,8 @@
+// Long because the three passes (the container and JSON before tinygltf, the indices and accessor
+// bytes after it, the model built from them) share one set of limits, byte offsets and error
+// messages keyed to the same glTF members; split, each file would restate them. The JSON pre-check
+// (the SAX handler) is the piece that could stand alone if the file grows.
+//
 // glTF 2.0 reader: .gltf (JSON, its buffers as base64 data URIs or files beside it) and .glb (the
 // binary container: a JSON chunk and a BIN chunk). The file is read once into memory and checked in
 // two passes of our own around Debian's tinygltf, which parses the JSON and loads the buffers:
@@ -36,11 +41,6 @@
 // anything is stored. Members of the wrong type that tinygltf passes over without a word (a name
 // that is a number, a pbrMetallicRoughness that is an array) read as absent; index members do not
 // (see "before" above).
-//
-// Long because the three passes (the container and JSON before tinygltf, the indices and accessor
-// bytes after it, the model built from them) share one set of limits, byte offsets and error
-// messages keyed to the same glTF members; split, each file would restate them. The JSON pre-check
-// (the SAX handler) is the piece that could stand alone if the file grows.
 #include <sys/stat.h>
 
 #include <algorithm>
