@@ -582,17 +582,6 @@ static void draw_line(qi_frame *fr, const qi_line *ln, uint32_t j, const mc_qi_h
 
 /* ---- the frame ----------------------------------------------------------------------------------------- */
 
-static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
-{
-    const mc_pmesh *pm = lod->pm;
-    for (uint32_t v = 0; v < pm->vertices; v++) {
-        if (mc_pmesh_lod_vertex(lod, v) != v) continue;
-        int32_t p[3];
-        mc_pmesh_position(pm, v, p);
-        mc_xform_vertex(x, p, &cache[v]);
-    }
-}
-
 /* Chooses the grids' cells and fills them; 0 when even one cell each does not fit in [mem, end).
  * Contour cells start at 8 pixels, line-end cells at 2, each no more than about twice its items
  * (more cells than items only cost memory and empty cells), then coarser until they fit. */
@@ -752,7 +741,7 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
     fr.c.hides = hides;
 
     /* 1. facing bits (mc_mesh_facing's: a face with a flagged corner by its plane) and hiding bits */
-    if (buf->cache) project_level(lod, &fr.c.x, buf->cache);
+    if (buf->cache) mc_mesh_project(lod, &fr.c.x, buf->cache);
     uint8_t *facing = buf->facing;
     for (uint32_t i = 0; i < MC_MESH_FACING_BYTES(faces); i++) facing[i] = 0, hides[i] = 0;
     for (uint32_t f = 0; f < faces; f++) {

@@ -6,6 +6,7 @@
  * shade worked out and goes to the rasterizer. A face with a corner the projection flags goes to
  * clipped_face instead (xform.h's clipping). */
 #include "modelc/mesh_render.h"
+#include "xform_ortho.h"
 
 /* ((2j - 1) / 62)^2 in Q30, j = 1 .. 31: |n.z| / |n| at least (j - 1/2) / 31 means shade j or more */
 static const uint32_t shade_limit[MC_MESH_SHADES - 1] = {
@@ -148,11 +149,22 @@ MC_ALWAYS_INLINE void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc
 {
     const uint16_t *anc16 = (const uint16_t *)lod->anc;
     const uint32_t *anc32 = (const uint32_t *)lod->anc;
+    if (x->perspective) {
+        for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
+            if ((ib == 2 ? anc16[v] : anc32[v]) != v) continue;
+            int32_t p[3];
+            position_of(r, p);
+            mc_xform_vertex(x, p, &cache[v]);
+        }
+        return;
+    }
+    mc_xform_ortho o;   /* the usual view: the projection inline, its constants in registers */
+    mc_xform_ortho_init(&o, x);
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
         if ((ib == 2 ? anc16[v] : anc32[v]) != v) continue;
         int32_t p[3];
         position_of(r, p);
-        mc_xform_vertex(x, p, &cache[v]);
+        mc_xform_ortho_point(&o, p, &cache[v]);
     }
 }
 

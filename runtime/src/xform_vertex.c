@@ -4,6 +4,7 @@
 #include "modelc/xform.h"
 #include "modelc/bits.h"     /* mc_clz32 */
 #include "modelc/target.h"   /* MC_DEPTH_EMPTY: the depths vertices may take */
+#include "xform_ortho.h"      /* the orthographic step, the rounding */
 
 /* sqrt(3)/2 in Q24, rounded up: the farthest a unit-cube point gets from the centre along any axis */
 #define HALF_SQRT3_Q24 INT64_C(14529496)
@@ -28,32 +29,6 @@ void mc_xform_init(mc_xform *x, const mc_view *view, uint32_t width, uint32_t he
     const int64_t dmax = eye24 + HALF_SQRT3_Q24;
     x->dmin = dmin;
     x->za = ((int64_t)DEPTH_TOP * dmax << 8) / (dmax - dmin);   /* DEPTH_TOP * k, Q8 */
-}
-
-static inline int32_t band(int64_t v, uint32_t *flags)
-{
-    const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
-    if (v > lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)lim; }
-    if (v < -lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)-lim; }
-    return (int32_t)v;
-}
-
-/* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) without a branch (the vertices'
- * signs are a coin toss to a predictor) and without shifting a negative number: that is
- * floor((v + 2^(s-1) - [v < 0]) / 2^s), taken on u = v + 2^63 in unsigned arithmetic (2^63 is a
- * multiple of 2^s). round_shift: for 2 <= s <= 62 and any v > INT64_MIN, u's low s bits and the
- * rest apart so that nothing carries out; round_shift_small: for |v| < 2^62, at once. */
-static inline int64_t round_shift(int64_t v, unsigned s)
-{
-    const uint64_t u = (uint64_t)v ^ ((uint64_t)1 << 63);
-    const uint64_t low = (u & (((uint64_t)1 << s) - 1u)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
-    return (int64_t)((u >> s) + (low >> s)) - ((int64_t)1 << (63 - s));
-}
-
-static inline int64_t round_shift_small(int64_t v, unsigned s)
-{
-    const uint64_t u = ((uint64_t)v ^ ((uint64_t)1 << 63)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
-    return (int64_t)(u >> s) - ((int64_t)1 << (63 - s));
 }
 
 /* The perspective projection of q = R p (apart: the orthographic path, every frame of the usual
@@ -86,20 +61,6 @@ static void perspective(const mc_xform *x, const int64_t q[3], mc_xvertex *out)
     out->z = z > (int64_t)DEPTH_TOP ? DEPTH_TOP : (uint32_t)z;
 }
 
-/* The orthographic projection of q = R p: S q in 1/16 pixel, Q16 * Q30 >> 42 */
-static inline void orthographic(const mc_xform *x, int64_t q0, int64_t q1, int64_t q2, mc_xvertex *out)
-{
-    uint32_t flags = 0;
-    out->x = band(x->cx + round_shift(x->scale * q0, 42), &flags);
-    out->y = band(x->cy - round_shift(x->scale * q1, 42), &flags);
-    out->z = (uint32_t)round_shift_small(((int64_t)7 << 27) - q2, 15);   /* (7/8 - q.z) * 2^15 */
-    out->flags = flags;
-}
-
-/* R p, Q30: |q| < 2^30 (sums below 3 * 2^45 before the shift) */
-#define ROTATE(x, row, p0, p1, p2) \
-    round_shift_small((x)->r[row][0] * (p0) + (x)->r[row][1] * (p1) + (x)->r[row][2] * (p2), 16)
-
 void mc_xform_vertex(const mc_xform *x, const int32_t p[3], mc_xvertex *out)
 {
     const int64_t p0 = p[0], p1 = p[1], p2 = p[2];
@@ -109,7 +70,7 @@ void mc_xform_vertex(const mc_xform *x, const int32_t p[3], mc_xvertex *out)
         perspective(x, q, out);
         return;
     }
-    orthographic(x, q0, q1, q2, out);
+    orthographic(x->scale, x->cx, x->cy, q0, q1, q2, out);
 }
 
 void mc_xform_view(const mc_xform *x, const int32_t p[3], int32_t q[3])
@@ -127,7 +88,7 @@ void mc_xform_project(const mc_xform *x, const int32_t q[3], mc_xvertex *out)
         perspective(x, w, out);
         return;
     }
-    orthographic(x, q[0], q[1], q[2], out);
+    orthographic(x->scale, x->cx, x->cy, q[0], q[1], q[2], out);
 }
 
 /* ---- Clipping: see modelc/xform.h ------------------------------------------------------------

@@ -8,7 +8,8 @@
  *   - MC_XFORM_NEAR exactly for points nearer than 1/64 cube side (away from the boundary by 2^-20),
  *     MC_XFORM_FAR_OUT exactly for points beyond the band, their x, y clamped to it;
  * over random views across and beyond mc_view_clamp's ranges (zoom 1/128..128, eye 1/32..512,
- * translations, target sides 1..4096) and random points of the unit cube, its corners included.
+ * translations, target sides 1..4096) and random points of the unit cube, its corners included;
+ * and, orthographic, the inline step the mesh loops use (xform_ortho.h) equal to it bit for bit.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -22,6 +23,7 @@
 #include <modelc/target.h>
 #include <modelc/xform.h>
 #include "../../runtime/ref/xform_ref.h"
+#include "../../runtime/src/xform_ortho.h"
 
 
 static int32_t rnd(mc_rng *g, int32_t lo, int32_t hi)
@@ -67,6 +69,8 @@ static void check_views(int perspective, int views, int points)
         uint32_t h = (uint32_t)(rnd(&g, 0, 4) ? rnd(&g, 1, 480) : rnd(&g, 1, 4096));
         mc_xform x;
         mc_xform_init(&x, &v, w, h);
+        mc_xform_ortho xo;
+        mc_xform_ortho_init(&xo, &x);
         mc_xvertex prev = {0, 0, 0, 0};
         exact eprev = {0, 0, 0, 0, 0, 0};
         for (int i = 0; i < points; i++) {
@@ -74,6 +78,13 @@ static void check_views(int perspective, int views, int points)
             random_point(&g, p);
             mc_xvertex o;
             mc_xform_vertex(&x, p, &o);
+            if (!perspective) {
+                mc_xvertex io;
+                mc_xform_ortho_point(&xo, p, &io);
+                if (io.x != o.x || io.y != o.y || io.z != o.z || io.flags != o.flags)
+                    fail_msg("view %d point %d: the inline step gives (%d, %d, %u, %u), mc_xform_vertex (%d, %d, %u, %u)", k, i,
+                             io.x, io.y, io.z, io.flags, o.x, o.y, o.z, o.flags);
+            }
             exact e = project(&v, w, h, p);
             if (perspective && fabs(e.d - 1.0 / 64) < 1.0 / 1048576) continue;   /* on the near plane */
             if (e.near) {

@@ -1,0 +1,76 @@
+/* The orthographic vertex projection as one inline step (private to the runtime): for the loop that
+ * projects every vertex of a level (mesh_render.c mc_mesh_project, which the line styles share) and
+ * for mc_xform_vertex itself, so that a vertex projected in the loop lands exactly where
+ * mc_xform_vertex puts it.
+ *
+ * Promise: with mc_xform_ortho_init(&o, x) for an orthographic x, mc_xform_ortho_point(&o, p, out)
+ * sets *out as mc_xform_vertex(x, p, out) does (xform.h), bit for bit; the rotation and the scale are
+ * copied into o so that a loop keeps them in registers (a store through out could alias x).
+ */
+#ifndef MODELC_XFORM_ORTHO_H
+#define MODELC_XFORM_ORTHO_H
+
+#include <stdint.h>
+#include "modelc/bits.h"
+#include "modelc/xform.h"
+
+MC_ALWAYS_INLINE int32_t band(int64_t v, uint32_t *flags)
+{
+    const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
+    if (v > lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)lim; }
+    if (v < -lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)-lim; }
+    return (int32_t)v;
+}
+
+/* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) without a branch (the vertices'
+ * signs are a coin toss to a predictor) and without shifting a negative number: that is
+ * floor((v + 2^(s-1) - [v < 0]) / 2^s), taken on u = v + 2^63 in unsigned arithmetic (2^63 is a
+ * multiple of 2^s). round_shift: for 2 <= s <= 62 and any v > INT64_MIN, u's low s bits and the
+ * rest apart so that nothing carries out; round_shift_small: for |v| < 2^62, at once. */
+MC_ALWAYS_INLINE int64_t round_shift(int64_t v, unsigned s)
+{
+    const uint64_t u = (uint64_t)v ^ ((uint64_t)1 << 63);
+    const uint64_t low = (u & (((uint64_t)1 << s) - 1u)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
+    return (int64_t)((u >> s) + (low >> s)) - ((int64_t)1 << (63 - s));
+}
+
+MC_ALWAYS_INLINE int64_t round_shift_small(int64_t v, unsigned s)
+{
+    const uint64_t u = ((uint64_t)v ^ ((uint64_t)1 << 63)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
+    return (int64_t)(u >> s) - ((int64_t)1 << (63 - s));
+}
+
+/* R p, Q30: |q| < 2^30 (sums below 3 * 2^45 before the shift) */
+#define ROTATE(x, row, p0, p1, p2) \
+    round_shift_small((x)->r[row][0] * (p0) + (x)->r[row][1] * (p1) + (x)->r[row][2] * (p2), 16)
+
+/* The orthographic projection of q = R p: S q in 1/16 pixel, Q16 * Q30 >> 42 */
+MC_ALWAYS_INLINE void orthographic(int64_t scale, int64_t cx, int64_t cy, int64_t q0, int64_t q1, int64_t q2,
+                                   mc_xvertex *out)
+{
+    uint32_t flags = 0;
+    out->x = band(cx + round_shift(scale * q0, 42), &flags);
+    out->y = band(cy - round_shift(scale * q1, 42), &flags);
+    out->z = (uint32_t)round_shift_small(((int64_t)7 << 27) - q2, 15);   /* (7/8 - q.z) * 2^15 */
+    out->flags = flags;
+}
+
+typedef struct mc_xform_ortho {
+    int64_t r[3][3];         /* x->r, widened once */
+    int64_t scale, cx, cy;
+} mc_xform_ortho;
+
+MC_ALWAYS_INLINE void mc_xform_ortho_init(mc_xform_ortho *o, const mc_xform *x)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) o->r[i][j] = x->r[i][j];
+    o->scale = x->scale, o->cx = x->cx, o->cy = x->cy;
+}
+
+MC_ALWAYS_INLINE void mc_xform_ortho_point(const mc_xform_ortho *o, const int32_t p[3], mc_xvertex *out)
+{
+    const int64_t p0 = p[0], p1 = p[1], p2 = p[2];
+    orthographic(o->scale, o->cx, o->cy, ROTATE(o, 0, p0, p1, p2), ROTATE(o, 1, p0, p1, p2), ROTATE(o, 2, p0, p1, p2), out);
+}
+
+#endif
