@@ -58,12 +58,16 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
     return level;
 }
 
-uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces)
+uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces) { return mc_pmesh_lod_fit_to(lod, max_faces, lod->pm->vertices); }
+
+uint32_t mc_pmesh_lod_fit_to(mc_pmesh_lod *lod, uint32_t max_faces, uint32_t max_level)
 {
     const mc_pmesh *pm = lod->pm;
     const unsigned ib = pm->index_bytes, shift = pm->record_shift;
+    if (max_level > pm->vertices) max_level = pm->vertices;
+    if (lod->level > max_level) mc_pmesh_lod_set(lod, max_level);
     while (lod->faces > max_faces && lod->level > pm->base_vertices) mc_pmesh_lod_set(lod, lod->level - 1u);
-    while (lod->level < pm->vertices) {
+    while (lod->level < max_level) {
         const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
         if (lod->faces + r[ib] > max_faces) break;
         mc_pmesh_lod_set(lod, lod->level + 1u);

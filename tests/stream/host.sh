@@ -228,10 +228,30 @@ if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit st
     rc=$?
     [ $rc -eq 1 ] && grep -q "stream: its mesh (3002 vertices, 6000 faces) is larger than this viewer's mesh buffers; drawing depth 2" "$dir/refused.err" &&
         [ ! -e "$dir/refused.ppm" ] || problems+="a mesh larger than the viewer's: exit $rc, $(oneline <"$dir/refused.err"); "
-    "$mview" --stream "$mmcs" --lod auto --mode shaded --ppm "$dir/refused.ppm" >/dev/null 2>"$dir/refused.err"
+    check_problems "mesh: a points-only stream read in a mesh mode (exit 2), a stream whose mesh is larger than the viewer's buffers (exit 1, nothing drawn in the mesh mode): each one line" "$problems"
+    # --lod auto: the first frame the finest level that has come, then the level the frame time
+    # allows, never above what has come (mc_pmesh_lod_fit_to)
+    problems=""
+    read -r at level <<<"${mlevels[$((n / 2))]}"
+    head -c "$at" "$mmcs" >"$dir/mcut.mcs"
+    "$mview" --mode shaded --lod "$level" --yaw 30 --pitch 20 --ppm "$dir/mref.ppm" >/dev/null
+    "$mview" --stream "$dir/mcut.mcs" --lod auto --mode shaded --yaw 30 --pitch 20 --ppm "$dir/mcut.ppm" >/dev/null 2>"$dir/mcut.err"
     rc=$?
-    [ $rc -eq 2 ] && grep -q "exclude each other" "$dir/refused.err" || problems+="--lod auto: exit $rc, $(oneline <"$dir/refused.err"); "
-    check_problems "mesh: a points-only stream read in a mesh mode (exit 2), a stream whose mesh is larger than the viewer's buffers (exit 1, nothing drawn in the mesh mode), --lod auto with --stream (exit 2): each one line" "$problems"
+    [ $rc -eq 1 ] && cmp -s "$dir/mcut.ppm" "$dir/mref.ppm" || problems+="one frame, cut at $at: exit $rc, $(oneline <"$dir/mcut.err"); "
+    if command -v tmux >/dev/null; then
+        # a frame time no level can miss (10 s): the finest allowed, which is what has come; then one
+        # no level can meet (0.01 ms): the base, even once the whole mesh has come
+        problems+=$(interactive "$mmcs" "$at" ' shaded \| [0-9]+/[0-9]+ vertices ' \
+            " shaded \| $level/$full vertices .*mesh $level of $full vertices" \
+            " shaded \| $full/$full vertices .*stream: complete" "$PWD/$mview" --mode shaded --lod auto --target-ms 10000)
+        base=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['pmesh']['base_vertices'])" "$dir/mesh/budget.json")
+        problems+=$(interactive "$mmcs" "$at" ' shaded \| [0-9]+/[0-9]+ vertices ' \
+            " shaded \| $base/$full vertices .*mesh $level of $full vertices" \
+            " shaded \| $base/$full vertices .*stream: complete" "$PWD/$mview" --mode shaded --lod auto --target-ms 0.01)
+    else
+        problems+="tmux missing (make deps installs it); "
+    fi
+    check_problems "mesh, --lod auto with --stream: one frame of a cut stream is the compiled-in mesh's at the level that came; interactive (tmux): at --target-ms 10000 the level that has come ($level, then $full), at 0.01 the base" "$problems"
 else
     notok "mesh bakes with --as both --emit stream and their viewers" "$(cat "$dir/mesh-bake.log" "$dir"/*.link.log 2>/dev/null | tail -n 5 | oneline)"
 fi

@@ -402,7 +402,7 @@ static void test_big_walk_wide(void **state)
  * root standing for itself */
 /* mc_pmesh_lod_fit from random levels to random face budgets: the level is the reference's finest
  * with at most that many faces (F(level) grows with the level), the base when none fits, and the
- * state is what mc_pmesh_lod_set makes there */
+ * state is what mc_pmesh_lod_set makes there; mc_pmesh_lod_fit_to likewise, not above a random cap */
 static void test_fit(void **state)
 {
     (void)state;
@@ -423,6 +423,14 @@ static void test_fit(void **state)
                 if (m.faces_at[n - m.V0] <= budget) want = n;
             assert_int_equal(mc_pmesh_lod_fit(&lod, budget), want);
             check_state(&m, &lod, want, 0);
+            /* capped (a streamed mesh's level that has come), from a level above or below the cap */
+            const uint32_t cap = m.V0 + mc_rng_below(&r, m.V - m.V0 + 1);
+            mc_pmesh_lod_set(&lod, m.V0 + mc_rng_below(&r, m.V - m.V0 + 1));
+            uint32_t want_cap = m.V0;
+            for (uint32_t n = m.V0; n <= cap; n++)
+                if (m.faces_at[n - m.V0] <= budget) want_cap = n;
+            assert_int_equal(mc_pmesh_lod_fit_to(&lod, budget, cap), want_cap);
+            check_state(&m, &lod, want_cap, 0);
         }
         free(anc);
         mesh_free(&m);

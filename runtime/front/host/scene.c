@@ -62,9 +62,12 @@ void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t le
         s->lod.pm = NULL;
         return;
     }
-    if (s->lod.pm != pm) mc_pmesh_lod_init(&s->lod, pm, s->app->pmesh_anc);
+    const int first = s->lod.pm != pm;
+    if (first) mc_pmesh_lod_init(&s->lod, pm, s->app->pmesh_anc);
     s->lod_cap = level;
-    set_level(s);
+    /* the first frame draws the finest level that has come; the automatic level of detail then
+     * moves within it (mc_host_scene_draw) */
+    if (first || s->target_ms <= 0) set_level(s);
 }
 
 void mc_host_scene_auto(mc_host_scene *s, double target_ms)
@@ -99,7 +102,8 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     if (s->target_ms > 0) {
         if (s->face_ms > 0) {
             const double budget = s->target_ms / s->face_ms, now = s->lod.faces;
-            if (fabs(budget - now) > 0.04 * now) mc_pmesh_lod_fit(&s->lod, budget < 0 ? 0u : (uint32_t)budget);
+            if (fabs(budget - now) > 0.04 * now)
+                mc_pmesh_lod_fit_to(&s->lod, budget < 0 ? 0u : (uint32_t)budget, s->lod_cap ? s->lod_cap : UINT32_MAX);
         }
     }
     int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, s->app->pmesh_sdepth, v,

@@ -70,7 +70,8 @@ static void usage(FILE *f)
             "  --stream SRC    draw the model's stream (a bake with modelc --emit stream) as it arrives from\n"
             "                  SRC: - (standard input), a file or FIFO, or tcp:HOST:PORT; the points at the\n"
             "                  deepest complete level, or (--mode, with --as both) the mesh at the finest\n"
-            "                  level that has come, at most --lod N (a line per level on stdout; the line\n"
+            "                  level that has come, at most --lod N, or with --lod auto the finest of those\n"
+            "                  the frame time allows (a line per level on stdout; the line\n"
             "                  styles draw shaded until the mesh's adjacency, which comes last); a stream\n"
             "                  that ends early or fails its checks is reported and its last complete level\n"
             "                  drawn (exit status 1)\n"
@@ -278,7 +279,6 @@ int main(int argc, char **argv)
     if (stream_src) {
         char why[512];
         if (frames) return die("--stream and --bench exclude each other", NULL);
-        if (scene.target_ms > 0) return die("--stream and --lod auto exclude each other", NULL);
         if (mc_host_stream_open(&stream, &mc_app_model, stream_src, why, sizeof why)) return die(why, NULL);
         scene.octree = NULL;
         mc_host_scene_stream_mesh(&scene, NULL, 0);

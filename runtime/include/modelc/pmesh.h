@@ -98,6 +98,9 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level);
  * budget for the frame, in faces, that gives the same level on every machine. Moves one split at a
  * time from the current level, so the work is the change, as mc_pmesh_lod_set. Returns the level. */
 uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces);
+/* mc_pmesh_lod_fit not above max_level (a streamed mesh: the splits that have come, stream.h); from
+ * a current level above it, the finest within the budget at or below max_level. */
+uint32_t mc_pmesh_lod_fit_to(mc_pmesh_lod *lod, uint32_t max_faces, uint32_t max_level);
 
 /* The vertex present at the current level that vertex v (0 .. V-1) stands for. */
 static inline uint32_t mc_pmesh_lod_vertex(const mc_pmesh_lod *lod, uint32_t v)
