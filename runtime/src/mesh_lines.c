@@ -276,6 +276,48 @@ static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xverte
     return 1;
 }
 
+/* The edge pass over faces f0 .. f0 + n - 1, whose opposite records start at r (hb: the index width,
+ * a constant where called, so that one loop is made for each width): each edge once, from the face
+ * with the lower number (or its only face), its kind from the facing and crease bits; those of a
+ * kind in flags drawn as their lines, into t with mc_line's depth test (sd null) or offered to sd
+ * (t null). The counts are kept in locals (a pixel store could alias *st). */
+MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
+                               const uint8_t *cr, unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd,
+                               mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb)
+{
+    const uint32_t faces = lod->faces;
+    uint32_t edges = 0, sil = 0, crease = 0, border = 0;
+    for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
+        const uint32_t fr = front(facing, f), fc = creases(cr, f);
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t o;
+            if (hb == 2) o = mc_le16(r + 2u * k), o = o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
+            else o = mc_le32(r + 4u * k);
+            unsigned kind;
+            if (o == MC_NO_HALF_EDGE) {
+                kind = MC_EDGE_BORDER;
+            } else {
+                if (MC_HALF_FACE(o) >= faces) o = mc_pmesh_lod_opposite_walk(lod, o);   /* a face not present */
+                if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
+                else if (MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
+                else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
+                            : (fc >> k) & 1u                     ? MC_EDGE_CREASE
+                                                                 : MC_EDGE_PLAIN;
+            }
+            edges++;
+            if (!kind) continue;
+            sil += kind == MC_EDGE_SILHOUETTE, crease += kind == MC_EDGE_CREASE, border += kind == MC_EDGE_BORDER;
+            if (!(kind & flags)) continue;
+            mc_line_vertex la, lb;
+            if (!edge_line(lod, x, cache, MC_HALF_EDGE(f, k), o, st, &la, &lb, &style->depth_offset)) continue;
+            st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style->depth_offset)
+                             : mc_line(t, la, lb, (uint8_t)kind_color(kind), style);
+        }
+    }
+    st->edges += edges;
+    st->silhouettes += sil, st->creases += crease, st->borders += border;
+}
+
 /* Both ways' edge pass: the level's crease and facing bits in mem, then every edge of a kind in
  * flags drawn as its line, into t with mc_line's depth test (sd null) or offered to sd (t null);
  * counts into st. A constant sink makes one function of it for each way. */
@@ -288,39 +330,16 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
     set_facing(lod, x, cache, facing);
     mc_line_style style;
     style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
+    style.depth_offset = 0;
     const mc_pmesh *pm = lod->pm;
-    const unsigned shift = pm->record_shift, hb = pm->half_bytes;
+    const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
     /* the stored opposites read in order, a run of records a chunk */
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = pm->opposite[f0 >> shift].data;
-        for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
-            const uint32_t fr = front(facing, f), fc = creases(cr, f);
-            for (uint32_t k = 0; k < 3; k++) {
-                uint32_t o;
-                if (hb == 2) o = mc_le16(r + 2u * k), o = o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
-                else o = mc_le32(r + 4u * k);
-                o = mc_pmesh_lod_across(lod, o);
-                unsigned kind;
-                if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
-                else if (MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
-                else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
-                            : (fc >> k) & 1u                     ? MC_EDGE_CREASE
-                                                                 : MC_EDGE_PLAIN;
-                const uint32_t h = MC_HALF_EDGE(f, k);
-                st->edges++;
-                if (!kind) continue;
-                st->silhouettes += kind == MC_EDGE_SILHOUETTE;
-                st->creases += kind == MC_EDGE_CREASE;
-                st->borders += kind == MC_EDGE_BORDER;
-                if (!(kind & flags)) continue;
-                mc_line_vertex la, lb;
-                if (!edge_line(lod, x, cache, h, o, st, &la, &lb, &style.depth_offset)) continue;
-                st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style.depth_offset)
-                                 : mc_line(t, la, lb, (uint8_t)kind_color(kind), &style);
-            }
-        }
+        if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2);
+        else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4);
     }
 }
 

@@ -8,6 +8,13 @@
 static const uint32_t pow2_frac[16] = {65536, 62757, 60097, 57549, 55109, 52773, 50535, 48393,
                                        46341, 44376, 42495, 40693, 38968, 37316, 35734, 34219};
 
+/* 2^(-x / 2^16) in Q16 for an exponent x >= 0 in Q16, truncated to sixteenths (0 below 2^-16) */
+static uint32_t pow2_neg(uint32_t x)
+{
+    const uint32_t ip = x >> 16;
+    return ip > 16 ? 0 : pow2_frac[(x >> 12) & 15u] >> ip;
+}
+
 /* *d = *s field by field (a struct assignment may become a memcpy call, which a freestanding
  * program does not have) */
 static void copy(mc_particle *d, const mc_particle *s)
@@ -24,7 +31,7 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     if (!prm->particles || prm->particles > 65535u || prm->fresh >= prm->particles || prm->step_t < 0 ||
         prm->step_r < 0 || prm->step_t > (1 << 28) || prm->step_r > (1 << 28) || prm->fresh_r < 0 ||
         prm->fresh_r > (1 << 28) || prm->layers > 4 || !prm->sharpness ||
-        prm->sharpness > 64 || (prm->dof != 3 && prm->dof != 6))
+        prm->sharpness > 64 || prm->recall > 64 || (prm->dof != 3 && prm->dof != 6))
         return MC_ERR_ARG;
     for (int k = 0; k < 3; k++)
         if (prm->lo[k] > prm->hi[k] || prm->lo[k] < -T_MAX || prm->hi[k] > T_MAX || t[k] < -T_MAX || t[k] > T_MAX)
@@ -35,7 +42,7 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     fp->particles = prm->particles, fp->fresh = prm->fresh, fp->step_t = prm->step_t, fp->step_r = prm->step_r;
     fp->fresh_r = prm->fresh_r, fp->layers = prm->layers ? prm->layers : 1;
     for (int k = 0; k < 3; k++) fp->lo[k] = prm->lo[k], fp->hi[k] = prm->hi[k];
-    fp->min_visible = prm->min_visible, fp->sharpness = prm->sharpness, fp->dof = prm->dof;
+    fp->min_visible = prm->min_visible, fp->sharpness = prm->sharpness, fp->recall = prm->recall, fp->dof = prm->dof;
     f->p = p, f->spare = spare;
     mc_rng_seed(&f->rng, seed, 0x7261636bu);
     for (uint32_t i = 0; i < prm->particles; i++) {
@@ -52,9 +59,23 @@ uint32_t mc_filter_weight(const mc_filter *f, uint32_t visible, uint32_t matched
 {
     if (!visible || visible < f->prm.min_visible) return 0;
     const uint32_t r = (uint32_t)(((uint64_t)matched << 16) / visible);   /* Q16, <= 65536 */
-    const uint32_t x = f->prm.sharpness * (65536u - r);                    /* Q16 exponent, < 2^23 */
-    const uint32_t ip = x >> 16;
-    return ip > 16 ? 0 : pow2_frac[(x >> 12) & 15u] >> ip;
+    return pow2_neg(f->prm.sharpness * (65536u - r));                     /* Q16 exponent, < 2^23 */
+}
+
+void mc_filter_recall(const mc_filter *f, mc_particle *p, uint32_t n)
+{
+    const uint32_t k = f->prm.recall;
+    if (!k) return;
+    uint32_t most = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (p[i].weight && p[i].matched > most) most = p[i].matched;
+    if (!most) return;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!p[i].weight) continue;
+        /* k (1 - m / M) in Q16: below 64 * 2^16 */
+        const uint32_t x = (uint32_t)(((uint64_t)(most - p[i].matched) * k << 16) / most);
+        p[i].weight = (uint32_t)(((uint64_t)p[i].weight * pow2_neg(x)) >> 16);
+    }
 }
 
 /* a step of s: four uniform integers in [-s, s], summed and halved */
@@ -174,6 +195,7 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
             const int rc = score(f, &fine, &p[i]);
             if (rc != MC_OK) return rc;
         }
+        mc_filter_recall(f, p, n);
     }
     if (p != f->p) f->spare = f->p, f->p = p;
     /* the estimate: weighted means, the orientations turned to the heaviest one's hemisphere */

@@ -1,6 +1,9 @@
 /* The tracker's particle filter (modelc/particles.h):
  *   - the weight: 65536 at r = 1, between 2^(sharpness (r - 1)) 65536 and 2^(1/16) times it (give
  *     or take a unit of rounding) everywhere, never rising as r falls, 0 below min_visible;
+ *   - the recall: each weight times 2^(-recall (1 - m / M)) (M the most matched of any weighted
+ *     particle) within the same bounds, weights of 0 left at 0, the best particle's untouched, none
+ *     changed at recall 0;
  *   - systematic resampling: each particle drawn floor or ceil of m w / W times, none of weight 0,
  *     the first m kept when every weight is 0;
  *   - motion: over 20,000 particles, each translation axis's steps of mean about 0 and standard
@@ -307,6 +310,8 @@ static void test_refusals(void **state)
     assert_int_equal(mc_filter_init(&f, &p, a, b, 1, q, t), MC_ERR_ARG);
     p = ok, p.sharpness = 0;
     assert_int_equal(mc_filter_init(&f, &p, a, b, 1, q, t), MC_ERR_ARG);
+    p = ok, p.recall = 65;
+    assert_int_equal(mc_filter_init(&f, &p, a, b, 1, q, t), MC_ERR_ARG);
     p = ok, p.dof = 4;
     assert_int_equal(mc_filter_init(&f, &p, a, b, 1, q, t), MC_ERR_ARG);
     p = ok, p.layers = 5;
@@ -315,10 +320,58 @@ static void test_refusals(void **state)
     assert_int_equal(mc_filter_init(&f, &p, a, b, 1, q, t), MC_ERR_ARG);
 }
 
+/* mc_filter_recall against the formula in doubles, over random particle sets */
+static void test_recall(void **state)
+{
+    (void)state;
+    mc_filter f;
+    enum { N = 64 };
+    mc_particle a[N], b[N], p[N];
+    mc_filter_params prm = cube_scene_params();
+    prm.particles = N, prm.fresh = 1;
+    const int32_t q[4] = {1 << 30, 0, 0, 0}, t[3] = {0, 0, 300000};
+    mc_rng r;
+    mc_rng_seed(&r, 11, 5);
+    long changed = 0;
+    for (unsigned k = 0; k <= 64; k += k < 8 ? 1 : 8) {
+        prm.recall = (uint8_t)k;
+        assert_int_equal(mc_filter_init(&f, &prm, a, b, 1, q, t), MC_OK);
+        for (int round = 0; round < 200; round++) {
+            uint32_t most = 0;
+            for (int i = 0; i < N; i++) {
+                p[i].visible = 20 + mc_rng_below(&r, 3000);
+                p[i].matched = mc_rng_below(&r, p[i].visible + 1);
+                p[i].weight = mc_rng_below(&r, 4) ? mc_filter_weight(&f, p[i].visible, p[i].matched) : 0;
+                if (p[i].weight && p[i].matched > most) most = p[i].matched;
+            }
+            mc_particle before[N];
+            memcpy(before, p, sizeof p);
+            mc_filter_recall(&f, p, N);
+            for (int i = 0; i < N; i++) {
+                const uint32_t w0 = before[i].weight, w = p[i].weight;
+                if (!k || !w0 || !most) {
+                    if (w != w0) fail_msg("recall %u: weight %u became %u", k, w0, w);
+                    continue;
+                }
+                const double x = k * (1 - (double)before[i].matched / most), exact = w0 * pow(2, -x);
+                /* the exponent to 2^-16 and then to sixteenths: up to 2^(1/16) above, a unit of
+                 * rounding in each of the two products */
+                if (w + 2 < exact * pow(2, -(double)k / 65536.0) || w > exact * pow(2, 1.0 / 16) + 2)
+                    fail_msg("recall %u: %u of the most %u matched, weight %u -> %u, exact %.2f", k, before[i].matched, most,
+                             w0, w, exact);
+                if (before[i].matched == most && w != w0) fail_msg("recall %u: the best particle's weight moved", k);
+                changed += w != w0;
+            }
+        }
+    }
+    assert_true(changed > 1000);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_weight),
+        cmocka_unit_test(test_recall),
         cmocka_unit_test(test_resample),
         cmocka_unit_test(test_motion_and_determinism),
         cmocka_unit_test(test_track_near),

@@ -83,6 +83,8 @@ static const char usage[] =
     "                       orientation)\n"
     "  --search MM          fresh particles within this many mm of the first pose, each axis (default 60)\n"
     "  --sharpness S        weight halving every 1/S of matched/visible lost, 1..64 (default 32)\n"
+    "  --recall K           in the layers after the first, weight halving every 1/K of matched pixels short\n"
+    "                       of the best particle's, 0..64 (default 4; 0: off)\n"
     "  --min-visible N      fewer visible line pixels weigh 0 (default 20)\n"
     "  --near M, --far M    the camera's depth range in metres (default 0.02, 20)\n"
     "  --seed S             the random stream (default 1)\n"
@@ -179,6 +181,7 @@ static int parse(int argc, char **argv, options *o)
         else if (!strcmp(a, "--fine-radius")) rc = integer(a, v, 0, 7, &s->fine_radius);
         else if (!strcmp(a, "--tolerance")) rc = integer(a, v, 0, 3, &s->tolerance);
         else if (!strcmp(a, "--sharpness")) rc = integer(a, v, 1, 64, &s->sharpness);
+        else if (!strcmp(a, "--recall")) rc = integer(a, v, 0, 64, &s->recall);
         else if (!strcmp(a, "--min-visible")) rc = integer(a, v, 0, 100000000, &s->min_visible);
         else if (!strcmp(a, "--seed")) rc = integer(a, v, 0, 2000000000, &l), s->seed = (unsigned long)l;
         else if (!strcmp(a, "--step-t")) rc = number(a, v, 0, 1000, &s->step_t_mm);

@@ -21,11 +21,18 @@
  *      weight 2^(sharpness (r - 1)) in Q16, its exponent truncated to sixteenths (65536 at r = 1,
  *      halving every 1/sharpness of r below, at most 2^(1/16) times the exact value), or 0 where
  *      fewer than min_visible line pixels are visible;
+ *   4a. recall, in the layers after the first (4b) when recall > 0 (mc_filter_recall): each weight
+ *      then times 2^(-recall (1 - m / M)), m the particle's matched pixels and M the most of any
+ *      particle with a weight, the exponent truncated to sixteenths as in 4: a pose that explains
+ *      fewer of the image's edge pixels than the best one loses weight even when all its own lines
+ *      match (r = 1), as a cube seen nearly face on does when it hides a side face the image shows.
+ *      Not in the first layer, whose fresh particles lie anywhere in the box: there a pose nearer
+ *      the camera shows more lines, and would match more edge pixels by chance;
  *   4b. with layers L > 1, L - 1 more rounds on the same frame: all N particles drawn again from the
  *      weights just found (systematic resampling) and moved by the steps halved each round (step_t
- *      and step_r shifted right by the round's number), no fresh ones, and weighed again against the
- *      view's fine masks when it has them (an annealed search: N L scores, a finer look around the
- *      likely poses with a sharper likelihood: edges within a smaller radius);
+ *      and step_r shifted right by the round's number), no fresh ones, and weighed again (4, then 4a)
+ *      against the view's fine masks when it has them (an annealed search: N L scores, a finer look
+ *      around the likely poses with a sharper likelihood: edges within a smaller radius);
  *   5. the estimate: the weighted mean of the translations and of the orientations (each turned to
  *      the hemisphere of the heaviest particle's, then made unit length); its own score against the
  *      view's masks (the coarse ones) gives the confidence, r of the estimate in Q16 (0 when it
@@ -57,6 +64,8 @@ typedef struct mc_filter_params {
     int32_t lo[3], hi[3];       /* the box fresh translations are drawn in, um, lo <= hi, within +-(2^28 - 1) */
     uint32_t min_visible;       /* fewer visible line pixels weigh 0 */
     uint8_t sharpness;          /* 1 .. 64: how fast the weight falls as r drops */
+    uint8_t recall;             /* 0 .. 64: how fast it falls, in the layers after the first, as the
+                                 * matched count drops below the best particle's (step 4a); 0: not at all */
     uint8_t dof;                /* 6, or 3 (orientation given each frame) */
     uint8_t layers;             /* 0 or 1: one weighing a frame; 2 .. 4: that many (see the promise) */
 } mc_filter_params;
@@ -71,7 +80,8 @@ typedef struct mc_filter {
 
 /* Starts with every particle at pose (q, t), equal weights. Returns MC_OK, or MC_ERR_ARG for a null
  * array, N = 0 or above 65535, F >= N, a step (or fresh_r) below 0 or above 2^28, lo > hi, a box or
- * t beyond +-(2^28 - 1), a sharpness outside 1 .. 64, dof not 3 or 6, layers above 4, or q = 0.
+ * t beyond +-(2^28 - 1), a sharpness outside 1 .. 64, a recall above 64, dof not 3 or 6, layers above 4,
+ * or q = 0.
  * Translations stay within +-(2^28 - 1) um as they move. */
 int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc_particle *spare, uint64_t seed,
                    const int32_t q[4], const int32_t t[3]);
@@ -86,5 +96,9 @@ void mc_filter_resample(mc_rng *r, const mc_particle *src, uint32_t n, mc_partic
 
 /* The weight of a score under f's parameters (step 4), Q16. */
 uint32_t mc_filter_weight(const mc_filter *f, uint32_t visible, uint32_t matched);
+
+/* Step 4a on its own: the weights of the n particles of p (each as step 4 gave it from its score)
+ * scaled by their recall under f's parameters; nothing when f's recall is 0. */
+void mc_filter_recall(const mc_filter *f, mc_particle *p, uint32_t n);
 
 #endif
