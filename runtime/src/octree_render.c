@@ -344,23 +344,32 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     const mc_pos half = POS_HALF_PIXELS(s - 1);
     xy = POS2_ADD(xy, POS2(-half, -half));
     /* each leaf a square; for s = 2 written out (the loops are not unrolled at -O2) */
-#define SQUARE_LEAVES                                                                              \
-    for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
-        const unsigned j = mc_ctz(lm);                                                             \
+#define SQUARE_LEAF(j)                                                                             \
+    if (cm & (1u << (j))) {                                                                        \
         const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                               \
         const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
         const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
+        const uint8_t cv = *col;                                                                   \
         MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
-        if (s == 2) {                                                                              \
-            SQUARE_TEST(i, depth, col) SQUARE_TEST(i + 1, depth, col)                              \
-            SQUARE_TEST(i + w, depth, col) SQUARE_TEST(i + w + 1, depth, col)                      \
+        if (s == 2) {   /* through pointers to the square: the four tests fold into addressing */  \
+            uint16_t *const z_ = zb + i;                                                           \
+            uint8_t *const f_ = fb + i;                                                            \
+            if (depth < z_[0]) { z_[0] = depth; f_[0] = cv; }                                      \
+            if (depth < z_[1]) { z_[1] = depth; f_[1] = cv; }                                      \
+            if (depth < z_[w]) { z_[w] = depth; f_[w] = cv; }                                      \
+            if (depth < z_[w + 1]) { z_[w + 1] = depth; f_[w + 1] = cv; }                          \
         } else {                                                                                   \
             for (int32_t dy = 0; dy < s; dy++)                                                     \
-                for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, col)        \
+                for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, &cv)        \
         }                                                                                          \
+        col++;                                                                                     \
     }
+#define SQUARE_LEAVES                                                                              \
+    SQUARE_LEAF(0) SQUARE_LEAF(1) SQUARE_LEAF(2) SQUARE_LEAF(3)                                    \
+    SQUARE_LEAF(4) SQUARE_LEAF(5) SQUARE_LEAF(6) SQUARE_LEAF(7)
     WALK_LEVEL3(SQUARE_LEAVES)
 #undef SQUARE_LEAVES
+#undef SQUARE_LEAF
 }
 
 #if defined(__GNUC__) || defined(__clang__)
