@@ -344,12 +344,13 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     const mc_pos half = POS_HALF_PIXELS(s - 1);
     xy = POS2_ADD(xy, POS2(-half, -half));
     /* each leaf a square; for s = 2 written out (the loops are not unrolled at -O2) */
-#define SQUARE_LEAF(j)                                                                             \
-    if (cm & (1u << (j))) {                                                                        \
+#define SQUARE_LEAVES                                                                              \
+    for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
+        const unsigned j = mc_ctz(lm);                                                             \
         const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                               \
         const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
         const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
-        const uint8_t cv = *col;                                                                   \
+        const uint8_t cv = *col;   /* once: a pixel store may alias it */                          \
         MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
         if (s == 2) {   /* through pointers to the square: the four tests fold into addressing */  \
             uint16_t *const z_ = zb + i;                                                           \
@@ -362,14 +363,9 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
             for (int32_t dy = 0; dy < s; dy++)                                                     \
                 for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, &cv)        \
         }                                                                                          \
-        col++;                                                                                     \
     }
-#define SQUARE_LEAVES                                                                              \
-    SQUARE_LEAF(0) SQUARE_LEAF(1) SQUARE_LEAF(2) SQUARE_LEAF(3)                                    \
-    SQUARE_LEAF(4) SQUARE_LEAF(5) SQUARE_LEAF(6) SQUARE_LEAF(7)
     WALK_LEVEL3(SQUARE_LEAVES)
 #undef SQUARE_LEAVES
-#undef SQUARE_LEAF
 }
 
 #if defined(__GNUC__) || defined(__clang__)
