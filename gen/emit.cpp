@@ -38,6 +38,15 @@ std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8
     return sizes;
 }
 
+PmWidths pm_widths(uint64_t vertices, uint64_t faces) {
+    return {vertices <= 65535 ? 2u : 4u, 4 * faces + 3 < 65535 ? 2u : 4u};
+}
+
+uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F) {
+    const uint64_t ib = pm_widths(V, F).index_bytes;   // the record sizes of pmesh_arrays below
+    return 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F;
+}
+
 namespace {
 
 // Every array a bake emits and the chunk lists that point at them.
@@ -64,10 +73,10 @@ std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm
 
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
 void pmesh_arrays(const PMesh &pm, Plan &p) {
-    const unsigned ib = pm.vertices() <= 65535 ? 2 : 4;
-    const unsigned hb = 4 * pm.faces.size() + 3 < 65535 ? 2 : 4;   // a half-edge 4 f + k, and all ones
+    const PmWidths wd = pm_widths(pm.vertices(), pm.faces.size());
+    const unsigned ib = wd.index_bytes;
     p.index_bytes = ib;
-    p.half_bytes = hb;
+    p.half_bytes = wd.half_bytes;
     p.pm_bytes.assign(kPmArrayCount, {});
     auto put = [](std::vector<uint8_t> &b, uint32_t v, unsigned n) {
         for (unsigned i = 0; i < n; i++) b.push_back(static_cast<uint8_t>(v >> (8 * i)));
@@ -79,8 +88,8 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
     for (const auto &f : pm.opposite)
-        for (uint32_t h : f) put(p.pm_bytes[4], h, hb);
-    for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, hb);
+        for (uint32_t h : f) put(p.pm_bytes[4], h, p.half_bytes);
+    for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, p.half_bytes);
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
 }
 

@@ -50,6 +50,18 @@ struct Stream {
 struct PMesh;
 Stream bake_stream(const Octree &tree, const PMesh *pmesh);
 
+// The mesh part's field widths (pmesh.h), one rule for the baked arrays (emit.cpp) and the stream's
+// mesh records (emit_stream.cpp): vertex indices 2 bytes up to 65,535 vertices, else 4; half-edges
+// (4 f + k, all ones for none) 2 bytes while 4 F + 3 stays below 65,535, else 4.
+struct PmWidths {
+    unsigned index_bytes, half_bytes;
+};
+PmWidths pm_widths(uint64_t vertices, uint64_t faces);
+// The bytes of the arrays the shaded style reads (positions, tree, splits, corners) for V vertices,
+// V0 of them in the base, and F faces: what a stream's receive buffer holds after the stream
+// (stream.h MC_STREAM_MESH_BYTES).
+uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F);
+
 // The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where
 // they are laid out; the cost rules are budget.hpp's).
 Budget budget_of(const Octree &tree, const EmitOptions &opt);

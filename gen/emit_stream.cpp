@@ -57,7 +57,8 @@ std::vector<MeshRecord> mesh_records(const PMesh &pm) {
     const uint32_t V = static_cast<uint32_t>(pm.vertices()), V0 = pm.base_vertices;
     const uint32_t F = static_cast<uint32_t>(pm.faces.size()), F0 = pm.base_faces;
     const uint32_t E = static_cast<uint32_t>(pm.edge_order.size());
-    const unsigned ib = V <= 65535 ? 2 : 4, hb = 4ull * F + 3 < 65535 ? 2 : 4;   // as the baked arrays (emit.cpp)
+    const PmWidths wd = pm_widths(V, F);   // as the baked arrays
+    const unsigned ib = wd.index_bytes, hb = wd.half_bytes;
     std::vector<MeshRecord> out;
     std::string h;
     for (uint32_t v : {V, V0, F, F0, E}) put32(h, v);
@@ -172,8 +173,7 @@ Stream bake_stream(const Octree &t, const PMesh *pm) {
     record(s, kKindEnd, 0, "");
     out.buffer = s.size();
     if (pm) {   // MC_STREAM_MESH_BYTES after the stream, from a multiple of 4
-        const uint64_t V = pm->vertices(), V0 = pm->base_vertices, F = pm->faces.size(), ib = V <= 65535 ? 2 : 4;
-        const uint64_t b = (s.size() + 3) / 4 * 4 + 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F;
+        const uint64_t b = (s.size() + 3) / 4 * 4 + pm_draw_bytes(pm->vertices(), pm->base_vertices, pm->faces.size());
         if (b > 0xFFFFFFFFu) throw std::runtime_error("--emit stream: the stream and its mesh would exceed 4 GiB");
         out.buffer = b;
     }

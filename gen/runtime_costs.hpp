@@ -36,18 +36,18 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 69068, 12320, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 69044, 12216, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
-    {"pmesh", 996, 996, "progressive-mesh level of detail and neighbours (pmesh.c)"},
-    {"xform_vertex", 3896, 3896, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
+    {"pmesh", 1076, 1076, "progressive-mesh level of detail and neighbours (pmesh.c)"},
+    {"xform_vertex", 3904, 3904, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
     {"raster", 7060, 7060, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 828, 828, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
-    {"mesh_render", 2540, 2540, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 6384, 6384, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"mesh_render", 3404, 3404, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
+    {"mesh_lines", 6404, 6404, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 // The edge part's own modules (--as edges): a tracker links them with fixed, raster, line and sdepth
@@ -56,7 +56,7 @@ inline constexpr ModuleCode kTrackModules[] = {
     {"camera", 2252, 2252, "pinhole projection of poses, near-plane clipping (camera.c)"},
     {"imgedge", 1788, 1788, "image edges: Sobel, orientation bins, non-maximum suppression, masks (imgedge.c)"},
     {"track", 3360, 3360, "the score of a pose: lines and faces into the sparse depth buffer (track.c)"},
-    {"particles", 2864, 2864, "the particle filter over poses (particles.c)"},
+    {"particles", 3212, 3212, "the particle filter over poses (particles.c)"},
 };
 inline constexpr const char *kTrackShared[] = {"fixed", "raster", "line", "sdepth"};
 inline constexpr size_t kLibgccDivision = 960;
@@ -89,7 +89,7 @@ inline constexpr Frame kFrames[] = {
     {"skip_subtree", 56, 48},
     {"visit_inside", 56, 80},
     {"draw_inside", 104, 72},
-    {"draw_inside_squares", 144, 120},
+    {"draw_inside_squares", 152, 120},
     {"draw_checked", 80, 96},
     {"leaves_perspective", 80, 128},
     {"leaves_clipped", 56, 80},
@@ -158,6 +158,7 @@ static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is miss
 inline constexpr Frame kTrackFrames[] = {
     {"mc_filter_step", 208, 288},
     {"mc_filter_resample", 64, 32},
+    {"mc_filter_recall", 32, 16},
     {"move", 80, 112},
     {"step.part.0", 56, 32},
     {"score", 80, 112},
@@ -196,7 +197,7 @@ constexpr size_t max3(size_t a, size_t b, size_t c) { return max2(a, max2(b, c))
 // The call graph of a tracker's frame, each chain taken whole where the calls inside a file are not
 // certain (a bound, not the exact deepest path):
 //   front end -> mc_imgedge -> thin_row | mc_imgedge_bin ; mc_imgedge_masks
-//             -> mc_filter_step -> mc_filter_resample | step | move -> step | mc_quat_unit
+//             -> mc_filter_step -> mc_filter_resample | mc_filter_recall | step | move -> step | mc_quat_unit
 //                  | score -> mc_pose_set -> mc_quat_unit
 //                          | mc_track_score_pose -> mc_sdepth_forget | camera_point -> mc_pose_apply
 //                              | projection: mc_camera_project -> image_coord -> udiv64_wide -> divlu, round_shl
@@ -224,7 +225,7 @@ constexpr size_t track_score_pose() {
 constexpr size_t track_stack_bound() {
     const size_t move = track_frame("move") + max2(track_frame("step.part.0"), track_frame("mc_quat_unit"));
     const size_t filter = track_frame("mc_filter_step") +
-                          max3(max2(track_frame("mc_filter_resample"), track_frame("step.part.0")), move,
+                          max3(max3(track_frame("mc_filter_resample"), track_frame("mc_filter_recall"), track_frame("step.part.0")), move,
                                track_frame("score") + max2(track_frame("mc_pose_set") + track_frame("mc_quat_unit"),
                                                            track_score_pose()));
     const size_t edges = max2(track_frame("mc_imgedge") + max2(track_frame("thin_row"), track_frame("mc_imgedge_bin")),

@@ -277,7 +277,7 @@ static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xverte
 }
 
 /* The edge pass over faces f0 .. f0 + n - 1, whose opposite records start at r (hb: the index width,
- * a constant where called, so that one loop is made for each width): each edge once, from the face
+ * 2 or 4): each edge once, from the face
  * with the lower number (or its only face), its kind from the facing and crease bits; those of a
  * kind in flags drawn as their lines, into t with mc_line's depth test (sd null) or offered to sd
  * (t null). The counts are kept in locals (a pixel store could alias *st). */
@@ -337,9 +337,7 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
     /* the stored opposites read in order, a run of records a chunk */
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
-        const uint8_t *r = pm->opposite[f0 >> shift].data;
-        if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2);
-        else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4);
+        edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, pm->opposite[f0 >> shift].data, pm->half_bytes);
     }
 }
 
