@@ -36,7 +36,7 @@ inline constexpr ModuleCode kModules[] = {
     {"trig", 4240, 4240, "sine and cosine: trig.c 140 + the 1025-entry table sintab.c 4100"},
     {"xform", 512, 512, "view clamping and rotation matrix (xform.c)"},
     {"target", 116, 116, "clearing the colour and depth buffers (target.c)"},
-    {"octree_render", 69044, 12216, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
+    {"octree_render", 69048, 12220, "the octree renderer (octree_render.c); MC_LEAF_SWITCH=1: a case per mask"},
     {"finish", 1908, 1908, "hole filling (finish.c)"},
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
@@ -46,8 +46,8 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"raster", 7060, 7060, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 828, 828, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
-    {"mesh_render", 3404, 3404, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 6404, 6404, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"mesh_render", 3224, 3224, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
+    {"mesh_lines", 6416, 6416, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 // The edge part's own modules (--as edges): a tracker links them with fixed, raster, line and sdepth
@@ -92,7 +92,7 @@ inline constexpr Frame kFrames[] = {
     {"draw_inside_squares", 152, 120},
     {"draw_checked", 80, 96},
     {"leaves_perspective", 80, 128},
-    {"leaves_clipped", 56, 80},
+    {"leaves_clipped", 64, 80},
     {"draw_square", 28, 16},
     {"classify", 16, 8},
     {"mc_mul_shift64", 24, 8},

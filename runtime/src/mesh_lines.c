@@ -277,15 +277,14 @@ static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xverte
 }
 
 /* The edge pass over faces f0 .. f0 + n - 1, whose opposite records start at r (hb: the index width,
- * 2 or 4): each edge once, from the face
- * with the lower number (or its only face), its kind from the facing and crease bits; those of a
- * kind in flags drawn as their lines, into t with mc_line's depth test (sd null) or offered to sd
- * (t null). The counts are kept in locals (a pixel store could alias *st). */
+ * 2 or 4): each edge once, from the face with the lower number (or its only face), its kind from the
+ * facing and crease bits; those of a kind in flags drawn as their lines, into t with mc_line's depth
+ * test (sd null) or offered to sd (t null). The counts are kept in locals (a pixel store could alias
+ * *st). */
 MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
                                const uint8_t *cr, unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd,
                                mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb)
 {
-    const uint32_t faces = lod->faces;
     uint32_t edges = 0, sil = 0, crease = 0, border = 0;
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = creases(cr, f);
@@ -293,17 +292,13 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
             uint32_t o;
             if (hb == 2) o = mc_le16(r + 2u * k), o = o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
             else o = mc_le32(r + 4u * k);
+            o = mc_pmesh_lod_across(lod, o);
             unsigned kind;
-            if (o == MC_NO_HALF_EDGE) {
-                kind = MC_EDGE_BORDER;
-            } else {
-                if (MC_HALF_FACE(o) >= faces) o = mc_pmesh_lod_opposite_walk(lod, o);   /* a face not present */
-                if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
-                else if (MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
-                else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
-                            : (fc >> k) & 1u                     ? MC_EDGE_CREASE
-                                                                 : MC_EDGE_PLAIN;
-            }
+            if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
+            else if (MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
+            else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
+                        : (fc >> k) & 1u                     ? MC_EDGE_CREASE
+                                                             : MC_EDGE_PLAIN;
             edges++;
             if (!kind) continue;
             sil += kind == MC_EDGE_SILHOUETTE, crease += kind == MC_EDGE_CREASE, border += kind == MC_EDGE_BORDER;

@@ -144,30 +144,23 @@ static void clipped_face(const mc_pmesh *pm, const mc_xform *x, const uint32_t c
 
 /* Projects the vertices v0 .. v0 + n - 1 present at the level (their own ancestors) into cache,
  * their position records starting at r; in the usual (orthographic) view with the projection
- * inline (xform_ortho.h), its constants in registers. One loop for both index widths: the width's
- * test is the same every vertex, and a second copy of the projection would cost a firmware's flash. */
+ * inline (xform_ortho.h), its constants in registers. One loop for both index widths and both
+ * projections: the tests are the same every vertex, and a copy of the loop would cost a firmware's
+ * flash. */
 static void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache, uint32_t v0, uint32_t n,
                         const uint8_t *r)
 {
-    const int wide = lod->pm->index_bytes != 2;
+    const int wide = lod->pm->index_bytes != 2, perspective = x->perspective;
     const uint16_t *anc16 = (const uint16_t *)lod->anc;
     const uint32_t *anc32 = (const uint32_t *)lod->anc;
-    if (x->perspective) {
-        for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
-            if ((wide ? anc32[v] : anc16[v]) != v) continue;
-            int32_t p[3];
-            position_of(r, p);
-            mc_xform_vertex(x, p, &cache[v]);
-        }
-        return;
-    }
     mc_xform_ortho o;
     mc_xform_ortho_init(&o, x);
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
         if ((wide ? anc32[v] : anc16[v]) != v) continue;
         int32_t p[3];
         position_of(r, p);
-        mc_xform_ortho_point(&o, p, &cache[v]);
+        if (perspective) mc_xform_vertex(x, p, &cache[v]);
+        else mc_xform_ortho_point(&o, p, &cache[v]);
     }
 }
 

@@ -119,6 +119,18 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 /* The squares' depth test: the branch (the four pixels of a leaf mostly win or lose together, and
  * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
 #define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
+/* A 2x2 square whose top-left pixel is z (depth buffer) and f (colour), rows w apart, colour cv read
+ * once (a pixel store may alias the colour array): through pointers to the square, the four tests
+ * fold into addressing. */
+#define SQUARE2_TEST(z, f, w, depth, cv)                                                           \
+    {                                                                                              \
+        uint16_t *const z_ = (z);                                                                  \
+        uint8_t *const f_ = (f);                                                                   \
+        if ((depth) < z_[0]) { z_[0] = (depth); f_[0] = (cv); }                                    \
+        if ((depth) < z_[1]) { z_[1] = (depth); f_[1] = (cv); }                                    \
+        if ((depth) < z_[w]) { z_[w] = (depth); f_[w] = (cv); }                                    \
+        if ((depth) < z_[(w) + 1]) { z_[(w) + 1] = (depth); f_[(w) + 1] = (cv); }                  \
+    }
 
 /* Leaves of one level d-1 node that may reach off screen, orthographic: each point checked (a leaf
  * is drawn when its centre is on the target), as one pixel or, with footprints above one pixel, as
@@ -145,8 +157,8 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
                 uint16_t *zb = c->zb;
                 uint8_t *fb = c->fb;
                 const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
-                SQUARE_TEST(i, depth, col) SQUARE_TEST(i + 1, depth, col)
-                SQUARE_TEST(i + w, depth, col) SQUARE_TEST(i + w + 1, depth, col)
+                const uint8_t cv = *col;
+                SQUARE2_TEST(zb + i, fb + i, w, depth, cv)
             } else {
                 draw_square(c, fx, fy, 2, depth, *col);
             }
@@ -352,13 +364,8 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
         const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
         const uint8_t cv = *col;   /* once: a pixel store may alias it */                          \
         MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
-        if (s == 2) {   /* through pointers to the square: the four tests fold into addressing */  \
-            uint16_t *const z_ = zb + i;                                                           \
-            uint8_t *const f_ = fb + i;                                                            \
-            if (depth < z_[0]) { z_[0] = depth; f_[0] = cv; }                                      \
-            if (depth < z_[1]) { z_[1] = depth; f_[1] = cv; }                                      \
-            if (depth < z_[w]) { z_[w] = depth; f_[w] = cv; }                                      \
-            if (depth < z_[w + 1]) { z_[w + 1] = depth; f_[w + 1] = cv; }                          \
+        if (s == 2) {                                                                              \
+            SQUARE2_TEST(zb + i, fb + i, w, depth, cv)                                             \
         } else {                                                                                   \
             for (int32_t dy = 0; dy < s; dy++)                                                     \
                 for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, &cv)        \
