@@ -56,7 +56,8 @@ inline constexpr ModuleCode kTrackModules[] = {
     {"camera", 2252, 2252, "pinhole projection of poses, near-plane clipping (camera.c)"},
     {"imgedge", 1788, 1788, "image edges: Sobel, orientation bins, non-maximum suppression, masks (imgedge.c)"},
     {"track", 3360, 3360, "the score of a pose: lines and faces into the sparse depth buffer (track.c)"},
-    {"particles", 3212, 3212, "the particle filter over poses (particles.c)"},
+    {"particles", 3440, 3440, "the particle filter over poses (particles.c)"},
+    {"detect", 956, 956, "re-detection: the image shift that fits a trial orientation best (detect.c)"},
 };
 inline constexpr const char *kTrackShared[] = {"fixed", "raster", "line", "sdepth"};
 inline constexpr size_t kLibgccDivision = 960;
@@ -153,12 +154,15 @@ constexpr size_t stack_bound(int depth) {
 }
 static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is missing from kFrames");
 
-// -fstack-usage of every function of particles.c, track.c, camera.c, raster.c's face pass and
-// imgedge.c that a tracker's frame can reach, measured as kFrames is.
+// -fstack-usage of every function of particles.c, detect.c, track.c, camera.c, raster.c's face pass
+// and imgedge.c that a tracker's frame can reach, measured as kFrames is.
 inline constexpr Frame kTrackFrames[] = {
-    {"mc_filter_step", 208, 288},
+    {"mc_filter_step", 232, 288},
     {"mc_filter_resample", 64, 32},
     {"mc_filter_recall", 32, 16},
+    {"mc_detect_shift", 912, 1008},
+    {"best_of", 80, 56},
+    {"mc_detect_move", 24, 8},
     {"move", 80, 112},
     {"step.part.0", 56, 32},
     {"score", 80, 112},
@@ -199,6 +203,7 @@ constexpr size_t max3(size_t a, size_t b, size_t c) { return max2(a, max2(b, c))
 //   front end -> mc_imgedge -> thin_row | mc_imgedge_bin ; mc_imgedge_masks
 //             -> mc_filter_step -> mc_filter_resample | mc_filter_recall | step | move -> step | mc_quat_unit
 //                  | score -> mc_pose_set -> mc_quat_unit
+//                  | mc_detect_shift -> mc_track_score_pose (below) | best_of ; mc_detect_move
 //                          | mc_track_score_pose -> mc_sdepth_forget | camera_point -> mc_pose_apply
 //                              | projection: mc_camera_project -> image_coord -> udiv64_wide -> divlu, round_shl
 //                              | mc_camera_clip_segment | mc_camera_clip_triangle -> cut -> projection
@@ -226,8 +231,10 @@ constexpr size_t track_stack_bound() {
     const size_t move = track_frame("move") + max2(track_frame("step.part.0"), track_frame("mc_quat_unit"));
     const size_t filter = track_frame("mc_filter_step") +
                           max3(max3(track_frame("mc_filter_resample"), track_frame("mc_filter_recall"), track_frame("step.part.0")), move,
-                               track_frame("score") + max2(track_frame("mc_pose_set") + track_frame("mc_quat_unit"),
-                                                           track_score_pose()));
+                               max3(track_frame("score") + max2(track_frame("mc_pose_set") + track_frame("mc_quat_unit"),
+                                                                track_score_pose()),
+                                    track_frame("mc_detect_shift") + max2(track_score_pose(), track_frame("best_of")),
+                                    track_frame("mc_detect_move")));
     const size_t edges = max2(track_frame("mc_imgedge") + max2(track_frame("thin_row"), track_frame("mc_imgedge_bin")),
                               track_frame("mc_imgedge_masks"));
     return max2(filter, edges);

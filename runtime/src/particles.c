@@ -1,5 +1,6 @@
 /* The particle filter over camera poses: see modelc/particles.h. */
 #include "modelc/particles.h"
+#include "modelc/detect.h"
 
 /* the largest translation a particle takes, um (camera.h: below 2^28 per axis) */
 #define T_MAX (((int32_t)1 << 28) - 1)
@@ -31,7 +32,8 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     if (!prm->particles || prm->particles > 65535u || prm->fresh >= prm->particles || prm->step_t < 0 ||
         prm->step_r < 0 || prm->step_t > (1 << 28) || prm->step_r > (1 << 28) || prm->fresh_r < 0 ||
         prm->fresh_r > (1 << 28) || prm->layers > 4 || !prm->sharpness ||
-        prm->sharpness > 64 || prm->recall > 64 || (prm->dof != 3 && prm->dof != 6))
+        prm->sharpness > 64 || prm->recall > 64 || prm->detect > prm->fresh ||
+        (prm->detect && (!prm->detect_stride || prm->detect_stride > 16 || prm->detect_reach > 1024)) || (prm->dof != 3 && prm->dof != 6))
         return MC_ERR_ARG;
     for (int k = 0; k < 3; k++)
         if (prm->lo[k] > prm->hi[k] || prm->lo[k] < -T_MAX || prm->hi[k] > T_MAX || t[k] < -T_MAX || t[k] > T_MAX)
@@ -43,6 +45,7 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     fp->fresh_r = prm->fresh_r, fp->layers = prm->layers ? prm->layers : 1;
     for (int k = 0; k < 3; k++) fp->lo[k] = prm->lo[k], fp->hi[k] = prm->hi[k];
     fp->min_visible = prm->min_visible, fp->sharpness = prm->sharpness, fp->recall = prm->recall, fp->dof = prm->dof;
+    fp->detect = prm->detect, fp->detect_reach = prm->detect_reach, fp->detect_stride = prm->detect_stride;
     f->p = p, f->spare = spare;
     mc_rng_seed(&f->rng, seed, 0x7261636bu);
     for (uint32_t i = 0; i < prm->particles; i++) {
@@ -164,8 +167,10 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
         if (i < drawn) {   /* motion */
             move(r, &p[i], prm->step_t, given ? 0 : prm->step_r);
         } else {           /* re-detection */
+            const int search = i - drawn < prm->detect;
             for (int k = 0; k < 3; k++)
-                p[i].t[k] = prm->lo[k] + (int32_t)mc_rng_below(r, (uint32_t)((int64_t)prm->hi[k] - prm->lo[k]) + 1u);
+                p[i].t[k] = search ? f->estimate.t[k]
+                                   : prm->lo[k] + (int32_t)mc_rng_below(r, (uint32_t)((int64_t)prm->hi[k] - prm->lo[k]) + 1u);
             if (!given && !prm->fresh_r) {   /* any orientation */
                 int32_t q[4];
                 for (int k = 0; k < 4; k++) q[k] = step(r, 1 << 28);
@@ -174,6 +179,16 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
             } else if (!given) {             /* near the last estimate's */
                 for (int k = 0; k < 4; k++) p[i].q[k] = f->estimate.q[k];
                 move(r, &p[i], 0, prm->fresh_r);
+            } else {
+                for (int k = 0; k < 4; k++) p[i].q[k] = g[k];
+            }
+            if (search) {                    /* where the image fits that orientation best */
+                mc_pose pose;
+                int32_t dx, dy, t[3];
+                if (mc_pose_set(&pose, p[i].q, p[i].t) != MC_OK) return MC_ERR_ARG;
+                mc_detect_shift(view, &pose, prm->detect_reach, prm->detect_stride, &dx, &dy);
+                mc_detect_move(view->cam, p[i].t, dx, dy, t);
+                for (int k = 0; k < 3; k++) p[i].t[k] = t[k] > T_MAX ? T_MAX : t[k] < -T_MAX ? -T_MAX : t[k];
             }
         }
         if (given)

@@ -178,7 +178,7 @@ for su in glob.glob(d + "/*.su"):
         if fn in track:
             if int(n) > track[fn][col]:
                 bad.append("%s: %s bytes, kTrackFrames %d" % (fn, n, track[fn][col]))
-        elif mod in ("particles", "track") and fn not in ("mc_filter_init", "mc_filter_weight"):
+        elif mod in ("particles", "detect", "track") and fn not in ("mc_filter_init", "mc_filter_weight"):
             bad.append("%s (%s.c) missing from kTrackFrames" % (fn, mod))
         if "static" not in qual and "bounded" not in qual:   # bounded: arguments pushed around a call
             bad.append("%s: %s stack" % (fn, qual.strip()))
@@ -200,7 +200,7 @@ if bad:
 PY
 }
 if measure host gcc; then
-    check "stack tables >= host gcc -O2 -fstack-usage for every function; every octree_render.c function in kFrames, every particles.c and track.c one in kTrackFrames" tables host "$tmp/su-host" size
+    check "stack tables >= host gcc -O2 -fstack-usage for every function; every octree_render.c function in kFrames, every particles.c, detect.c and track.c one in kTrackFrames" tables host "$tmp/su-host" size
 else
     nok "host -fstack-usage build of runtime/src"
 fi

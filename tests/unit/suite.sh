@@ -196,6 +196,7 @@ build_and_run "unit: imgedge: " test_imgedge runtime/ref/imgedge_ref.c
 build_and_run "unit: camera: " test_camera runtime/ref/camera_ref.c
 build_and_run "unit: track: " test_track
 build_and_run "unit: particles: " test_particles
+build_and_run "unit: detect: " test_detect
 # the tracker front end's input readers (host-only C: runtime/front/track/), and the track_input
 # fuzzer's check, which replays its findings (tests/fuzz/regress/track_input/)
 build_and_run "unit: track input: " test_track_input runtime/front/track/track_input.c tests/fuzz/fuzz_track_input.c

@@ -82,6 +82,10 @@ static const char usage[] =
     "  --fresh-r DEG        fresh particles turned from the estimate by steps of this, 0..28 (default 15; 0: any\n"
     "                       orientation)\n"
     "  --search MM          fresh particles within this many mm of the first pose, each axis (default 60)\n"
+    "  --detect K           of the fresh ones, K placed where the image's edges fit their orientation best,\n"
+    "                       searched within --detect-reach pixels of the estimate (default 8; 0: none)\n"
+    "  --detect-reach PX    0..1024 (default 64)\n"
+    "  --detect-stride PX   the search's coarse grid, 1..16 (default 3), then refined to the pixel\n"
     "  --sharpness S        weight halving every 1/S of matched/visible lost, 1..64 (default 32)\n"
     "  --recall K           in the layers after the first, weight halving every 1/K of matched pixels short\n"
     "                       of the best particle's, 0..64 (default 4; 0: off)\n"
@@ -182,6 +186,9 @@ static int parse(int argc, char **argv, options *o)
         else if (!strcmp(a, "--tolerance")) rc = integer(a, v, 0, 3, &s->tolerance);
         else if (!strcmp(a, "--sharpness")) rc = integer(a, v, 1, 64, &s->sharpness);
         else if (!strcmp(a, "--recall")) rc = integer(a, v, 0, 64, &s->recall);
+        else if (!strcmp(a, "--detect")) rc = integer(a, v, 0, 65535, &s->detect);
+        else if (!strcmp(a, "--detect-reach")) rc = integer(a, v, 0, 1024, &s->detect_reach);
+        else if (!strcmp(a, "--detect-stride")) rc = integer(a, v, 1, 16, &s->detect_stride);
         else if (!strcmp(a, "--min-visible")) rc = integer(a, v, 0, 100000000, &s->min_visible);
         else if (!strcmp(a, "--seed")) rc = integer(a, v, 0, 2000000000, &l), s->seed = (unsigned long)l;
         else if (!strcmp(a, "--step-t")) rc = number(a, v, 0, 1000, &s->step_t_mm);

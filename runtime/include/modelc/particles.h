@@ -16,7 +16,12 @@
  *      mode, orientations from four steps of 2^28 made unit length (spread over every rotation) or,
  *      with fresh_r, the last estimate's turned as in the motion by steps of fresh_r (a random
  *      search over all rotations rarely lands near the object's; one around the last estimate
- *      finds it again after a jump of a few tens of degrees);
+ *      finds it again after a jump of a few tens of degrees); in 3-DOF mode the given orientation.
+ *      The first `detect` of them take, instead of a translation from the box, the last estimate's
+ *      moved by the image shift that fits their orientation best (detect.h mc_detect_shift within
+ *      detect_reach pixels on a grid of detect_stride, mc_detect_move): a random translation and
+ *      orientation land in the true pose's basin about once in a million draws, an orientation
+ *      with the translation the image gives often enough to find the object within a few frames;
  *   4. weighing: each particle's pose scored (mc_track_score_pose); r = matched / visible in Q16;
  *      weight 2^(sharpness (r - 1)) in Q16, its exponent truncated to sixteenths (65536 at r = 1,
  *      halving every 1/sharpness of r below, at most 2^(1/16) times the exact value), or 0 where
@@ -39,7 +44,8 @@
  *      shows fewer than min_visible pixels).
  * Random numbers: a PCG32 stream (rng.h) seeded at init, so the same frames give the same poses on
  * every machine. Memory: the caller's, two arrays of N particles; no heap, no floating point.
- * Work: N L + 1 scores a frame, plus N L for the motion and the resampling. Freestanding.
+ * Work: N L + 1 scores a frame, plus N L for the motion and the resampling, plus `detect` searches
+ * (a score and a mask read per feature and shift each). Freestanding.
  */
 #ifndef MODELC_PARTICLES_H
 #define MODELC_PARTICLES_H
@@ -66,6 +72,9 @@ typedef struct mc_filter_params {
     uint8_t sharpness;          /* 1 .. 64: how fast the weight falls as r drops */
     uint8_t recall;             /* 0 .. 64: how fast it falls, in the layers after the first, as the
                                  * matched count drops below the best particle's (step 4a); 0: not at all */
+    uint32_t detect;            /* of the F fresh ones, placed by an image search (step 3), <= F */
+    uint16_t detect_reach;      /* the search's reach, pixels (detect.h), <= 1024 */
+    uint8_t detect_stride;      /* its coarse grid, pixels, 1 .. 16 */
     uint8_t dof;                /* 6, or 3 (orientation given each frame) */
     uint8_t layers;             /* 0 or 1: one weighing a frame; 2 .. 4: that many (see the promise) */
 } mc_filter_params;
@@ -79,7 +88,8 @@ typedef struct mc_filter {
 } mc_filter;
 
 /* Starts with every particle at pose (q, t), equal weights. Returns MC_OK, or MC_ERR_ARG for a null
- * array, N = 0 or above 65535, F >= N, a step (or fresh_r) below 0 or above 2^28, lo > hi, a box or
+ * array, N = 0 or above 65535, F >= N, detect > F, with detect a stride of 0 or above 16 or a reach
+ * above 1024, a step (or fresh_r) below 0 or above 2^28, lo > hi, a box or
  * t beyond +-(2^28 - 1), a sharpness outside 1 .. 64, a recall above 64, dof not 3 or 6, layers above 4,
  * or q = 0.
  * Translations stay within +-(2^28 - 1) um as they move. */
