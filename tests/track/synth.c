@@ -7,7 +7,7 @@
  *
  *   synth NAME --out DIR [--frames N] [--size WxH] [--camera px,py,u0,v0] [--start tx,ty,tz,tux,tuy,tuz]
  *         [--seed S] [--clutter N] [--noise SIGMA] [--blur 0|1] [--occlude FIRST:LAST] [--jump K]
- *         [--speed F]
+ *         [--jump-turn ax,ay,az] [--jump-move dx,dy,dz] [--speed F]
  *
  * Writes DIR/image%04d.pgm (P5, 8-bit), DIR/truth.csv (frame,tx,ty,tz,tux,tuy,tuz: the pose of each
  * frame, ViSP's convention: metres, theta-u radians, object to camera), DIR/init.pos (frame 0's pose
@@ -17,7 +17,9 @@
  *
  * Motion: the translation drifts along a slow Lissajous path (about 1.5 mm a frame at --speed 1)
  * and the object turns about a slowly tilting axis (about 0.6 degrees a frame); at frame --jump the
- * pose jumps by (40, -25, 30) mm and 25 degrees and carries on from there.
+ * pose jumps and carries on from there: turned by --jump-turn (a rotation vector in degrees, camera
+ * axes: x right, y down, z ahead; default 15,20,0, 25 degrees) and moved by --jump-move (mm, camera
+ * axes; default 40,-25,30).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -90,6 +92,8 @@ static void matmul(const double a[3][3], const double b[3][3], double c[3][3])
 }
 
 /* the pose of frame k */
+static double jump_turn[3] = {15, 20, 0}, jump_move[3] = {40, -25, 30};   /* degrees, mm */
+
 static void truth(int k, const double start[6], double speed, int jump, pose_d *p)
 {
     const double s = speed * k;
@@ -106,11 +110,12 @@ static void truth(int k, const double start[6], double speed, int jump, pose_d *
     p->t[0] = start[0] + 0.04 * sin(0.021 * s), p->t[1] = start[1] + 0.03 * sin(0.017 * s + 0.5);
     p->t[2] = start[2] + 0.05 * sin(0.013 * s);
     if (jump > 0 && k >= jump) {
-        double j[3][3], r[3][3], jtu[3] = {25 * PI / 180 * 0.6, 25 * PI / 180 * 0.8, 0};
+        double j[3][3], r[3][3], jtu[3];
+        for (int a = 0; a < 3; a++) jtu[a] = jump_turn[a] * PI / 180;
         rot_from_tu(jtu, j);
         matmul(j, p->r, r);
         memcpy(p->r, r, sizeof r);
-        p->t[0] += 0.040, p->t[1] -= 0.025, p->t[2] += 0.030;
+        for (int a = 0; a < 3; a++) p->t[a] += jump_move[a] / 1000;
     }
 }
 
@@ -136,7 +141,11 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--blur")) blur = atoi(v);
         else if (!strcmp(a, "--occlude")) sscanf(v, "%d:%d", &occ0, &occ1);
         else if (!strcmp(a, "--jump")) jump = atoi(v);
-        else if (!strcmp(a, "--speed")) speed = atof(v);
+        else if (!strcmp(a, "--jump-turn")) {
+            if (sscanf(v, "%lf,%lf,%lf", jump_turn, jump_turn + 1, jump_turn + 2) != 3) return 2;
+        } else if (!strcmp(a, "--jump-move")) {
+            if (sscanf(v, "%lf,%lf,%lf", jump_move, jump_move + 1, jump_move + 2) != 3) return 2;
+        } else if (!strcmp(a, "--speed")) speed = atof(v);
         else {
             fprintf(stderr, "synth: unknown option %s\n", a);
             return 2;
