@@ -46,6 +46,7 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     for (int k = 0; k < 3; k++) fp->lo[k] = prm->lo[k], fp->hi[k] = prm->hi[k];
     fp->min_visible = prm->min_visible, fp->sharpness = prm->sharpness, fp->recall = prm->recall, fp->dof = prm->dof;
     fp->detect = prm->detect, fp->detect_reach = prm->detect_reach, fp->detect_stride = prm->detect_stride;
+    fp->detect_below = prm->detect_below;
     f->p = p, f->spare = spare;
     mc_rng_seed(&f->rng, seed, 0x7261636bu);
     for (uint32_t i = 0; i < prm->particles; i++) {
@@ -167,7 +168,7 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
         if (i < drawn) {   /* motion */
             move(r, &p[i], prm->step_t, given ? 0 : prm->step_r);
         } else {           /* re-detection */
-            const int search = i - drawn < prm->detect;
+            const int search = i - drawn < prm->detect && f->confidence < prm->detect_below;
             for (int k = 0; k < 3; k++)
                 p[i].t[k] = search ? f->estimate.t[k]
                                    : prm->lo[k] + (int32_t)mc_rng_below(r, (uint32_t)((int64_t)prm->hi[k] - prm->lo[k]) + 1u);

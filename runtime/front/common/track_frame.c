@@ -11,7 +11,7 @@ void mc_track_settings_default(mc_track_settings *s)
 {
     s->particles = 100, s->fresh = -1, s->layers = 3, s->threshold = 30, s->radius = 2, s->fine_radius = 1, s->tolerance = 1;
     s->sharpness = 32, s->recall = 4, s->min_visible = 20;
-    s->detect = 8, s->detect_reach = 64, s->detect_stride = 3;
+    s->detect = 16, s->detect_reach = 64, s->detect_stride = 3, s->detect_below = 0.9;
     s->step_t_mm = 5, s->step_r_deg = 2, s->fresh_r_deg = 15, s->search_mm = 60, s->near_m = 0.02, s->far_m = 20;
     s->seed = 1, s->dof = 6;
 }
@@ -49,6 +49,7 @@ void mc_track_filter_params(const mc_track_settings *s, const int32_t t[3], mc_f
     prm->min_visible = (uint32_t)s->min_visible, prm->sharpness = (uint8_t)s->sharpness, prm->recall = (uint8_t)s->recall;
     prm->detect = s->detect < (long)prm->fresh ? (uint32_t)s->detect : prm->fresh;
     prm->detect_reach = (uint16_t)s->detect_reach, prm->detect_stride = (uint8_t)s->detect_stride;
+    prm->detect_below = (uint32_t)mc_track_round(s->detect_below * 65536);
     prm->dof = (uint8_t)s->dof;
     prm->layers = (uint8_t)s->layers;
 }

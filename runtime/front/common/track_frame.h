@@ -38,7 +38,7 @@ typedef struct mc_track_settings {
     long particles, fresh;          /* fresh < 0: particles / 3 */
     long layers, threshold, radius, fine_radius, tolerance, sharpness, recall, min_visible;
     long detect, detect_reach, detect_stride;
-    double step_t_mm, step_r_deg, fresh_r_deg, search_mm, near_m, far_m;
+    double step_t_mm, step_r_deg, fresh_r_deg, search_mm, near_m, far_m, detect_below;
     unsigned long seed;
     int dof;                        /* 6, or 3 with an orientation a frame */
 } mc_track_settings;
@@ -47,8 +47,8 @@ typedef struct mc_track_settings {
  * particles, but the later two with the sharper masks: on ViSP's cube sequence this follows ViSP's
  * tracker more closely than one layer of 300), threshold 30, radius 2 (fine radius 1, for the later
  * layers), tolerance 1,
- * sharpness 32, recall 4, min_visible 20, detect 8 (of the fresh ones, placed by the image search within
- * 64 pixels on a grid of 3: detect.h), steps 5 mm and 2 degrees, fresh turn 15 degrees, search 60 mm,
+ * sharpness 32, recall 4, min_visible 20, detect 16 (of the fresh ones, placed by the image search within
+ * 64 pixels on a grid of 3 while the confidence is below 0.9: detect.h), steps 5 mm and 2 degrees, fresh turn 15 degrees, search 60 mm,
  * near 0.02 m, far 20 m, seed 1, 6 DOF. */
 void mc_track_settings_default(mc_track_settings *s);
 

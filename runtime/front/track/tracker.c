@@ -83,7 +83,9 @@ static const char usage[] =
     "                       orientation)\n"
     "  --search MM          fresh particles within this many mm of the first pose, each axis (default 60)\n"
     "  --detect K           of the fresh ones, K placed where the image's edges fit their orientation best,\n"
-    "                       searched within --detect-reach pixels of the estimate (default 8; 0: none)\n"
+    "                       searched within --detect-reach pixels of the estimate, in frames after one whose\n"
+    "                       confidence is below --detect-below (default 16; 0: none)\n"
+    "  --detect-below C     0..1.01 (default 0.9; above 1: every frame)\n"
     "  --detect-reach PX    0..1024 (default 64)\n"
     "  --detect-stride PX   the search's coarse grid, 1..16 (default 3), then refined to the pixel\n"
     "  --sharpness S        weight halving every 1/S of matched/visible lost, 1..64 (default 32)\n"
@@ -187,6 +189,7 @@ static int parse(int argc, char **argv, options *o)
         else if (!strcmp(a, "--sharpness")) rc = integer(a, v, 1, 64, &s->sharpness);
         else if (!strcmp(a, "--recall")) rc = integer(a, v, 0, 64, &s->recall);
         else if (!strcmp(a, "--detect")) rc = integer(a, v, 0, 65535, &s->detect);
+        else if (!strcmp(a, "--detect-below")) rc = number(a, v, 0, 1.01, &s->detect_below);
         else if (!strcmp(a, "--detect-reach")) rc = integer(a, v, 0, 1024, &s->detect_reach);
         else if (!strcmp(a, "--detect-stride")) rc = integer(a, v, 1, 16, &s->detect_stride);
         else if (!strcmp(a, "--min-visible")) rc = integer(a, v, 0, 100000000, &s->min_visible);
