@@ -164,11 +164,13 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
     mc_rng *r = &f->rng;
     mc_filter_resample(r, f->p, n, f->spare, drawn);
     mc_particle *p = f->spare;
+    /* a searched particle is judged by the recall term (step 4a), which only later layers apply */
+    const int judged = prm->layers > 1 && prm->recall;
     for (uint32_t i = 0; i < n; i++) {
         if (i < drawn) {   /* motion */
             move(r, &p[i], prm->step_t, given ? 0 : prm->step_r);
         } else {           /* re-detection */
-            const int search = i - drawn < prm->detect && f->confidence < prm->detect_below;
+            const int search = i - drawn < prm->detect && f->confidence < prm->detect_below && judged;
             for (int k = 0; k < 3; k++)
                 p[i].t[k] = search ? f->estimate.t[k]
                                    : prm->lo[k] + (int32_t)mc_rng_below(r, (uint32_t)((int64_t)prm->hi[k] - prm->lo[k]) + 1u);

@@ -3,10 +3,7 @@
  * then mc_filter_step runs (timed; callgrind: --toggle-collect=mc_filter_step). Prints the median
  * time of a step, the pose errors against the truth and the frames within 5 mm and 3 degrees and
  * within 5 cm and 5 degrees.
- *   track_frames [--particles N] [--fresh F] [--detect D] [--size WxH] [--frames K] [--dof 3|6] [--seed S]
- * --detect D: of the fresh particles, D placed by the image search (detect.h) as the front end's
- * default has it (16, within 64 pixels on a grid of 3 while the confidence is below 0.9, fresh orientations turned from the estimate
- * by steps of 15 degrees); 0: the paper's fresh particles only (any orientation).
+ *   track_frames [--particles N] [--fresh F] [--size WxH] [--frames K] [--dof 3|6] [--seed S]
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,12 +14,11 @@
 
 int main(int argc, char **argv)
 {
-    unsigned n = 300, fresh = 100, w = 320, h = 180, frames = 60, dof = 6, detect = 16;
+    unsigned n = 300, fresh = 100, w = 320, h = 180, frames = 60, dof = 6;
     unsigned long seed = 1;
     for (int i = 1; i + 1 < argc; i += 2) {
         if (!strcmp(argv[i], "--particles")) n = (unsigned)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--fresh")) fresh = (unsigned)atoi(argv[i + 1]);
-        else if (!strcmp(argv[i], "--detect")) detect = (unsigned)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--size") && sscanf(argv[i + 1], "%ux%u", &w, &h) == 2) continue;
         else if (!strcmp(argv[i], "--frames")) frames = (unsigned)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--dof")) dof = (unsigned)atoi(argv[i + 1]);
@@ -39,8 +35,6 @@ int main(int argc, char **argv)
     }
     mc_filter_params prm = cube_scene_params();
     prm.particles = n, prm.fresh = fresh, prm.dof = (uint8_t)dof;
-    prm.detect = detect < fresh ? detect : fresh, prm.detect_reach = 64, prm.detect_stride = 3, prm.detect_below = 58982;
-    if (prm.detect) prm.fresh_r = 140552476;   /* 15 degrees: the half-angle in Q30, as the front end rounds it */
     mc_particle *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
     double *ms = malloc(frames * sizeof *ms), *et = malloc(frames * sizeof *et), *er = malloc(frames * sizeof *er);
     int32_t q[4], t[3];

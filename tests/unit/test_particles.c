@@ -16,7 +16,7 @@
  *     hold the estimate within 5 mm and 3 degrees of the truth in at least 90 % of frames 10 .. 60;
  *     started 12 cm away in 3-DOF mode (the paper's: orientation given), the fresh particles find it
  *     again within 30 frames; in 6-DOF from 6 cm and 20 degrees off, with the image search
- *     (detect.h), within 30 frames for each of eight seeds;
+ *     (detect.h), within 30 frames for at least seven of eight seeds;
  *   - init's refusals.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
  */
@@ -242,11 +242,13 @@ static void test_redetect(void **state)
     free(s);
 }
 
-/* 6-DOF from 6 cm and 20 degrees off (a jump the motion model cannot follow): with the image
- * search placing 16 of the fresh particles (detect.h, the front end's default), the filter finds the
- * cube (within 5 cm and 5 degrees, the issue's success) within 30 frames for each of eight seeds.
- * Without the search (printed for comparison) random translations and orientations rarely land
- * near enough: one seed of the eight when this was written. */
+/* 6-DOF from 6 cm and 20 degrees off (a jump the motion model cannot follow), 3 layers of 100
+ * particles, sharpness 32 and the recall term as the front end has them: with the image search
+ * placing 16 of the fresh particles while the confidence is below 0.9 (detect.h, the front end's
+ * default), the filter finds the cube (within 5 cm and 5 degrees, the issue's success) within 30
+ * frames for at least seven of eight seeds (a run can settle on a wrong pose confident enough to
+ * stop the search; none did when this was written). Without the search (printed for comparison)
+ * random translations and orientations rarely land near enough: none of the eight within 30. */
 static void test_redetect_6dof(void **state)
 {
     (void)state;
@@ -262,18 +264,21 @@ static void test_redetect_6dof(void **state)
     q0[1] = (int32_t)(((int64_t)q[1] * d[0] - (int64_t)q[3] * d[2]) >> 30);
     q0[2] = (int32_t)(((int64_t)q[0] * d[2] + (int64_t)q[2] * d[0]) >> 30);
     q0[3] = (int32_t)(((int64_t)q[3] * d[0] + (int64_t)q[1] * d[2]) >> 30);
+    int within = 0;
     for (int detect = 16; detect >= 0; detect -= 16) {
         mc_filter_params prm = cube_scene_params();
         prm.fresh_r = (int32_t)lround(15 * PI / 180 / 2 * (1 << 30));
+        prm.particles = 100, prm.fresh = 33, prm.layers = 3, prm.recall = 4, prm.sharpness = 32;   /* the front end's */
         prm.detect = (uint32_t)detect, prm.detect_reach = 64, prm.detect_stride = 3, prm.detect_below = 58982;
         for (uint64_t seed = 11; seed < 19; seed++) {
             int found;
             const int good = track_within(s, &prm, q0, t, seed, 50, 5, &found);
             print_message("# info: 6-DOF from 6 cm / 20 degrees off, %d searched: within 5 cm and 5 degrees from frame %d, %d of 50 frames within "
                           "5 mm and 3 degrees\n", detect, found, good);
-            if (detect) assert_true(found >= 0 && found <= 30);
+            if (detect) within += found >= 0 && found <= 30;
         }
     }
+    assert_true(within >= 7);
     cube_scene_free(s);
     free(s);
 }
