@@ -6,7 +6,7 @@
 #     errors (point set, a smooth mesh without lines, --unit, --fit, --stack-budget, over a budget)
 #   - synthetic sequences with exact truth (tests/track/synth.c: clutter, noise, blur, a passing
 #     occluder, a jump): the cube and fandisk, 3-DOF (orientation given) and 6-DOF, scored by
-#     tests/track/errors.py (translation < 5 cm and rotation < 5 degrees)
+#     tests/track/errors.py (translation < 5 cm and rotation < 5 degrees), 6-DOF through a jump too
 #   - ViSP's real cube sequence (Debian visp-images-data), all 218 frames: an estimate matching 85 % in
 #     every frame, the same poses on a second run, overlays written (the poses against ViSP's own
 #     tracker are make bench-track's)
@@ -157,6 +157,9 @@ judge() {   # CHECK-NAME NAME MIN-RATE [--jump K]
 }
 why=$(run cube3 cube 80 --jump 40 --occlude 10:25 --seed 3 -- --orientation "$out/cube3/orientation.txt" --search 100)
 [ -n "$why" ] && notok "cube, 3-DOF" "$why" || judge "cube, 3-DOF, clutter, noise, blur, an occluder, a jump at 40: >= 95 % tracked, re-detected within 30" cube3 0.95 --jump 40
+# 6-DOF through a jump of 25 degrees and 5 cm: found again by the image search (detect.h)
+why=$(run cube6j cube 80 --jump 40 --jump-turn -20,15,0 --occlude 10:25 --seed 3 -- --search 100)
+[ -n "$why" ] && notok "cube, 6-DOF, a jump" "$why" || judge "cube, 6-DOF, clutter, noise, blur, an occluder, a jump at 40: >= 95 % tracked, re-detected within 30" cube6j 0.95 --jump 40
 why=$(run cube6 cube 80 --occlude 30:45 --seed 4 -- --radius 1 --search 100)
 [ -n "$why" ] && notok "cube, 6-DOF" "$why" || judge "cube, 6-DOF, clutter, noise, blur, an occluder: >= 95 %" cube6 0.95
 why=$(run fandisk3 fandisk60 40 --start 0,0,0.45,0.4,0.6,0.2 --jump 20 --occlude 5:12 --seed 5 -- --orientation "$out/fandisk3/orientation.txt" --search 100 --particles 150 --layers 1 --step-t 3)
@@ -212,6 +215,8 @@ bad_run "a camera of three numbers" 1 "camera" "${F[@]}" --camera 1,2,3 --init "
 bad_run "a pose file that is not there" 1 "cannot open" "${F[@]}" --camera "$mbt/cube.xml" --init "$out/none.pos"
 bad_run "more particles than the bake holds" 2 "--particles" "${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" --particles 5000
 bad_run "an unknown option" 2 "unknown option" "${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" --colour red
+bad_run "a search grid of 0 pixels" 2 "--detect-stride 0" "${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" --detect-stride 0
+bad_run "a search confidence above 1.01" 2 "--detect-below 2" "${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" --detect-below 2
 head -c 1000 "$mbt/cube/image0003.pgm" >"$out/cut.pgm"
 mkdir -p "$out/cut"
 for k in 0 1 2; do cp "$mbt/cube/image000$k.pgm" "$out/cut/f$k.pgm"; done
