@@ -14,7 +14,7 @@
 #include "modelc/bits.h"
 #include "modelc/xform.h"
 
-MC_ALWAYS_INLINE int32_t band(int64_t v, uint32_t *flags)
+MC_ALWAYS_INLINE int32_t ortho_band(int64_t v, uint32_t *flags)
 {
     const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
     if (v > lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)lim; }
@@ -25,33 +25,33 @@ MC_ALWAYS_INLINE int32_t band(int64_t v, uint32_t *flags)
 /* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) without a branch (the vertices'
  * signs are a coin toss to a predictor) and without shifting a negative number: that is
  * floor((v + 2^(s-1) - [v < 0]) / 2^s), taken on u = v + 2^63 in unsigned arithmetic (2^63 is a
- * multiple of 2^s). round_shift: for 2 <= s <= 62 and any v > INT64_MIN, u's low s bits and the
- * rest apart so that nothing carries out; round_shift_small: for |v| < 2^62, at once. */
-MC_ALWAYS_INLINE int64_t round_shift(int64_t v, unsigned s)
+ * multiple of 2^s). ortho_round_shift: for 2 <= s <= 62 and any v > INT64_MIN, u's low s bits and the
+ * rest apart so that nothing carries out; ortho_round_shift_small: for |v| < 2^62, at once. */
+MC_ALWAYS_INLINE int64_t ortho_round_shift(int64_t v, unsigned s)
 {
     const uint64_t u = (uint64_t)v ^ ((uint64_t)1 << 63);
     const uint64_t low = (u & (((uint64_t)1 << s) - 1u)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
     return (int64_t)((u >> s) + (low >> s)) - ((int64_t)1 << (63 - s));
 }
 
-MC_ALWAYS_INLINE int64_t round_shift_small(int64_t v, unsigned s)
+MC_ALWAYS_INLINE int64_t ortho_round_shift_small(int64_t v, unsigned s)
 {
     const uint64_t u = ((uint64_t)v ^ ((uint64_t)1 << 63)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
     return (int64_t)(u >> s) - ((int64_t)1 << (63 - s));
 }
 
 /* R p, Q30: |q| < 2^30 (sums below 3 * 2^45 before the shift) */
-#define ROTATE(x, row, p0, p1, p2) \
-    round_shift_small((x)->r[row][0] * (p0) + (x)->r[row][1] * (p1) + (x)->r[row][2] * (p2), 16)
+#define ORTHO_ROTATE(x, row, p0, p1, p2) \
+    ortho_round_shift_small((x)->r[row][0] * (p0) + (x)->r[row][1] * (p1) + (x)->r[row][2] * (p2), 16)
 
 /* The orthographic projection of q = R p: S q in 1/16 pixel, Q16 * Q30 >> 42 */
-MC_ALWAYS_INLINE void orthographic(int64_t scale, int64_t cx, int64_t cy, int64_t q0, int64_t q1, int64_t q2,
+MC_ALWAYS_INLINE void ortho_project(int64_t scale, int64_t cx, int64_t cy, int64_t q0, int64_t q1, int64_t q2,
                                    mc_xvertex *out)
 {
     uint32_t flags = 0;
-    out->x = band(cx + round_shift(scale * q0, 42), &flags);
-    out->y = band(cy - round_shift(scale * q1, 42), &flags);
-    out->z = (uint32_t)round_shift_small(((int64_t)7 << 27) - q2, 15);   /* (7/8 - q.z) * 2^15 */
+    out->x = ortho_band(cx + ortho_round_shift(scale * q0, 42), &flags);
+    out->y = ortho_band(cy - ortho_round_shift(scale * q1, 42), &flags);
+    out->z = (uint32_t)ortho_round_shift_small(((int64_t)7 << 27) - q2, 15);   /* (7/8 - q.z) * 2^15 */
     out->flags = flags;
 }
 
@@ -70,7 +70,8 @@ MC_ALWAYS_INLINE void mc_xform_ortho_init(mc_xform_ortho *o, const mc_xform *x)
 MC_ALWAYS_INLINE void mc_xform_ortho_point(const mc_xform_ortho *o, const int32_t p[3], mc_xvertex *out)
 {
     const int64_t p0 = p[0], p1 = p[1], p2 = p[2];
-    orthographic(o->scale, o->cx, o->cy, ROTATE(o, 0, p0, p1, p2), ROTATE(o, 1, p0, p1, p2), ROTATE(o, 2, p0, p1, p2), out);
+    ortho_project(o->scale, o->cx, o->cy, ORTHO_ROTATE(o, 0, p0, p1, p2), ORTHO_ROTATE(o, 1, p0, p1, p2),
+                  ORTHO_ROTATE(o, 2, p0, p1, p2), out);
 }
 
 #endif

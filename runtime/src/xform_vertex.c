@@ -53,8 +53,8 @@ static void perspective(const mc_xform *x, const int64_t q[3], mc_xvertex *out)
     for (int i = 0; i < 2; i++) {
         int64_t n = mc_mul_shift64(x->scale * q[i], eye16, 28);   /* pixels, Q34 */
         int64_t o = mc_div_round(n, d30);                            /* pixels, Q4 */
-        if (i == 0) out->x = band(x->cx + o, &out->flags);
-        else out->y = band(x->cy - o, &out->flags);
+        if (i == 0) out->x = ortho_band(x->cx + o, &out->flags);
+        else out->y = ortho_band(x->cy - o, &out->flags);
     }
     int64_t t = d24 > x->dmin ? (int64_t)(((uint64_t)(d24 - x->dmin) << 30) / (uint64_t)d24) : 0;   /* Q30 */
     int64_t z = mc_round_shift(x->za * t, 38);
@@ -64,21 +64,22 @@ static void perspective(const mc_xform *x, const int64_t q[3], mc_xvertex *out)
 void mc_xform_vertex(const mc_xform *x, const int32_t p[3], mc_xvertex *out)
 {
     const int64_t p0 = p[0], p1 = p[1], p2 = p[2];
-    const int64_t q0 = ROTATE(x, 0, p0, p1, p2), q1 = ROTATE(x, 1, p0, p1, p2), q2 = ROTATE(x, 2, p0, p1, p2);
+    const int64_t q0 = ORTHO_ROTATE(x, 0, p0, p1, p2), q1 = ORTHO_ROTATE(x, 1, p0, p1, p2);
+    const int64_t q2 = ORTHO_ROTATE(x, 2, p0, p1, p2);
     if (x->perspective) {
         const int64_t q[3] = {q0, q1, q2};
         perspective(x, q, out);
         return;
     }
-    orthographic(x->scale, x->cx, x->cy, q0, q1, q2, out);
+    ortho_project(x->scale, x->cx, x->cy, q0, q1, q2, out);
 }
 
 void mc_xform_view(const mc_xform *x, const int32_t p[3], int32_t q[3])
 {
     const int64_t p0 = p[0], p1 = p[1], p2 = p[2];
-    q[0] = (int32_t)ROTATE(x, 0, p0, p1, p2);
-    q[1] = (int32_t)ROTATE(x, 1, p0, p1, p2);
-    q[2] = (int32_t)ROTATE(x, 2, p0, p1, p2);
+    q[0] = (int32_t)ORTHO_ROTATE(x, 0, p0, p1, p2);
+    q[1] = (int32_t)ORTHO_ROTATE(x, 1, p0, p1, p2);
+    q[2] = (int32_t)ORTHO_ROTATE(x, 2, p0, p1, p2);
 }
 
 void mc_xform_project(const mc_xform *x, const int32_t q[3], mc_xvertex *out)
@@ -88,7 +89,7 @@ void mc_xform_project(const mc_xform *x, const int32_t q[3], mc_xvertex *out)
         perspective(x, w, out);
         return;
     }
-    orthographic(x->scale, x->cx, x->cy, q[0], q[1], q[2], out);
+    ortho_project(x->scale, x->cx, x->cy, q[0], q[1], q[2], out);
 }
 
 /* ---- Clipping: see modelc/xform.h ------------------------------------------------------------
