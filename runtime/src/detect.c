@@ -41,8 +41,9 @@ static uint32_t count_at(const mc_track_view *view, const feature *f, uint32_t n
     const int32_t w = view->cam->width, h = view->cam->height;
     uint32_t c = 0;
     if (box[0] + dx >= 0 && box[1] + dy >= 0 && box[2] + dx < w && box[3] + dy < h) {
-        const uint8_t *m = view->masks + dy * w + dx;
-        for (uint32_t i = 0; i < n; i++) c += (m[f[i].at] & f[i].want) != 0;
+        /* every at + d is then on the frame (the sum, not a pointer moved before the array) */
+        const int32_t d = dy * w + dx;
+        for (uint32_t i = 0; i < n; i++) c += (view->masks[(int32_t)f[i].at + d] & f[i].want) != 0;
         return c;
     }
     for (uint32_t i = 0; i < n; i++) {
