@@ -56,8 +56,8 @@ inline constexpr ModuleCode kTrackModules[] = {
     {"camera", 2252, 2252, "pinhole projection of poses, near-plane clipping (camera.c)"},
     {"imgedge", 1788, 1788, "image edges: Sobel, orientation bins, non-maximum suppression, masks (imgedge.c)"},
     {"track", 3360, 3360, "the score of a pose: lines and faces into the sparse depth buffer (track.c)"},
-    {"particles", 3516, 3516, "the particle filter over poses (particles.c)"},
-    {"detect", 956, 956, "re-detection: the image shift that fits a trial orientation best (detect.c)"},
+    {"particles", 3500, 3500, "the particle filter over poses (particles.c)"},
+    {"detect", 1036, 1036, "re-detection: the image shift that fits a trial orientation best (detect.c)"},
 };
 inline constexpr const char *kTrackShared[] = {"fixed", "raster", "line", "sdepth"};
 inline constexpr size_t kLibgccDivision = 960;
@@ -157,7 +157,7 @@ static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is miss
 // -fstack-usage of every function of particles.c, detect.c, track.c, camera.c, raster.c's face pass
 // and imgedge.c that a tracker's frame can reach, measured as kFrames is.
 inline constexpr Frame kTrackFrames[] = {
-    {"mc_filter_step", 240, 304},
+    {"mc_filter_step", 232, 288},
     {"mc_filter_resample", 64, 32},
     {"mc_filter_recall", 32, 16},
     {"mc_detect_shift", 912, 1008},

@@ -88,10 +88,15 @@ uint32_t mc_detect_shift(const mc_track_view *view, const mc_pose *pose, int32_t
     return best_of(view, f, n, box, x, y, stride - 1, 1, dx, dy);
 }
 
+/* camera.h's range of a coordinate, um */
+#define T_MAX (((int64_t)1 << 28) - 1)
+
+static int32_t clamp_um(int64_t v) { return (int32_t)(v > T_MAX ? T_MAX : v < -T_MAX ? -T_MAX : v); }
+
 void mc_detect_move(const mc_camera *cam, const int32_t t[3], int32_t dx, int32_t dy, int32_t out[3])
 {
-    /* |d| <= 2^16 pixels, z < 2^28 um: the products below 2^61 */
-    out[0] = (int32_t)((int64_t)t[0] + (int64_t)dx * t[2] * 65536 / cam->px);
-    out[1] = (int32_t)((int64_t)t[1] + (int64_t)dy * t[2] * 65536 / cam->py);
+    /* |d| <= 2^16 pixels, |z| < 2^28 um: the products below 2^61 */
+    out[0] = clamp_um((int64_t)t[0] + (int64_t)dx * t[2] * 65536 / cam->px);
+    out[1] = clamp_um((int64_t)t[1] + (int64_t)dy * t[2] * 65536 / cam->py);
     out[2] = t[2];
 }

@@ -32,8 +32,8 @@ int mc_filter_init(mc_filter *f, const mc_filter_params *prm, mc_particle *p, mc
     if (!prm->particles || prm->particles > 65535u || prm->fresh >= prm->particles || prm->step_t < 0 ||
         prm->step_r < 0 || prm->step_t > (1 << 28) || prm->step_r > (1 << 28) || prm->fresh_r < 0 ||
         prm->fresh_r > (1 << 28) || prm->layers > 4 || !prm->sharpness ||
-        prm->sharpness > 64 || prm->recall > 64 || prm->detect > prm->fresh ||
-        (prm->detect && (!prm->detect_stride || prm->detect_stride > 16 || prm->detect_reach > 1024)) || (prm->dof != 3 && prm->dof != 6))
+        prm->sharpness > 64 || prm->recall > 64 || (prm->dof != 3 && prm->dof != 6) || prm->detect > prm->fresh ||
+        (prm->detect && (!prm->detect_stride || prm->detect_stride > 16 || prm->detect_reach > 1024)))
         return MC_ERR_ARG;
     for (int k = 0; k < 3; k++)
         if (prm->lo[k] > prm->hi[k] || prm->lo[k] < -T_MAX || prm->hi[k] > T_MAX || t[k] < -T_MAX || t[k] > T_MAX)
@@ -164,13 +164,15 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
     mc_rng *r = &f->rng;
     mc_filter_resample(r, f->p, n, f->spare, drawn);
     mc_particle *p = f->spare;
-    /* a searched particle is judged by the recall term (step 4a), which only later layers apply */
-    const int judged = prm->layers > 1 && prm->recall;
+    /* fresh particles placed by the image search this frame: none while the estimate is confident,
+     * nor without the recall term (step 4a, later layers only), which judges them */
+    const uint32_t searched =
+        prm->layers > 1 && prm->recall && f->confidence < prm->detect_below ? prm->detect : 0;
     for (uint32_t i = 0; i < n; i++) {
         if (i < drawn) {   /* motion */
             move(r, &p[i], prm->step_t, given ? 0 : prm->step_r);
         } else {           /* re-detection */
-            const int search = i - drawn < prm->detect && f->confidence < prm->detect_below && judged;
+            const int search = i - drawn < searched;
             for (int k = 0; k < 3; k++)
                 p[i].t[k] = search ? f->estimate.t[k]
                                    : prm->lo[k] + (int32_t)mc_rng_below(r, (uint32_t)((int64_t)prm->hi[k] - prm->lo[k]) + 1u);
@@ -191,7 +193,7 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
                 if (mc_pose_set(&pose, p[i].q, p[i].t) != MC_OK) return MC_ERR_ARG;
                 mc_detect_shift(view, &pose, prm->detect_reach, prm->detect_stride, &dx, &dy);
                 mc_detect_move(view->cam, p[i].t, dx, dy, t);
-                for (int k = 0; k < 3; k++) p[i].t[k] = t[k] > T_MAX ? T_MAX : t[k] < -T_MAX ? -T_MAX : t[k];
+                for (int k = 0; k < 3; k++) p[i].t[k] = t[k];
             }
         }
         if (given)

@@ -42,6 +42,9 @@ link_track "$out" cube
 track=$out/cube/cube-track
 cam2=273.86837875,271.0372029,169.10184970,117.00416725   # cube.xml's camera at 320x240
 med() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+# errors.py's line of figures for TRUTH POSES [its options], and one figure of such a line
+errline() { python3 tests/track/errors.py "$@"; }
+fig() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 ms_of() { python3 -c 'import csv,sys; [print(float(r["edges_ms"]) + float(r["filter_ms"])) for r in csv.DictReader(open(sys.argv[1]))]' "$1" | med; }
 ir_total() { callgrind_annotate "$1" 2>/dev/null | awk '/PROGRAM TOTALS/ && !done {gsub(",", "", $1); print $1; done = 1}'; }
 cmp_visp() {   # CSV: "median mm | median deg | within 1 cm and 3 deg" against ViSP at 640x480, frames 0..180
@@ -148,8 +151,8 @@ seq_run() {   # LABEL NAME SYNTH TRACKER FRAMES JUMP SYNTH-OPTS -- TRACK-OPTS
     run "$syn" --out "$d" --frames "$frames" "${j[@]}" "${so[@]}"
     run "$tr" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$d/init.pos" --out "$d/poses.csv" "$@"
     local line
-    line=$(python3 tests/track/errors.py "$d/truth.csv" "$d/poses.csv" "${j[@]}")
-    f() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+    line=$(errline "$d/truth.csv" "$d/poses.csv" "${j[@]}")
+    f() { fig "$line" "$1"; }
     printf '| %s | %s | %s | %s | %s | %s | %s | %.3f |\n' "$label" "$frames" "$(f success)" "$([ "$jump" -ge 0 ] && f tracked_rate || f rate)" \
         "$([ "$jump" -ge 0 ] && f redetect || echo -)" "$(f median_mm)" "$(f median_deg)" "$(ms_of "$d/poses.csv")" >>"$syn_rows"
 }
@@ -163,8 +166,8 @@ seq_run "fandisk (12,946 faces), 3-DOF, 150 particles, a jump at 30" f3j "$out/s
 # the same fandisk frames, hidden by the mesh decimated to about 2,000 faces (--hide-faces 2000)
 run "$out/fandisk_h/fandisk_h-track" --frames "$out/f3j/image%04d.pgm" --camera "$cam2" --init "$out/f3j/init.pos" \
     --out "$out/f3j/poses_h.csv" --search 100 --particles 150 --layers 1 --step-t 3 --orientation "$out/f3j/orientation.txt"
-hline=$(python3 tests/track/errors.py "$out/f3j/truth.csv" "$out/f3j/poses_h.csv" --jump 30)
-hf() { echo "$hline" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+hline=$(errline "$out/f3j/truth.csv" "$out/f3j/poses_h.csv" --jump 30)
+hf() { fig "$hline" "$1"; }
 printf '| the same fandisk frames, hidden by %s faces (--hide-faces 2000) | 60 | %s | %s | %s | %s | %s | %.3f |\n' \
     "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["faces"])' "$out/fandisk_h/budget.json")" \
     "$(hf success)" "$(hf tracked_rate)" "$(hf redetect)" "$(hf median_mm)" "$(hf median_deg)" "$(ms_of "$out/f3j/poses_h.csv")" >>"$syn_rows"
@@ -173,15 +176,15 @@ sed -e "s|<u0>[^<]*</u0>|<u0>169.10184970</u0>|; s|<v0>[^<]*</v0>|<v0>117.004167
     -e "s|<px>[^<]*</px>|<px>273.86837875</px>|; s|<py>[^<]*</py>|<py>271.0372029</py>|" "$mbt/cube.xml" >"$out/cube_320.xml"
 run "$visp" --frames "$out/c6/image%04d.pgm" --model "$mbt/cube.cao" --settings "$out/cube_320.xml" --init "$out/c6/init.pos" \
     --range 4 --sample-step 2 --out "$out/c6/visp.csv" >/dev/null
-vline=$(python3 tests/track/errors.py "$out/c6/truth.csv" "$out/c6/visp.csv")
-vf() { echo "$vline" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+vline=$(errline "$out/c6/truth.csv" "$out/c6/visp.csv")
+vf() { fig "$vline" "$1"; }
 printf '| ViSP, cube, 6-DOF | 100 | %s | %s | - | %s | %s | %.3f |\n' "$(vf success)" "$(vf rate)" "$(vf median_mm)" "$(vf median_deg)" \
     "$(python3 -c 'import csv,sys; [print(r["filter_ms"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/c6/visp.csv" | med)" >>"$syn_rows"
 
 # ---- 2b. eight clutter seeds: the default with its recall term and without it, and ViSP -----------
 seed_rows=$out/seed_rows.txt
 : >"$seed_rows"
-succ() { python3 tests/track/errors.py "$1" "$2" | tr ' ' '\n' | sed -n 's/^success=//p'; }
+succ() { fig "$(errline "$@")" success; }   # TRUTH POSES [options]
 tot4=0 tot0=0 totv=0
 for sd in 1 2 3 4 5 6 7 8; do
     d=$out/s$sd
@@ -200,9 +203,7 @@ echo "| **all 800 frames** | **$tot4 ($(echo "scale=1; $tot4 / 8" | bc) %)** | $
 # ---- 2c. jumps: re-detection with and without the image search, five jumps x eight clutter seeds ---
 jump_rows=$out/jump_rows.txt
 : >"$jump_rows"
-redet() {   # TRUTH POSES: frames from the jump (50) to the first of 5 successes in a row, -1 never
-    python3 tests/track/errors.py "$1" "$2" --jump 50 | tr ' ' '\n' | sed -n 's/^redetect=//p'
-}
+redet() { fig "$(errline "$1" "$2" --jump 50)" redetect; }   # TRUTH POSES: frames from the jump (50) to 5 successes in a row, -1 never
 jsum() {   # FRAMES...: "n of 8 within 30 (median m)", -1 counted as never
     python3 - "$@" <<'PYEOF'
 import sys
@@ -228,7 +229,7 @@ for turn in 15,20,0 -15,-20,0 0,0,25 20,-15,0 -20,15,0; do
             --first 51 --search 100 --out "$d/ctl.csv"
         r6+=("$(redet "$d/truth.csv" "$d/d8.csv")") r6n+=("$(redet "$d/truth.csv" "$d/d0.csv")")
         r3+=("$(redet "$d/truth.csv" "$d/d8_3.csv")") r3n+=("$(redet "$d/truth.csv" "$d/d0_3.csv")")
-        ctl=$((ctl + $(python3 tests/track/errors.py "$d/truth.csv" "$d/ctl.csv" --from 51 | tr ' ' '\n' | sed -n 's/^success=//p')))
+        ctl=$((ctl + $(succ "$d/truth.csv" "$d/ctl.csv" --from 51)))
     done
     echo "| ($turn) | $(jsum "${r6[@]}") | $(jsum "${r6n[@]}") | $(jsum "${r3[@]}") | $(jsum "${r3n[@]}") | $ctl of 392 ($(echo "scale=1; $ctl * 100 / 392" | bc) %) |" >>"$jump_rows"
 done
@@ -246,8 +247,8 @@ for layers in 1 3; do
         d=$out/c6
         run "$track" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$d/init.pos" --out "$out/p_${layers}_$n.csv" \
             --search 100 --particles "$n" --fresh $((n / 3)) --layers "$layers"
-        line=$(python3 tests/track/errors.py "$d/truth.csv" "$out/p_${layers}_$n.csv")
-        pf() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+        line=$(errline "$d/truth.csv" "$out/p_${layers}_$n.csv")
+        pf() { fig "$line" "$1"; }
         ms=$(python3 -c 'import csv,sys; [print(r["filter_ms"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/p_${layers}_$n.csv" | med)
         echo "$layers $n $ms $(pf median_deg) $(pf median_mm) $(pf rate)" >>"$pareto"
         printf '| %s | %s | %.3f | %s | %s | %s |\n' "$n" "$layers" "$ms" "$(pf rate)" "$(pf median_mm)" "$(pf median_deg)" >>"$par_rows"

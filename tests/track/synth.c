@@ -91,10 +91,10 @@ static void matmul(const double a[3][3], const double b[3][3], double c[3][3])
         for (int j = 0; j < 3; j++) c[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
 }
 
-/* the pose of frame k */
-static double jump_turn[3] = {15, 20, 0}, jump_move[3] = {40, -25, 30};   /* degrees, mm */
-
-static void truth(int k, const double start[6], double speed, int jump, pose_d *p)
+/* the pose of frame k; from frame jump (when > 0) turned by jump_turn (degrees) and moved by
+ * jump_move (mm) */
+static void truth(int k, const double start[6], double speed, int jump, const double jump_turn[3],
+                  const double jump_move[3], pose_d *p)
 {
     const double s = speed * k;
     double tu[3];
@@ -127,6 +127,7 @@ int main(int argc, char **argv)
     int frames = 60, W = 320, H = 240, clutter = 40, blur = 1, occ0 = -1, occ1 = -1, jump = -1;
     double cam[4] = {547.7367575 / 2, 542.0744058 / 2, (338.7036994 + 0.5) / 2 - 0.5, (234.5083345 + 0.5) / 2 - 0.5};
     double start[6] = {0.02, 0.01, 0.45, 2.1, 1.15, -0.45}, noise = 3, speed = 1;
+    double jump_turn[3] = {15, 20, 0}, jump_move[3] = {40, -25, 30};   /* degrees, mm */
     unsigned long seed = 1;
     for (int i = 1; i + 1 < argc; i += 2) {
         const char *a = argv[i], *v = argv[i + 1];
@@ -195,7 +196,7 @@ int main(int argc, char **argv)
     const double light[3] = {-0.35, -0.55, -0.76};   /* towards the light, camera space */
     for (int k = 0; k < frames; k++) {
         pose_d p;
-        truth(k, start, speed, jump, &p);
+        truth(k, start, speed, jump, jump_turn, jump_move, &p);
         double tu[3];
         tu_from_rot(p.r, tu);
         fprintf(tf, "%d,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f\n", k, p.t[0], p.t[1], p.t[2], tu[0], tu[1], tu[2]);

@@ -195,6 +195,18 @@ static void test_fine_masks(void **state)
     free(s);
 }
 
+/* q (x) d, d the turn by deg degrees about the object's own axis (1 x, 2 y, 3 z), Q30 */
+static void turned(const int32_t q[4], int axis, double deg, int32_t out[4])
+{
+    const double a = deg * PI / 180;
+    int32_t d[4] = {(int32_t)lround(cos(a / 2) * (1 << 30)), 0, 0, 0};
+    d[axis] = (int32_t)lround(sin(a / 2) * (1 << 30));
+    out[0] = (int32_t)(((int64_t)q[0] * d[0] - (int64_t)q[1] * d[1] - (int64_t)q[2] * d[2] - (int64_t)q[3] * d[3]) >> 30);
+    out[1] = (int32_t)(((int64_t)q[0] * d[1] + (int64_t)q[1] * d[0] + (int64_t)q[2] * d[3] - (int64_t)q[3] * d[2]) >> 30);
+    out[2] = (int32_t)(((int64_t)q[0] * d[2] - (int64_t)q[1] * d[3] + (int64_t)q[2] * d[0] + (int64_t)q[3] * d[1]) >> 30);
+    out[3] = (int32_t)(((int64_t)q[0] * d[3] + (int64_t)q[1] * d[2] - (int64_t)q[2] * d[1] + (int64_t)q[3] * d[0]) >> 30);
+}
+
 static void test_track_near(void **state)
 {
     (void)state;
@@ -205,13 +217,8 @@ static void test_track_near(void **state)
         cube_scene_truth(0, q, t);
         /* 15 mm and 5 degrees off */
         t[0] += 9000, t[1] -= 9000, t[2] += 8000;
-        const double a = 5 * PI / 180;
-        const int32_t d[4] = {(int32_t)lround(cos(a / 2) * (1 << 30)), (int32_t)lround(sin(a / 2) * (1 << 30)), 0, 0};
         int32_t q0[4];
-        q0[0] = (int32_t)(((int64_t)q[0] * d[0] - (int64_t)q[1] * d[1]) >> 30);
-        q0[1] = (int32_t)(((int64_t)q[0] * d[1] + (int64_t)q[1] * d[0]) >> 30);
-        q0[2] = (int32_t)(((int64_t)q[2] * d[0] + (int64_t)q[3] * d[1]) >> 30);
-        q0[3] = (int32_t)(((int64_t)q[3] * d[0] - (int64_t)q[2] * d[1]) >> 30);
+        turned(q, 1, 5, q0);
         /* three seeds: one run's count moves by a few frames with the random stream */
         int good = 0;
         for (uint64_t seed = 5; seed < 8; seed++) {
@@ -257,13 +264,8 @@ static void test_redetect_6dof(void **state)
     int32_t q[4], t[3];
     cube_scene_truth(0, q, t);
     t[0] += 50000, t[1] -= 30000, t[2] += 15000;
-    const double a = 20 * PI / 180;
-    const int32_t d[4] = {(int32_t)lround(cos(a / 2) * (1 << 30)), 0, (int32_t)lround(sin(a / 2) * (1 << 30)), 0};
-    int32_t q0[4];   /* q d: turned 20 degrees about the cube's own y axis */
-    q0[0] = (int32_t)(((int64_t)q[0] * d[0] - (int64_t)q[2] * d[2]) >> 30);
-    q0[1] = (int32_t)(((int64_t)q[1] * d[0] - (int64_t)q[3] * d[2]) >> 30);
-    q0[2] = (int32_t)(((int64_t)q[0] * d[2] + (int64_t)q[2] * d[0]) >> 30);
-    q0[3] = (int32_t)(((int64_t)q[3] * d[0] + (int64_t)q[1] * d[2]) >> 30);
+    int32_t q0[4];
+    turned(q, 2, 20, q0);
     int within = 0;
     for (int detect = 16; detect >= 0; detect -= 16) {
         mc_filter_params prm = cube_scene_params();

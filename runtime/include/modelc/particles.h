@@ -19,15 +19,15 @@
  *      finds it again after a jump of a few tens of degrees); in 3-DOF mode the given orientation.
  *      With layers > 1 and recall > 0, while the last confidence is below detect_below, the
  *      first `detect` of them take, instead of a translation from the box, the last estimate's
- *      moved by the image shift that fits their orientation best (detect.h mc_detect_shift within detect_reach pixels on a grid of
- *      detect_stride, mc_detect_move): a random translation and orientation land in the true
- *      pose's basin about once in a million draws, an orientation with the translation the image
- *      gives often enough to find the object within a few frames. Not while the estimate is
- *      confident: there a proposal fitted to the image's edges, at a wrong orientation, pulls the
- *      weighted mean off a pose that holds (on the real cube at 320x240, searching in every
- *      frame halved the frames within 1 cm and 3 degrees of ViSP). Not without the recall term
- *      either: an orientation whose shifted lines fit a part of the object's (one face's
- *      outline) matches all of them, as the object's own pose does, and only the count of
+ *      moved by the image shift that fits their orientation best (detect.h: mc_detect_shift within
+ *      detect_reach pixels on a grid of detect_stride, then mc_detect_move): a random translation
+ *      and orientation land in the true pose's basin about once in a million draws, an orientation
+ *      with the translation the image gives often enough to find the object within a few frames.
+ *      Not while the estimate is confident: there a proposal fitted to the image's edges at a
+ *      wrong orientation pulls the weighted mean off a pose that holds (the real cube at 320x240
+ *      shows it; the tracker's --detect-below 1.01 searches in every frame). Not without the
+ *      recall term either: an orientation whose shifted lines fit a part of the object's (one
+ *      face's outline) matches all of them, as the object's own pose does, and only the count of
  *      matched pixels tells the two apart;
  *   4. weighing: each particle's pose scored (mc_track_score_pose); r = matched / visible in Q16;
  *      weight 2^(sharpness (r - 1)) in Q16, its exponent truncated to sixteenths (65536 at r = 1,
