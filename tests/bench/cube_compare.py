@@ -7,11 +7,15 @@ R1^T R2 in degrees (R from theta-u by Rodrigues); then their medians and maxima 
 within 1 cm and 3 degrees (both at once).
 
   tests/bench/cube_compare.py A.csv B.csv [--names A,B] [--range FIRST:LAST] [--quiet]
-                              [--plot FILE.png] [--dat FILE.dat]
+                              [--plot FILE.png] [--dat FILE.dat] [--judged A_ERR.csv,B_ERR.csv]
 
 --range: only frames FIRST..LAST (inclusive; either may be left out). --quiet: the summary alone.
 --plot: tx, ty, tz of both tracks against the frame (gnuplot, pngcairo or png terminal); --dat: the
-joined table for gnuplot (frame, A's t, B's t, differences). Python 3 standard library only.
+joined table for gnuplot (frame, A's t, B's t, differences). --judged: a third party's score of
+each pose, lower is better (visp_track --judge: ViSP's projection error, in degrees, of A's and of
+B's poses), summed up as the medians, the frames where A's pose scores lower, and the same among the
+frames outside 1 cm and 3 degrees: where two trackers disagree, which pose fits the frame better by
+ViSP's own measure. Python 3 standard library only.
 """
 import argparse
 import csv
@@ -50,6 +54,18 @@ def angle_between(w1, w2):
 median = errors.median
 
 
+def read_judged(path):
+    """visp_track --judge's CSV: frame -> error."""
+    out = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            try:
+                out[int(row["frame"])] = float(row["error"])
+            except (KeyError, TypeError, ValueError) as e:
+                sys.exit(f"cube_compare: {path}: bad row {row}: {e}")
+    return out
+
+
 def plot(png, dat, names):
     gp = shutil.which("gnuplot")
     if not gp:
@@ -85,6 +101,7 @@ def main():
     ap.add_argument("--quiet", action="store_true", help="the summary only")
     ap.add_argument("--plot", default=None, help="PNG of tx, ty, tz against the frame (gnuplot)")
     ap.add_argument("--dat", default=None, help="write the joined table for gnuplot")
+    ap.add_argument("--judged", default=None, help="A_ERR.csv,B_ERR.csv: visp_track --judge of A's and B's poses")
     o = ap.parse_args()
     names = o.names.split(",", 1) if o.names else [o.a, o.b]
     if len(names) != 2:
@@ -98,6 +115,16 @@ def main():
         frames = [k for k in frames if lo <= k <= hi]
     if not frames:
         sys.exit("cube_compare: no frame in both files (and in --range)")
+    judged = None
+    if o.judged:
+        paths = o.judged.split(",")
+        if len(paths) != 2:
+            sys.exit("cube_compare: --judged A_ERR.csv,B_ERR.csv")
+        judged = [read_judged(q) for q in paths]
+        for q, j in zip(paths, judged):
+            missing = [k for k in frames if k not in j]
+            if missing:
+                sys.exit(f"cube_compare: {q}: no score for frame {missing[0]}")
     rows = []
     for k in frames:
         (ta, wa), (tb, wb) = A[k], B[k]
@@ -115,6 +142,13 @@ def main():
     print(f"translation difference mm: median {median(dts):.2f}, max {max(dts):.2f} (frame {rows[dts.index(max(dts))][0]})")
     print(f"rotation difference deg: median {median(drs):.2f}, max {max(drs):.2f} (frame {rows[drs.index(max(drs))][0]})")
     print(f"frames within 1 cm and 3 deg: {within} of {len(rows)}")
+    if judged:
+        ja, jb = judged
+        lower = sum(1 for k in frames if ja[k] < jb[k])
+        out = [r[0] for r in rows if not (r[3] <= 10 and r[4] <= 3)]
+        print(f"judged: median {names[0]} {median([ja[k] for k in frames]):.2f}, {names[1]} {median([jb[k] for k in frames]):.2f}; "
+              f"{names[0]} lower in {lower} of {len(frames)}")
+        print(f"judged outside 1 cm and 3 deg: {names[0]} lower in {sum(1 for k in out if ja[k] < jb[k])} of {len(out)}")
     if only[0] or only[1]:
         print(f"frames in one file only: {only[0]} in {names[0]}, {only[1]} in {names[1]}")
     if o.dat or o.plot:

@@ -21,7 +21,12 @@
 //
 //   visp_track --frames 'DIR/image%04d.pgm' --model cube.cao --settings cube.xml --init cube.0.pos
 //              [--first K] [--count N] [--scale K] [--out FILE.csv] [--overlay DIR]
-//              [--range R] [--sample-step S] [--mask-size M] [--me-threshold T]
+//              [--range R] [--sample-step S] [--mask-size M] [--me-threshold T] [--judge POSES.csv]
+//
+// --judge POSES.csv: no tracking; for each frame, ViSP's projection error (as the confidence column
+// above) of the pose POSES.csv gives it (any tracker's CSV with frame, tx..tuz), written as the CSV
+// "frame,error". ViSP's own measure of how well a pose's lines lie on the frame's gradients, so that
+// where two trackers disagree a third party says which pose fits the image better.
 //
 // --settings: ViSP's tracker XML (camera, moving-edge parameters, face angles, clipping), as
 // loadConfigFile reads it. --scale K: each frame shrunk K times by a KxK box average (as cube-track's
@@ -49,6 +54,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -71,10 +77,12 @@ const char *usage =
     "  --no-error         leave the confidence column empty (skip the projection error)\n"
     "  --out FILE         CSV (default: standard output)\n"
     "  --overlay DIR      DIR/frameNNNN.png every 20th frame and the last\n"
-    "  --overlay-every N  every Nth frame instead (default 20)\n";
+    "  --overlay-every N  every Nth frame instead (default 20)\n"
+    "  --judge POSES.csv  no tracking: ViSP's projection error of each frame's pose in POSES.csv\n"
+    "                     (columns frame, tx..tuz), written as the CSV frame,error\n";
 
 struct Options {
-  std::string frames, model, settings, init, out, overlay;
+  std::string frames, model, settings, init, out, overlay, judge;
   long first = 0, count = -1, scale = 1, overlay_every = 20;
   long range = -1, mask_size = -1;
   double sample_step = -1, me_threshold = -1;
@@ -113,6 +121,7 @@ Options parse(int argc, char **argv)
     else if (!std::strcmp(a, "--init")) str(o.init);
     else if (!std::strcmp(a, "--out")) str(o.out);
     else if (!std::strcmp(a, "--overlay")) str(o.overlay);
+    else if (!std::strcmp(a, "--judge")) str(o.judge);
     else if (!std::strcmp(a, "--first")) o.first = (long)num();
     else if (!std::strcmp(a, "--count")) o.count = (long)num();
     else if (!std::strcmp(a, "--scale")) o.scale = (long)num();
@@ -180,6 +189,43 @@ void shrink(const vpImage<unsigned char> &in, vpImage<unsigned char> &out, unsig
     }
 }
 
+// The poses of a tracker's CSV (a header naming frame, tx, ty, tz, tux, tuy, tuz), by frame.
+std::map<long, vpPoseVector> read_poses(const std::string &path)
+{
+  std::ifstream f(path.c_str());
+  if (!f) die(1, path + ": cannot open");
+  std::string line;
+  std::vector<std::string> head;
+  if (!std::getline(f, line)) die(1, path + ": empty");
+  {
+    std::istringstream s(line);
+    std::string c;
+    while (std::getline(s, c, ',')) head.push_back(c);
+  }
+  const char *want[7] = {"frame", "tx", "ty", "tz", "tux", "tuy", "tuz"};
+  size_t col[7];
+  for (int i = 0; i < 7; i++) {
+    col[i] = std::find(head.begin(), head.end(), want[i]) - head.begin();
+    if (col[i] == head.size()) die(1, path + ":1: no column " + want[i]);
+  }
+  std::map<long, vpPoseVector> poses;
+  for (long n = 2; std::getline(f, line); n++) {
+    std::vector<std::string> cell;
+    std::istringstream s(line);
+    std::string c;
+    while (std::getline(s, c, ',')) cell.push_back(c);
+    double v[7];
+    for (int i = 0; i < 7; i++) {
+      char *end = nullptr;
+      v[i] = col[i] < cell.size() ? std::strtod(cell[col[i]].c_str(), &end) : 0;
+      if (col[i] >= cell.size() || end == cell[col[i]].c_str() || *end || !std::isfinite(v[i]))
+        die(1, path + ":" + std::to_string(n) + ": " + want[i] + ": expected a number");
+    }
+    poses[(long)v[0]] = vpPoseVector(v[1], v[2], v[3], v[4], v[5], v[6]);
+  }
+  return poses;
+}
+
 void write_overlay(const std::string &dir, long k, const vpImage<unsigned char> &I, vpMbGenericTracker &tracker,
                    const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam)
 {
@@ -243,6 +289,31 @@ int main(int argc, char **argv)
 
     vpHomogeneousMatrix cMo(read_pose(o.init));
     tracker.initFromPose(I, cMo);
+
+    if (!o.judge.empty()) {   // no tracking: ViSP's projection error of the given poses
+      const std::map<long, vpPoseVector> poses = read_poses(o.judge);
+      std::ostringstream csv;
+      csv << "frame,error\n";
+      char row[128];
+      for (const auto &fp : poses) {
+        const long k = fp.first;
+        if (k < o.first || (o.count >= 0 && k >= o.first + o.count)) continue;
+        const std::string p = frame_path(o, k);
+        if (!exists(p)) die(1, p + ": missing");
+        vpImageIo::read(raw, p);
+        shrink(raw, I, K);
+        std::snprintf(row, sizeof row, "%ld,%.4f\n", k,
+                      tracker.computeCurrentProjectionError(I, vpHomogeneousMatrix(fp.second), cam));
+        csv << row;
+      }
+      if (o.out.empty()) std::cout << csv.str();
+      else {
+        std::ofstream f(o.out.c_str());
+        f << csv.str();
+        if (!f) die(1, o.out + ": cannot write");
+      }
+      return 0;
+    }
 
     std::ostringstream csv;
     csv << "frame,tx,ty,tz,tux,tuy,tuz,confidence,visible,matched,edges_ms,filter_ms\n";

@@ -222,6 +222,26 @@ mkdir -p "$out/cut"
 for k in 0 1 2; do cp "$mbt/cube/image000$k.pgm" "$out/cut/f$k.pgm"; done
 cp "$out/cut.pgm" "$out/cut/f3.pgm"
 bad_run "a truncated frame mid-sequence: no CSV" 1 "f3.pgm" --frames "$out/cut/f%d.pgm" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos"
+# the benchmark's comparer with a third party's scores (visp_track --judge's CSV): four frames, A
+# 2 cm off B in frames 2 and 3 only; A scored lower in frames 0 and 3
+{
+    echo "frame,tx,ty,tz,tux,tuy,tuz"
+    for k in 0 1 2 3; do echo "$k,0,0,$([ "$k" -ge 2 ] && echo 0.52 || echo 0.5),0,0,0"; done
+} >"$out/cmp_a.csv"
+printf 'frame,tx,ty,tz,tux,tuy,tuz\n0,0,0,0.5,0,0,0\n1,0,0,0.5,0,0,0\n2,0,0,0.5,0,0,0\n3,0,0,0.5,0,0,0\n' >"$out/cmp_b.csv"
+printf 'frame,error\n0,9\n1,12\n2,15\n3,8\n' >"$out/cmp_a.judge.csv"
+printf 'frame,error\n0,10\n1,11\n2,14\n3,20\n' >"$out/cmp_b.judge.csv"
+cmp_out=$(python3 tests/bench/cube_compare.py "$out/cmp_a.csv" "$out/cmp_b.csv" --quiet --names A,B \
+    --judged "$out/cmp_a.judge.csv,$out/cmp_b.judge.csv" 2>&1)
+check "cube_compare --judged: the medians, A's lower scores in all frames and in those outside 1 cm" \
+    "$(grep -qx 'judged: median A 10.50, B 12.50; A lower in 2 of 4' <<<"$cmp_out" &&
+       grep -qx 'judged outside 1 cm and 3 deg: A lower in 1 of 2' <<<"$cmp_out" || oneline <<<"$cmp_out")"
+printf 'frame,error\n0,9\n1,12\n' >"$out/cmp_short.csv"
+cmp_out=$(python3 tests/bench/cube_compare.py "$out/cmp_a.csv" "$out/cmp_b.csv" --quiet \
+    --judged "$out/cmp_short.csv,$out/cmp_b.judge.csv" 2>&1)
+cmp_rc=$?
+check "cube_compare --judged: a score file missing a frame is one error line, exit 1" \
+    "$([ "$cmp_rc" -eq 1 ] && [ "$(wc -l <<<"$cmp_out")" -eq 1 ] && grep -q 'no score for frame 2' <<<"$cmp_out" || echo "exit $cmp_rc: $(oneline <<<"$cmp_out")")"
 # an output that is not a regular file (a pipe here; /dev/null alike) is written into, never
 # replaced by a renamed file
 rm -f "$out/pipe" "$out/pipe.txt" && mkfifo "$out/pipe"
