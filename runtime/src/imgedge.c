@@ -2,9 +2,14 @@
  *
  * One pass over the rows: row y's gradient gives its candidates (their code and thinning sector kept
  * in out, packed) and its magnitudes (a ring of three rows in scratch); row y - 1 is then thinned
- * against rows y - 2, y - 1 and y. */
+ * against rows y - 2, y - 1 and y. The Sobel sums are separable: gx = V(x+1) - V(x-1) with the
+ * column sums V = a + 2 b + c of the three rows a, b, c, and gy = D(x-1) + 2 D(x) + D(x+1) with
+ * D = c - a, so each pixel reads one new column. Most pixels of a frame are neither candidates nor
+ * edges: the passes that look for them, and the masks' passes of ORs, go a word of bytes at a time
+ * (bytes.h). */
 #include "modelc/imgedge.h"
 #include "modelc/bits.h"   /* MC_ALWAYS_INLINE */
+#include "modelc/bytes.h"
 
 /* tan of the orientation bins' boundaries (11.25, 33.75, 56.25, 78.75 degrees) and of the thinning
  * sectors' (22.5, 67.5 degrees), Q16, rounded to nearest */
@@ -59,6 +64,11 @@ static uint32_t thin_row(uint8_t *o, const uint32_t *up, const uint32_t *mid, co
 {
     uint32_t kept = 0;
     for (uint32_t x = 1; x + 1 < w; x++) {
+#if MC_WORDS
+        /* a word of pixels with no candidate at once (the last pixel of the row is a border one) */
+        while (x + MC_WORD_BYTES < w && !mc_words_load(o + x)) x += MC_WORD_BYTES;
+        if (x + 1 >= w) break;
+#endif
         const uint8_t c = o[x];
         if (!c) continue;
         const uint32_t m = mid[x];
@@ -82,7 +92,7 @@ static uint32_t thin_row(uint8_t *o, const uint32_t *up, const uint32_t *mid, co
 uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h, uint16_t threshold, uint8_t *out,
                     uint32_t *scratch)
 {
-    for (uint32_t i = 0; i < (uint32_t)w * h; i++) out[i] = 0;
+    mc_bytes_zero(out, (uint32_t)w * h);
     if (w < 3 || h < 3) return 0;
     if (threshold < 1) threshold = 1;
     if (threshold > MC_IMGEDGE_THRESHOLD_MAX) threshold = MC_IMGEDGE_THRESHOLD_MAX;
@@ -95,12 +105,16 @@ uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h,
         uint32_t *m = ring[y % 3];
         uint8_t *o = out + y * w;
         m[0] = m[w - 1u] = 0;
+        /* the column sums of x - 1 and x, then each step brings in column x + 1 */
+        int32_t v0 = (int32_t)a[0] + 2 * b[0] + c[0], d0 = (int32_t)c[0] - a[0];
+        int32_t v1 = (int32_t)a[1] + 2 * b[1] + c[1], d1 = (int32_t)c[1] - a[1];
         for (uint32_t x = 1; x + 1 < w; x++) {
-            const int32_t gx = (int32_t)a[x + 1] + 2 * b[x + 1] + c[x + 1] - a[x - 1] - 2 * b[x - 1] - c[x - 1];
-            const int32_t gy = (int32_t)c[x - 1] + 2 * c[x] + c[x + 1] - a[x - 1] - 2 * a[x] - a[x + 1];
+            const int32_t v2 = (int32_t)a[x + 1] + 2 * b[x + 1] + c[x + 1], d2 = (int32_t)c[x + 1] - a[x + 1];
+            const int32_t gx = v2 - v0, gy = d0 + 2 * d1 + d2;
             const uint32_t g = (uint32_t)(gx * gx + gy * gy);
             m[x] = g;
             if (g >= t2) o[x] = classify(gx, gy);
+            v0 = v1, v1 = v2, d0 = d1, d1 = d2;
         }
         if (y >= 2) kept += thin_row(out + (y - 1) * w, ring[(y - 2) % 3], ring[(y - 1) % 3], m, w);
     }
@@ -111,28 +125,68 @@ uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h,
     return kept;
 }
 
-/* e |= src over n bytes (two rows of the frame, which never overlap) */
-static void or_row(uint8_t *restrict e, const uint8_t *restrict src, uint32_t n)
+/* The masks of a code (0: none, 1 + bin): bit bin. */
+static const uint8_t code_mask[16] = {0, 1, 2, 4, 8, 16, 32, 64, 128, 0, 0, 0, 0, 0, 0, 0};
+
+/* Row e (w bytes) spread across by radius < MC_WORD_BYTES, in place: each word ORed with itself
+ * shifted by 1 .. radius bytes both ways and with the bytes of the words on either side that reach
+ * into it (little-endian: byte k is pixel k), the row's ends counting as zeros. */
+#if MC_WORDS
+static void across_words(uint8_t *e, uint32_t w, unsigned radius)
 {
-    for (uint32_t x = 0; x < n; x++) e[x] |= src[x];
+    mc_word prev = 0, cur = w >= MC_WORD_BYTES ? mc_words_load(e) : mc_words_load_part(e, w);
+    for (uint32_t i = 0; i < w; i += MC_WORD_BYTES) {
+        const uint32_t j = i + MC_WORD_BYTES;   /* the next word's first byte */
+        const mc_word next = j + MC_WORD_BYTES <= w ? mc_words_load(e + j) : j < w ? mc_words_load_part(e + j, w - j) : 0;
+        mc_word r = cur;
+        for (unsigned k = 1; k <= radius; k++)
+            r |= cur << (8u * k) | cur >> (8u * k) | prev >> (8u * (MC_WORD_BYTES - k)) | next << (8u * (MC_WORD_BYTES - k));
+        if (j <= w) {
+            mc_words_store(e + i, r);
+        } else {
+            for (uint32_t k = 0; i + k < w; k++) e[i + k] = (uint8_t)(r >> (8u * k));
+        }
+        prev = cur, cur = next;
+    }
+}
+#endif
+
+/* Row e spread across by radius with one byte at a time (the row's copy in scratch) */
+static void across_bytes(uint8_t *e, uint32_t w, unsigned radius, uint8_t *scratch)
+{
+    for (uint32_t x = 0; x < w; x++) scratch[x] = e[x], e[x] = 0;
+    for (uint32_t x = 0; x < w; x++) {
+        const uint8_t m = scratch[x];
+        if (!m) continue;
+        const uint32_t a = x > radius ? x - radius : 0, b = x + radius < w ? x + radius : w - 1u;
+        for (uint32_t k = a; k <= b; k++) e[k] |= m;
+    }
 }
 
 void mc_imgedge_masks(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch)
 {
     const uint32_t n = (uint32_t)w * h;
-    for (uint32_t i = 0; i < n; i++) edges[i] = edges[i] ? (uint8_t)(1u << (edges[i] - 1u)) : 0;
-    if (!radius || !n) return;
-    /* across: each edge pixel of a row (a copy of it) ORed into x - radius .. x + radius; most
-     * pixels are not edges, so the row costs about a read and a write a pixel */
+    /* codes to masks: most words hold no edge */
+    uint32_t i = 0;
+#if MC_WORDS
+    for (; i + MC_WORD_BYTES <= n; i += MC_WORD_BYTES)
+        if (mc_words_load(edges + i))
+            for (uint32_t k = i; k < i + MC_WORD_BYTES; k++) edges[k] = code_mask[edges[k] & 15u];
+#endif
+    for (; i < n; i++) edges[i] = code_mask[edges[i] & 15u];
+    mc_imgedge_spread(edges, w, h, radius, scratch);
+}
+
+void mc_imgedge_spread(uint8_t *masks, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch)
+{
+    uint8_t *const edges = masks;
+    if (!radius || !w || !h) return;
+    /* across: each row on its own */
     for (uint32_t y = 0; y < h; y++) {
-        uint8_t *e = edges + y * w;
-        for (uint32_t x = 0; x < w; x++) scratch[x] = e[x], e[x] = 0;
-        for (uint32_t x = 0; x < w; x++) {
-            const uint8_t m = scratch[x];
-            if (!m) continue;
-            const uint32_t a = x > radius ? x - radius : 0, b = x + radius < w ? x + radius : w - 1u;
-            for (uint32_t k = a; k <= b; k++) e[k] |= m;
-        }
+#if MC_WORDS
+        if (radius < MC_WORD_BYTES) { across_words(edges + y * w, w, radius); continue; }
+#endif
+        across_bytes(edges + y * w, w, radius, scratch);
     }
     /* down: row y from rows y - radius .. y + radius as they were: those above it kept in a ring of
      * radius + 1 rows of scratch before being overwritten, those below it not yet touched; whole
@@ -140,9 +194,9 @@ void mc_imgedge_masks(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, u
     const uint32_t ring = radius + 1u;
     for (uint32_t y = 0; y < h; y++) {
         uint8_t *e = edges + y * w, *keep = scratch + (y % ring) * w;
-        for (uint32_t x = 0; x < w; x++) keep[x] = e[x];
+        mc_bytes_copy(keep, e, w);
         const uint32_t top = y > radius ? y - radius : 0, bottom = y + radius < h ? y + radius : h - 1u;
-        for (uint32_t k = top; k < y; k++) or_row(e, scratch + (k % ring) * w, w);
-        for (uint32_t k = y + 1; k <= bottom; k++) or_row(e, edges + k * w, w);
+        for (uint32_t k = top; k < y; k++) mc_bytes_or(e, scratch + (k % ring) * w, w);
+        for (uint32_t k = y + 1; k <= bottom; k++) mc_bytes_or(e, edges + k * w, w);
     }
 }

@@ -222,6 +222,18 @@ mkdir -p "$out/cut"
 for k in 0 1 2; do cp "$mbt/cube/image000$k.pgm" "$out/cut/f$k.pgm"; done
 cp "$out/cut.pgm" "$out/cut/f3.pgm"
 bad_run "a truncated frame mid-sequence: no CSV" 1 "f3.pgm" --frames "$out/cut/f%d.pgm" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos"
+# the tracker's own shrinking by 2 (its own loop, without a division) against the firmware data
+# script's box average in Python: the same frames give the same poses
+python3 runtime/front/fw/track_frames.py --frames "$mbt/cube/image%04d.pgm" --camera "$mbt/cube.xml" \
+    --init "$mbt/cube.0.pos" --count 4 --screen 320x240 --scale 2 --particles 100 --c "$out/k2.c" --pgm "$out/k2" \
+    >"$out/k2.log" 2>&1
+build/cube/cube-track "${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" --count 4 --scale 2 \
+    --out "$out/k2a.csv" --fixed-out "$out/k2a.txt" 2>"$out/k2a.err"
+build/cube/cube-track --frames "$out/k2/image%04d.pgm" --shrunk 2 --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos" \
+    --count 4 --out "$out/k2b.csv" --fixed-out "$out/k2b.txt" 2>"$out/k2b.err"
+check "--scale 2 shrinks 640x480 frames as the Python box average does: the same 4 poses" \
+    "$([ -s "$out/k2a.txt" ] && [ "$(wc -l <"$out/k2a.txt")" -eq 4 ] && cmp -s "$out/k2a.txt" "$out/k2b.txt" ||
+        echo "$(oneline <"$out/k2.log") $(oneline <"$out/k2a.err") $(diff "$out/k2a.txt" "$out/k2b.txt" 2>&1 | head -2 | oneline)")"
 # the benchmark's comparer with a third party's scores (visp_track --judge's CSV): four frames, A
 # 2 cm off B in frames 2 and 3 only; A scored lower in frames 0 and 3
 {

@@ -1,6 +1,8 @@
 /* Number helpers against independent references: bits.h (popcount, lowest set bit, leading zeros)
  * against bit-by-bit loops, rng.h (PCG32) against the reference implementation's published demo
- * output, and chunk.h's cursor against the bytes of its chunks read one by one.
+ * output, chunk.h's cursor against the bytes of its chunks read one by one, and bytes.h's word-wide
+ * copy, OR and clear against byte loops at every alignment and length up to a few words, the bytes
+ * around each run untouched.
  *
  * PCG32 reference: pcg-c-basic's pcg32-demo seeds with pcg32_srandom_r(&rng, 42u, 54u) and prints
  * 0xa15c02b7 0x7b47f409 0xba1d3330 0x83d2f293 0xbfa4784b 0xcbed606e as its first six numbers
@@ -15,6 +17,7 @@
 #include <cmocka.h>
 
 #include <modelc/bits.h>
+#include <modelc/bytes.h>
 #include <modelc/chunk.h>
 #include <modelc/rng.h>
 
@@ -139,6 +142,39 @@ static void test_cursor(void **state)
     }
 }
 
+/* mc_bytes_copy, mc_bytes_or, mc_bytes_zero and mc_words_load_part against byte loops: every
+ * offset of both runs within a word, every length up to four words and a bit, in buffers whose bytes
+ * outside the run must keep their values */
+static void test_bytes(void **state)
+{
+    (void)state;
+    enum { SIZE = 96 };
+    uint8_t d[SIZE], s[SIZE], want[SIZE];
+    mc_rng r;
+    mc_rng_seed(&r, 0xb17e5, 3);
+    for (unsigned op = 0; op < 3; op++)
+        for (unsigned od = 0; od < 8; od++)
+            for (unsigned os = 0; os < 8; os++)
+                for (unsigned n = 0; n <= 4 * MC_WORD_BYTES + 3; n++) {
+                    for (unsigned i = 0; i < SIZE; i++) d[i] = (uint8_t)mc_rng_next(&r), s[i] = (uint8_t)mc_rng_next(&r);
+                    for (unsigned i = 0; i < SIZE; i++) want[i] = d[i];
+                    for (unsigned i = 0; i < n; i++)
+                        want[od + i] = op == 0 ? s[os + 32 + i] : op == 1 ? (uint8_t)(d[od + i] | s[os + 32 + i]) : 0;
+                    if (op == 0) mc_bytes_copy(d + od, s + os + 32, n);
+                    else if (op == 1) mc_bytes_or(d + od, s + os + 32, n);
+                    else mc_bytes_zero(d + od, n);
+                    for (unsigned i = 0; i < SIZE; i++)
+                        if (d[i] != want[i]) fail_msg("op %u, offsets %u %u, length %u: byte %u is %02x, want %02x", op, od, os, n, i, d[i], want[i]);
+                }
+    for (unsigned o = 0; o < 8; o++)
+        for (unsigned k = 0; k < MC_WORD_BYTES; k++) {
+            for (unsigned i = 0; i < SIZE; i++) s[i] = (uint8_t)mc_rng_next(&r);
+            uint64_t want_v = 0;
+            for (unsigned i = 0; i < k; i++) want_v |= (uint64_t)s[o + i] << (8 * i);
+            assert_true((uint64_t)mc_words_load_part(s + o, k) == want_v);
+        }
+}
+
 int main(void)
 {
     setvbuf(stdout, NULL, _IONBF, 0);
@@ -147,6 +183,7 @@ int main(void)
         cmocka_unit_test(test_rng_reference),
         cmocka_unit_test(test_rng_streams_and_bounds),
         cmocka_unit_test(test_cursor),
+        cmocka_unit_test(test_bytes),
     };
     return cmocka_run_group_tests_name("bits", tests, NULL, NULL);
 }

@@ -9,7 +9,8 @@
  *     thresholds below 1 act as 1, above the largest magnitude leave nothing;
  *   - mc_imgedge_bin of directions of every length up to the int32 limit against atan2;
  *   - mc_imgedge_masks (codes spread to bin masks over a square of radius 0 .. 3) against a brute-force
- *     search on random code images 1x1 to 40x30; mc_imgedge_bin_mask against mc_imgedge_dirs_match;
+ *     search on random code images 1x1 to 40x30, and mc_imgedge_spread on by 0 .. 3 more against the
+ *     square of the two radii's sum; mc_imgedge_bin_mask against mc_imgedge_dirs_match;
  *   - mc_imgedge_dirs_match against the distance around the half circle, every pair and tolerance.
  * Random numbers: PCG32 (modelc/rng.h) with fixed seeds.
  */
@@ -192,7 +193,7 @@ static void test_masks(void **state)
     mc_rng r;
     mc_rng_seed(&r, 0x3a5c, 4);
     for (int iter = 0; iter < 3000; iter++) {
-        const unsigned w = 1 + below(&r, 40), h = 1 + below(&r, 30), radius = below(&r, 4);
+        const unsigned w = 1 + below(&r, 40), h = 1 + below(&r, 30), radius = below(&r, 4);   /* w: 5 words and a part */
         uint8_t *codes = malloc(w * h), *m = malloc(w * h), *scratch = malloc(MC_IMGEDGE_MASK_SCRATCH(w, radius));
         const unsigned density = 1 + below(&r, 20);
         for (unsigned i = 0; i < w * h; i++) codes[i] = below(&r, density) ? 0 : (uint8_t)(1 + below(&r, 8)), m[i] = codes[i];
@@ -206,7 +207,21 @@ static void test_masks(void **state)
                             want |= 1u << (codes[yy * w + xx] - 1u);
                 if (m[y * w + x] != want) fail_msg("iter %d (%ux%u radius %u): pixel %u,%u mask %02x, want %02x", iter, w, h, radius, x, y, m[y * w + x], want);
             }
-        free(codes), free(m), free(scratch);
+        /* spread on by r2: the codes spread by radius + r2 */
+        const unsigned r2 = below(&r, 4);
+        uint8_t *s2 = malloc(MC_IMGEDGE_MASK_SCRATCH(w, r2));
+        mc_imgedge_spread(m, (uint16_t)w, (uint16_t)h, r2, s2);
+        const int rr = (int)(radius + r2);
+        for (unsigned y = 0; y < h; y++)
+            for (unsigned x = 0; x < w; x++) {
+                unsigned want = 0;
+                for (unsigned yy = 0; yy < h; yy++)
+                    for (unsigned xx = 0; xx < w; xx++)
+                        if (codes[yy * w + xx] && abs((int)xx - (int)x) <= rr && abs((int)yy - (int)y) <= rr)
+                            want |= 1u << (codes[yy * w + xx] - 1u);
+                if (m[y * w + x] != want) fail_msg("iter %d (%ux%u radius %u then %u): pixel %u,%u mask %02x, want %02x", iter, w, h, radius, r2, x, y, m[y * w + x], want);
+            }
+        free(codes), free(m), free(scratch), free(s2);
     }
     for (unsigned bin = 0; bin < MC_IMGEDGE_DIRS; bin++)
         for (unsigned t = 0; t <= MC_IMGEDGE_DIRS; t++)

@@ -1,6 +1,7 @@
 /* The tracker's settings, start and per-frame pipeline: see track_frame.h. */
 #include "track_frame.h"
 
+#include <modelc/bytes.h>
 #include <modelc/imgedge.h>
 #include <modelc/sdepth.h>
 
@@ -79,6 +80,14 @@ int mc_track_start(mc_track_state *t, const mc_app *app, const mc_camera *cam, c
 /* a K x K box average of src (w wide) into dst ((w / K) x (h / K)), rounded */
 static void shrink(const uint8_t *src, unsigned w, unsigned K, uint8_t *dst, unsigned dw, unsigned dh)
 {
+    if (K == 2) {   /* the usual one (640x480 frames to 320x240) without the division */
+        for (unsigned y = 0; y < dh; y++) {
+            const uint8_t *a = src + (uint32_t)(2 * y) * w, *b = a + w;
+            uint8_t *d = dst + (uint32_t)y * dw;
+            for (unsigned x = 0; x < dw; x++) d[x] = (uint8_t)((a[2 * x] + a[2 * x + 1] + b[2 * x] + b[2 * x + 1] + 2u) >> 2);
+        }
+        return;
+    }
     const unsigned n = K * K;
     for (unsigned y = 0; y < dh; y++)
         for (unsigned x = 0; x < dw; x++) {
@@ -96,8 +105,7 @@ uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, u
     if (k > 1) {
         shrink(src, src_w, k, app->edges_frame, t->w, t->h);
     } else if (src != app->edges_frame) {
-        for (uint32_t y = 0; y < t->h; y++)
-            for (uint32_t x = 0; x < t->w; x++) app->edges_frame[y * t->w + x] = src[y * src_w + x];
+        for (uint32_t y = 0; y < t->h; y++) mc_bytes_copy(app->edges_frame + y * t->w, src + y * src_w, t->w);
     }
     if (grey)
         for (uint32_t i = 0; i < n; i++) grey[i] = app->edges_frame[i];
@@ -106,9 +114,11 @@ uint32_t mc_track_edges(mc_track_state *t, const uint8_t *src, unsigned src_w, u
     if (codes)
         for (uint32_t i = 0; i < n; i++) codes[i] = app->edges_masks[i];
     if (t->fine_radius >= 0) {   /* the grey frame is done with: its buffer takes the fine masks */
-        for (uint32_t i = 0; i < n; i++) app->edges_frame[i] = app->edges_masks[i];
-        mc_imgedge_masks(app->edges_frame, t->w, t->h, (unsigned)t->fine_radius, (uint8_t *)app->edges_scratch);
+        mc_imgedge_masks(app->edges_masks, t->w, t->h, (unsigned)t->fine_radius, (uint8_t *)app->edges_scratch);
+        mc_bytes_copy(app->edges_frame, app->edges_masks, n);
+        mc_imgedge_spread(app->edges_masks, t->w, t->h, t->radius - (unsigned)t->fine_radius, (uint8_t *)app->edges_scratch);
+    } else {
+        mc_imgedge_masks(app->edges_masks, t->w, t->h, t->radius, (uint8_t *)app->edges_scratch);
     }
-    mc_imgedge_masks(app->edges_masks, t->w, t->h, t->radius, (uint8_t *)app->edges_scratch);
     return edges;
 }

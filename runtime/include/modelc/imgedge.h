@@ -76,4 +76,10 @@ static inline uint8_t mc_imgedge_bin_mask(unsigned bin, unsigned tolerance)
  * 2 w h (2 radius + 1). radius 0 only turns codes into masks. */
 void mc_imgedge_masks(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch);
 
+/* The second half of mc_imgedge_masks on masks: each pixel's mask ORed over the square of radius
+ * around it, in place (MC_IMGEDGE_MASK_SCRATCH bytes of scratch). Squares add up: masks spread by r1
+ * and then by r2 are the codes' masks spread by r1 + r2, so a tracker that wants both a fine and a
+ * coarse radius spreads its fine masks on. radius 0 leaves them as they are. */
+void mc_imgedge_spread(uint8_t *masks, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch);
+
 #endif
