@@ -122,6 +122,11 @@ MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_
     const uint32_t u = s->used[w];
     if (u & bit) {
         if (z >= s->depth[i]) return 0;
+        if (track) {   /* a nearer entry: its matched bit replaces the pixel's */
+            const uint32_t was = s->matched[w] & bit;
+            s->matched[w] = m ? s->matched[w] | bit : s->matched[w] & ~bit;
+            s->in_use_matched += (uint32_t)(m != 0) - (uint32_t)(was != 0);
+        }
     } else {
         s->used[w] = u | bit;
         if (!u) {   /* the block's first */
@@ -130,14 +135,13 @@ MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_
             if (y > s->row_hi) s->row_hi = (uint16_t)y;
         }
         s->in_use++;
+        if (track && m) {   /* a pixel not in use has its matched bit 0 */
+            s->matched[w] |= bit;
+            s->in_use_matched++;
+        }
     }
     s->depth[i] = z;
     if (s->color) s->color[i] = c;
-    if (track) {
-        const uint32_t was = s->matched[w] & bit;
-        s->matched[w] = m ? s->matched[w] | bit : s->matched[w] & ~bit;
-        s->in_use_matched += (uint32_t)(m != 0) - (uint32_t)(was != 0);
-    }
     return 1;
 }
 
