@@ -69,12 +69,15 @@ judge "$out/visp_640.csv"
 judge "$out/visp_320.csv"
 # the judge's sensitivity: ViSP's own poses moved along the optical axis (z) by 5 and 10 mm
 for dz in 5 10; do
-    python3 -c 'import csv,sys; w=csv.writer(sys.stdout); w.writerow(["frame","tx","ty","tz","tux","tuy","tuz"])
+    python3 -c 'import csv,sys; w=csv.writer(sys.stdout, lineterminator="\n"); w.writerow(["frame","tx","ty","tz","tux","tuy","tuz"])
 for r in csv.DictReader(open(sys.argv[1])): w.writerow([r["frame"], r["tx"], r["ty"], "%.6f" % (float(r["tz"]) + float(sys.argv[2]) / 1000), r["tux"], r["tuy"], r["tuz"]])' \
         "$out/visp_640.csv" "$dz" >"$out/visp_640_z$dz.csv"
     judge "$out/visp_640_z$dz.csv"
 done
 judged_median() { python3 -c 'import csv,sys; v=sorted(float(r["error"]) for r in csv.DictReader(open(sys.argv[1])) if int(r["frame"]) <= 180); print("%.2f" % v[len(v)//2])' "$1"; }
+judged_visp=$(judged_median "$out/visp_640.judge.csv")
+judged_z5=$(judged_median "$out/visp_640_z5.judge.csv")
+judged_z10=$(judged_median "$out/visp_640_z10.judge.csv")
 python3 -c 'import csv,sys; [print(r["tux"], r["tuy"], r["tuz"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/visp_640.csv" >"$out/visp_orientation.txt"
 T=("${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos")
 names=(m6_320_1 m6_320 m6_640_1 m6_640 m3_320)
@@ -120,7 +123,7 @@ for s in 640 320; do
     # shellcheck disable=SC2086
     ir=$(vg "visp_$s" "vpMbGenericTracker::track(vpImage<unsigned char> const&)" "$visp" "${F[@]}" --model "$mbt/cube.cao" \
         --settings "$mbt/cube.xml" --init "$mbt/cube.0.pos" $sc --out "$out/visp_$s.cg.csv")
-    agree="(the reference) | | | $(judged_median "$out/visp_640.judge.csv") | "; [ "$s" = 320 ] && agree=$(cmp_visp "$out/visp_320.csv")
+    agree="(the reference) | | | $judged_visp | "; [ "$s" = 320 ] && agree=$(cmp_visp "$out/visp_320.csv")
     printf '| ViSP vpMbGenericTracker (edges), %sx%s | %.3f | %s | %s |\n' "$s" "$((s * 3 / 4))" "$ms" "$(irf "$ir")" "$agree" >>"$real_rows"
 done
 python3 tests/bench/cube_compare.py "$out/visp_640.csv" "$out/visp_640.csv" --quiet >/dev/null   # the comparer runs at all

@@ -197,6 +197,7 @@ std::map<long, vpPoseVector> read_poses(const std::string &path)
   std::string line;
   std::vector<std::string> head;
   if (!std::getline(f, line)) die(1, path + ": empty");
+  if (!line.empty() && line.back() == '\r') line.pop_back();   // a CSV written with CRLF line ends
   {
     std::istringstream s(line);
     std::string c;
@@ -210,6 +211,7 @@ std::map<long, vpPoseVector> read_poses(const std::string &path)
   }
   std::map<long, vpPoseVector> poses;
   for (long n = 2; std::getline(f, line); n++) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     std::vector<std::string> cell;
     std::istringstream s(line);
     std::string c;
