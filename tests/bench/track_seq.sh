@@ -306,7 +306,7 @@ sec=$out/section.md
     echo "|---|---:|---:|---:|---:|---:|---:|---:|"
     cat "$real_rows"
     echo
-    echo "Which pose fits the frame better where the two disagree: ViSP's own measure (\`visp_track --judge\`: \`vpMbTracker::computeCurrentProjectionError\` of any pose, the mean angle in degrees between the visible model lines and the image gradients along them, lower is better), applied to each tracker's poses on the 640x480 frames 0..180. Its sensitivity: ViSP's own poses moved 5 mm along the optical axis score a median of $(judged_median "$out/visp_640_z5.csv") degrees, moved 10 mm $(judged_median "$out/visp_640_z10.csv"), against $(judged_median "$out/visp_640.judge.csv") as ViSP tracked them."
+    echo "Which pose fits the frame better where the two disagree: ViSP's own measure (\`visp_track --judge\`: \`vpMbTracker::computeCurrentProjectionError\` of any pose, the mean angle in degrees between the visible model lines and the image gradients along them, lower is better), applied to each tracker's poses on the 640x480 frames 0..180. Its sensitivity: ViSP's own poses moved 5 mm along the optical axis score a median of $judged_z5 degrees, moved 10 mm $judged_z10, against $judged_visp as ViSP tracked them."
     if [ -s "$out/vg_failed.txt" ]; then
         echo
         echo "Ir marked - : valgrind $(valgrind --version | sed 's/valgrind-//') stopped the program at an instruction it does not decode ($(paste -sd ';' "$out/vg_failed.txt" | sed 's/;/; /g')); ViSP's libraries load libhwy (Highway, through libjxl), whose start-up code uses it on this CPU. Its times are measured all the same."
