@@ -38,15 +38,6 @@ void mc_stream_init(mc_stream *s, uint8_t *buf, uint32_t cap)
     s->cap = buf ? cap : 0;
 }
 
-int mc_stream_fail(mc_stream *s, int error, uint32_t at)
-{
-    if (s->error == MC_STREAM_OK) {
-        s->error = error;
-        s->error_at = at;
-    }
-    return s->error;
-}
-
 /* The descriptor of levels 0..d (d = levels_read - 1 >= 1), pointing into the buffer. */
 static void describe(mc_stream *s)
 {
