@@ -9,7 +9,10 @@
  *     MC_XFORM_FAR_OUT exactly for points beyond the band, their x, y clamped to it;
  * over random views across and beyond mc_view_clamp's ranges (zoom 1/128..128, eye 1/32..512,
  * translations, target sides 1..4096) and random points of the unit cube, its corners included;
- * and, orthographic, the inline step the mesh loops use (xform_ortho.h) equal to it bit for bit.
+ * and, orthographic, the inline step the mesh loops use (xform_ortho.h) equal to it bit for bit;
+ * and xform_ortho.h's two branch-free roundings (v / 2^s to nearest, halves away from zero) against
+ * the same rounding in 128-bit integers, over every shift they serve, halves and the extremes of
+ * their ranges included.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -149,9 +152,53 @@ static void test_frontal(void **state)
     assert_true(n.z < o.z);                  /* +z faces the viewer: nearer */
 }
 
+/* v / 2^s rounded to nearest, halves away from zero, in 128-bit integers */
+static int64_t round_shift_ref(int64_t v, unsigned s)
+{
+    const __int128 a = v < 0 ? -(__int128)v : (__int128)v, r = (a + ((__int128)1 << (s - 1))) >> s;
+    return (int64_t)(v < 0 ? -r : r);
+}
+
+static int64_t pick(mc_rng *g, unsigned s, int64_t lim)
+{
+    const uint64_t u = (uint64_t)mc_rng_next(g) << 32 | mc_rng_next(g);
+    switch (mc_rng_next(g) % 6) {
+    case 0: return (int64_t)(u % (uint64_t)lim) * (mc_rng_next(g) & 1 ? 1 : -1);           /* anywhere */
+    case 1: return ((int64_t)(u % 1024) << s) + ((int64_t)1 << (s - 1)) * (mc_rng_next(g) & 1 ? 1 : -1);   /* a half */
+    case 2: return -(((int64_t)(u % 1024) << s) + ((int64_t)1 << (s - 1)));                 /* a negative half */
+    case 3: return (int64_t)(u % 5) - 2 + (mc_rng_next(g) & 1 ? lim - 3 : 3 - lim);          /* near the range's ends */
+    case 4: return (int64_t)(u % (1u << 12)) - (1 << 11);                                    /* small */
+    default: return (int64_t)(u >> (mc_rng_next(g) % 63)) * (mc_rng_next(g) & 1 ? 1 : -1);  /* any magnitude */
+    }
+}
+
+static void test_round_shift(void **state)
+{
+    (void)state;
+    mc_rng g;
+    mc_rng_seed(&g, 0x5eed, 11);
+    for (unsigned s = 2; s <= 62; s++)
+        for (int i = 0; i < 20000; i++) {
+            int64_t v = pick(&g, s < 50 ? s : 49, INT64_MAX);
+            if (v == INT64_MIN) v++;
+            if (ortho_round_shift(v, s) != round_shift_ref(v, s))
+                fail_msg("ortho_round_shift(%lld, %u) = %lld, want %lld", (long long)v, s, (long long)ortho_round_shift(v, s),
+                         (long long)round_shift_ref(v, s));
+            const int64_t lim = (int64_t)1 << 62;
+            int64_t w = pick(&g, s < 50 ? s : 49, lim);
+            if (w >= lim || w <= -lim) w /= 2;
+            if (ortho_round_shift_small(w, s) != round_shift_ref(w, s))
+                fail_msg("ortho_round_shift_small(%lld, %u) = %lld, want %lld", (long long)w, s,
+                         (long long)ortho_round_shift_small(w, s), (long long)round_shift_ref(w, s));
+        }
+    assert_true(ortho_round_shift(INT64_MIN + 1, 62) == round_shift_ref(INT64_MIN + 1, 62));
+    assert_true(ortho_round_shift(INT64_MAX, 2) == round_shift_ref(INT64_MAX, 2));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_round_shift),
         cmocka_unit_test(test_frontal),
         cmocka_unit_test(test_orthographic),
         cmocka_unit_test(test_perspective),
