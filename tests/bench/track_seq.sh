@@ -80,12 +80,12 @@ judged_z5=$(judged_median "$out/visp_640_z5.judge.csv")
 judged_z10=$(judged_median "$out/visp_640_z10.judge.csv")
 python3 -c 'import csv,sys; [print(r["tux"], r["tuy"], r["tuz"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/visp_640.csv" >"$out/visp_orientation.txt"
 T=("${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos")
-names=(m6_320_1 m6_320 m6_640_1 m6_640 m3_320)
+names=(m6_320_1 m6_320 m6_640_1 m6_640 m6_640_200 m3_320)
 labels=("modelc 6-DOF, 320x240, one layer of 300 particles (the paper's)" "modelc 6-DOF, 320x240, 3 layers of 100 (the default)"
         "modelc 6-DOF, 640x480, one layer of 300 particles, radius 3" "modelc 6-DOF, 640x480, 3 layers of 100 (the default)"
-        "modelc 3-DOF (ViSP's orientation as the IMU), 320x240, 3 layers of 100")
+        "modelc 6-DOF, 640x480, 3 layers of 200" "modelc 3-DOF (ViSP's orientation as the IMU), 320x240, 3 layers of 100")
 opts=("--scale 2 --particles 300 --layers 1" "--scale 2" "--scale 1 --particles 300 --layers 1 --radius 3" "--scale 1"
-      "--scale 2 --orientation $out/visp_orientation.txt")
+      "--scale 1 --particles 200" "--scale 2 --orientation $out/visp_orientation.txt")
 real_rows=$out/real_rows.txt
 : >"$real_rows"
 vg() {   # NAME FUNCTIONS PROGRAM ARGS...: instructions per frame over 20 frames in FUNCTIONS (a |-list)
