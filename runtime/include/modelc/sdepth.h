@@ -135,9 +135,10 @@ MC_ALWAYS_INLINE int mc_sdepth_put(mc_sdepth *s, uint32_t x, uint32_t y, uint16_
             if (y > s->row_hi) s->row_hi = (uint16_t)y;
         }
         s->in_use++;
-        if (track && m) {   /* a pixel not in use has its matched bit 0 */
-            s->matched[w] |= bit;
-            s->in_use_matched++;
+        if (track) {   /* a pixel not in use has its matched bit 0; no branch on m, which a
+                        * predictor cannot guess */
+            s->matched[w] |= bit & (0u - (uint32_t)(m != 0));
+            s->in_use_matched += (uint32_t)(m != 0);
         }
     }
     s->depth[i] = z;
