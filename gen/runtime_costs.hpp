@@ -54,7 +54,7 @@ inline constexpr ModuleCode kMeshModules[] = {
 // from the tables above (budget.cpp track_code_bytes).
 inline constexpr ModuleCode kTrackModules[] = {
     {"camera", 2252, 2252, "pinhole projection of poses, near-plane clipping (camera.c)"},
-    {"imgedge", 2536, 2536, "image edges: Sobel, orientation bins, non-maximum suppression, masks (imgedge.c)"},
+    {"imgedge", 2744, 2744, "image edges: Sobel, orientation bins, non-maximum suppression, masks (imgedge.c)"},
     {"track", 3360, 3360, "the score of a pose: lines and faces into the sparse depth buffer (track.c)"},
     {"particles", 3500, 3500, "the particle filter over poses (particles.c)"},
     {"detect", 1036, 1036, "re-detection: the image shift that fits a trial orientation best (detect.c)"},
@@ -191,7 +191,8 @@ inline constexpr Frame kTrackFrames[] = {
     {"plane_first", 72, 56},
     {"plane_step.isra", 40, 32},
     {"lazy_value", 32, 56},
-    {"mc_imgedge", 160, 192},
+    {"mc_imgedge", 176, 224},
+    {"candidate_code", 36, 8},
     {"thin_row", 32, 40},
     {"mc_imgedge_masks", 32, 48},
     {"mc_imgedge_spread", 12, 8},
@@ -202,7 +203,7 @@ constexpr size_t max3(size_t a, size_t b, size_t c) { return max2(a, max2(b, c))
 
 // The call graph of a tracker's frame, each chain taken whole where the calls inside a file are not
 // certain (a bound, not the exact deepest path):
-//   front end -> mc_imgedge -> thin_row | mc_imgedge_bin ; mc_imgedge_masks -> mc_imgedge_spread
+//   front end -> mc_imgedge -> thin_row | candidate_code | mc_imgedge_bin ; mc_imgedge_masks -> mc_imgedge_spread
 //             ; mc_imgedge_spread -> its outlined part
 //             -> mc_filter_step -> mc_filter_resample | mc_filter_recall | step | move -> step | mc_quat_unit
 //                  | score -> mc_pose_set -> mc_quat_unit
@@ -238,7 +239,8 @@ constexpr size_t track_stack_bound() {
                                                                 track_score_pose()),
                                     track_frame("mc_detect_shift") + max2(track_score_pose(), track_frame("best_of")),
                                     track_frame("mc_detect_move")));
-    const size_t edges = max2(track_frame("mc_imgedge") + max2(track_frame("thin_row"), track_frame("mc_imgedge_bin")),
+    const size_t edges = max2(track_frame("mc_imgedge") + max3(track_frame("thin_row"), track_frame("candidate_code"),
+                                                                track_frame("mc_imgedge_bin")),
                               track_frame("mc_imgedge_masks") + track_frame("mc_imgedge_spread") +
                                   track_frame("mc_imgedge_spread.part.0"));
     return max2(filter, edges);
