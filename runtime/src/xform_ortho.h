@@ -17,9 +17,10 @@
 MC_ALWAYS_INLINE int32_t ortho_band(int64_t v, uint32_t *flags)
 {
     const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
-    if (v > lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)lim; }
-    if (v < -lim) { *flags |= MC_XFORM_FAR_OUT; return (int32_t)-lim; }
-    return (int32_t)v;
+    /* inside: one unsigned compare (|v| <= lim), the usual case */
+    if ((uint64_t)v + (uint64_t)lim <= 2u * (uint64_t)lim) return (int32_t)v;
+    *flags |= MC_XFORM_FAR_OUT;
+    return (int32_t)(v > 0 ? lim : -lim);
 }
 
 /* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) without a branch (the vertices'
