@@ -12,6 +12,7 @@
 #ifndef MODELC_LINE_WALK_H
 #define MODELC_LINE_WALK_H
 
+#include "modelc/config.h"
 #include "modelc/line.h"
 
 /* MC_LINE_STEP_HOOK(): called once per iteration of every loop here; tests count with it that the
@@ -147,6 +148,23 @@ MC_ALWAYS_INLINE uint32_t walk_init(uint32_t w, uint32_t h, mc_line_vertex a, mc
 }
 
 /* One step along walk k from pixel (x, y), depth z and error terms r, zr. */
+#if MC_LINE_SELECT
+/* without branches (config.h): each step's "does the minor coordinate (the depth) move" as a mask
+ * of all ones or zero */
+#define MC_LINE_WALK_STEP(k, x, y, z, r, zr)                                              \
+    do {                                                                                  \
+        x += (uint32_t)(k).xu, y += (uint32_t)(k).yu;                                     \
+        r += (k).m2;                                                                      \
+        const uint32_t mv_ = 0u - (uint32_t)(r >= (k).d2);                                \
+        r -= (k).d2 & mv_;                                                                \
+        x += (uint32_t)(k).xv & mv_, y += (uint32_t)(k).yv & mv_;                         \
+        z += (k).zstep;                                                                   \
+        zr += (k).zrstep;                                                                 \
+        const uint32_t mz_ = 0u - (uint32_t)(zr >= (k).d2);                               \
+        zr -= (k).d2 & mz_;                                                               \
+        z += (int32_t)((uint32_t)(k).zunit & mz_);                                        \
+    } while (0)
+#else
 #define MC_LINE_WALK_STEP(k, x, y, z, r, zr)         \
     do {                                             \
         x += (uint32_t)(k).xu, y += (uint32_t)(k).yu; \
@@ -162,6 +180,7 @@ MC_ALWAYS_INLINE uint32_t walk_init(uint32_t w, uint32_t h, mc_line_vertex a, mc
             z += (k).zunit;                          \
         }                                            \
     } while (0)
+#endif
 
 /* The walk's loop into a sparse depth buffer: each pixel at its depth less depth_offset (saturating
  * at 0), colour color, with its matched bit (masks & want) when track; masks and track are constants

@@ -187,7 +187,9 @@ build_and_run "unit: pmesh: " test_pmesh
 # test_line counts the walk's steps (MC_LINE_STEP_HOOK) to check work follows on-target pixels: its
 # own line.c with the hook, in front of the default archive
 linehook='-DMC_LINE_STEP_HOOK()=do { extern unsigned long mc_test_line_steps; mc_test_line_steps++; } while (0)'
-build_and_run "unit: line: " test_line "@$linehook" runtime/src/line.c
+# both forms of the walk's steps (config.h MC_LINE_SELECT: branches, masks), whatever the default
+build_and_run "unit: line: " test_line-w0 "@-DMC_LINE_SELECT=0" "@$linehook" runtime/src/line.c
+build_and_run "unit: line, the walk's masks: " test_line-w1 "@-DMC_LINE_SELECT=1" "@$linehook" runtime/src/line.c
 build_and_run "unit: raster: " test_raster runtime/ref/raster_ref.c
 build_and_run "unit: xform: " test_xform runtime/ref/xform_ref.c
 build_and_run "unit: clip: " test_clip runtime/ref/xform_ref.c
