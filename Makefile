@@ -14,7 +14,7 @@
 #   make bench-pmesh             progressive-mesh level changes and flash per split against OpenMesh
 #   make bench-mesh              filled triangles and line drawings against Mesa llvmpipe on one thread
 #   make bench-silhouette        silhouette search: recall against work, against the exact scan
-#   make bench-track             the tracker: time and error on synthetic and ViSP's real cube sequences, beside ViSP (make deps-bench)
+#   make bench-track             the tracker: time and error on synthetic and ViSP's real cube sequences, beside ViSP (make deps-bench); the line walk's two forms
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make bench-views             the point renderer at every view (zoom, size, perspective, deeper bakes), level of detail on and off, beside Mesa
@@ -260,6 +260,7 @@ bench-silhouette: $(MODELC) models
 .PHONY: bench-track
 bench-track:
 	@tests/bench/track.sh
+	@tests/bench/line_select.sh
 	@tests/bench/track_seq.sh
 
 # ViSP's model-based edge tracker (vpMbGenericTracker, edges only) on ViSP's cube sequence: the peer of

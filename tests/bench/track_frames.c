@@ -2,8 +2,9 @@
  * tests/bench/track.sh: per frame, the frame's edge masks are made from the true pose (not timed),
  * then mc_filter_step runs (timed; callgrind: --toggle-collect=mc_filter_step). Prints the median
  * time of a step, the pose errors against the truth and the frames within 5 mm and 3 degrees and
- * within 5 cm and 5 degrees.
- *   track_frames [--particles N] [--fresh F] [--size WxH] [--frames K] [--dof 3|6] [--seed S]
+ * within 5 cm and 5 degrees; with --poses, each frame's estimate first ("pose K q0 q1 q2 q3 t0 t1 t2":
+ * Q30, um), so that two builds can be compared pose for pose.
+ *   track_frames [--particles N] [--fresh F] [--size WxH] [--frames K] [--dof 3|6] [--seed S] [--poses]
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,7 +17,13 @@ int main(int argc, char **argv)
 {
     unsigned n = 300, fresh = 100, w = 320, h = 180, frames = 60, dof = 6;
     unsigned long seed = 1;
-    for (int i = 1; i + 1 < argc; i += 2) {
+    int poses = 0;
+    for (int i = 1; i < argc; i += 2) {
+        if (!strcmp(argv[i], "--poses")) { poses = 1; i--; continue; }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "track_frames: %s: missing value\n", argv[i]);
+            return 2;
+        }
         if (!strcmp(argv[i], "--particles")) n = (unsigned)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--fresh")) fresh = (unsigned)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--size") && sscanf(argv[i + 1], "%ux%u", &w, &h) == 2) continue;
@@ -53,6 +60,9 @@ int main(int argc, char **argv)
         if (mc_filter_step(&f, &s.view, q) != MC_OK) return 1;
         ms[k] = mc_host_now_ms() - t0;
         et[k] = cube_scene_distance(f.estimate.t, t) / 1000, er[k] = cube_scene_angle(f.estimate.q, q);
+        if (poses)
+            printf("pose %u %ld %ld %ld %ld %ld %ld %ld\n", k, (long)f.estimate.q[0], (long)f.estimate.q[1], (long)f.estimate.q[2],
+                   (long)f.estimate.q[3], (long)f.estimate.t[0], (long)f.estimate.t[1], (long)f.estimate.t[2]);
         fine += et[k] < 5 && er[k] < 3;
         coarse += et[k] < 50 && er[k] < 5;
     }

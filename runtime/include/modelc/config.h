@@ -88,9 +88,9 @@
  *     more instructions.
  *   1 (default on x86-64): masks of all ones or zero, no branch: a line's steps follow its slope,
  *     which a deep desktop pipeline cannot predict. On the benchmark machine (gcc 12 -O2, the
- *     tracker's filter, 300 particles at 320x180, tests/bench/track_frames.c) 13 % more
- *     instructions, half the mispredicted branches, and 0.94 against 1.04 ms a frame at best over
- *     12 rounds side by side.
+ *     tracker's filter, 300 particles at 320x180) 14 % more instructions, half the mispredicted
+ *     branches, and about 0.8 times the branches' time a frame, side by side (tests/bench/RESULTS.md,
+ *     "Line walk: branches or masks", tests/bench/line_select.sh).
  * Both walk the same pixels at the same depths. */
 #ifndef MC_LINE_SELECT
 #if defined(__x86_64__) || defined(_M_X64)
