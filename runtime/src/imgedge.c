@@ -89,6 +89,19 @@ static uint32_t thin_row(uint8_t *o, const uint32_t *up, const uint32_t *mid, co
     return kept;
 }
 
+/* Pixel x's gradient (gx, gy): its squared magnitude into m, and its packed code into o when it is a
+ * candidate (at least t2). */
+MC_ALWAYS_INLINE void gradient(uint32_t *m, uint8_t *o, uint32_t x, int32_t gx, int32_t gy, uint32_t t2)
+{
+    const uint32_t g = (uint32_t)(gx * gx + gy * gy);
+    m[x] = g;
+    if (g >= t2) o[x] = candidate_code(gx, gy);
+}
+
+/* Column x's Sobel sums over the rows a, b, c: V = a + 2 b + c and D = c - a. */
+#define COL_V(x) ((int32_t)a[x] + 2 * b[x] + c[x])
+#define COL_D(x) ((int32_t)c[x] - a[x])
+
 uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h, uint16_t threshold, uint8_t *out,
                     uint32_t *scratch)
 {
@@ -106,26 +119,15 @@ uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h,
         uint8_t *o = out + y * w;
         m[0] = m[w - 1u] = 0;
         /* the column sums of x - 1 and x, then each step brings in column x + 1 */
-        int32_t v0 = (int32_t)a[0] + 2 * b[0] + c[0], d0 = (int32_t)c[0] - a[0];
-        int32_t v1 = (int32_t)a[1] + 2 * b[1] + c[1], d1 = (int32_t)c[1] - a[1];
+        int32_t v0 = COL_V(0), d0 = COL_D(0), v1 = COL_V(1), d1 = COL_D(1);
         uint32_t x = 1;
         for (; x + 2 < w; x += 2) {   /* two pixels a step: the sums roll without moves */
-            const int32_t v2 = (int32_t)a[x + 1] + 2 * b[x + 1] + c[x + 1], d2 = (int32_t)c[x + 1] - a[x + 1];
-            const int32_t v3 = (int32_t)a[x + 2] + 2 * b[x + 2] + c[x + 2], d3 = (int32_t)c[x + 2] - a[x + 2];
-            const int32_t gx0 = v2 - v0, gy0 = d0 + 2 * d1 + d2, gx1 = v3 - v1, gy1 = d1 + 2 * d2 + d3;
-            const uint32_t g0 = (uint32_t)(gx0 * gx0 + gy0 * gy0), g1 = (uint32_t)(gx1 * gx1 + gy1 * gy1);
-            m[x] = g0, m[x + 1] = g1;
-            if (g0 >= t2) o[x] = candidate_code(gx0, gy0);
-            if (g1 >= t2) o[x + 1] = candidate_code(gx1, gy1);
+            const int32_t v2 = COL_V(x + 1), d2 = COL_D(x + 1), v3 = COL_V(x + 2), d3 = COL_D(x + 2);
+            gradient(m, o, x, v2 - v0, d0 + 2 * d1 + d2, t2);
+            gradient(m, o, x + 1, v3 - v1, d1 + 2 * d2 + d3, t2);
             v0 = v2, v1 = v3, d0 = d2, d1 = d3;
         }
-        if (x + 1 < w) {   /* the last inner pixel of an odd run */
-            const int32_t v2 = (int32_t)a[x + 1] + 2 * b[x + 1] + c[x + 1], d2 = (int32_t)c[x + 1] - a[x + 1];
-            const int32_t gx = v2 - v0, gy = d0 + 2 * d1 + d2;
-            const uint32_t g = (uint32_t)(gx * gx + gy * gy);
-            m[x] = g;
-            if (g >= t2) o[x] = candidate_code(gx, gy);
-        }
+        if (x + 1 < w) gradient(m, o, x, COL_V(x + 1) - v0, d0 + 2 * d1 + COL_D(x + 1), t2);   /* an odd run's last */
         if (y >= 2) kept += thin_row(out + (y - 1) * w, ring[(y - 2) % 3], ring[(y - 1) % 3], m, w);
     }
     /* the last inner row against the border row below it (no gradient) */
@@ -134,6 +136,8 @@ uint32_t mc_imgedge(const uint8_t *img, uint32_t stride, uint16_t w, uint16_t h,
     kept += thin_row(out + (h - 2u) * w, ring[(h - 3u) % 3], ring[(h - 2u) % 3], below, w);
     return kept;
 }
+#undef COL_V
+#undef COL_D
 
 /* The masks of a code (0: none, 1 + bin): bit bin. */
 static const uint8_t code_mask[16] = {0, 1, 2, 4, 8, 16, 32, 64, 128, 0, 0, 0, 0, 0, 0, 0};
@@ -187,9 +191,8 @@ void mc_imgedge_masks(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, u
     mc_imgedge_spread(edges, w, h, radius, scratch);
 }
 
-void mc_imgedge_spread(uint8_t *masks, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch)
+void mc_imgedge_spread(uint8_t *edges, uint16_t w, uint16_t h, unsigned radius, uint8_t *scratch)
 {
-    uint8_t *const edges = masks;
     if (!radius || !w || !h) return;
     /* across: each row on its own */
     for (uint32_t y = 0; y < h; y++) {

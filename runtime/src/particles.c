@@ -189,11 +189,10 @@ int mc_filter_step(mc_filter *f, const mc_track_view *view, const int32_t orient
             }
             if (search) {                    /* where the image fits that orientation best */
                 mc_pose pose;
-                int32_t dx, dy, t[3];
+                int32_t dx, dy;
                 if (mc_pose_set(&pose, p[i].q, p[i].t) != MC_OK) return MC_ERR_ARG;
                 mc_detect_shift(view, &pose, prm->detect_reach, prm->detect_stride, &dx, &dy);
-                mc_detect_move(view->cam, p[i].t, dx, dy, t);
-                for (int k = 0; k < 3; k++) p[i].t[k] = t[k];
+                mc_detect_move(view->cam, p[i].t, dx, dy, p[i].t);
             }
         }
         if (given)

@@ -8,6 +8,7 @@
 #   tests/bench/line_select.sh [RESULTS.md]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/common.sh
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 rounds=${LINE_SELECT_ROUNDS:-9}
@@ -17,10 +18,8 @@ cmds=()
 run() { cmds+=("$*"); "$@"; }
 args=(--particles 300 --fresh 100 --size 320x180 --dof 6)
 for s in 0 1; do
-    run gcc -O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -DMC_LINE_SELECT=$s -Iruntime/include -Iruntime/front/host \
-        -o "$out/frames$s" tests/bench/track_frames.c runtime/src/particles.c runtime/src/detect.c runtime/src/track.c \
-        runtime/src/camera.c runtime/src/sdepth.c runtime/src/line.c runtime/src/raster.c runtime/src/imgedge.c \
-        runtime/src/target.c -lm
+    # shellcheck disable=SC2046
+    run $(track_frames_cc "$out/frames$s" -DMC_LINE_SELECT=$s)
     run valgrind --tool=callgrind --toggle-collect=mc_filter_step --callgrind-out-file="$out/cg$s.out" \
         "$out/frames$s" "${args[@]}" --frames 20 >"$out/cg$s.txt" 2>"$out/cg$s.log"
     run valgrind --tool=cachegrind --branch-sim=yes --cache-sim=no --cachegrind-out-file="$out/bs$s.out" \

@@ -13,6 +13,7 @@
 #   TRACK_SIZES ("320x180 640x360"), TRACK_PARTICLES ("100 300 1000"), TRACK_ROUNDS (5)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/common.sh
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 sizes=${TRACK_SIZES:-320x180 640x360} counts=${TRACK_PARTICLES:-100 300 1000} rounds=${TRACK_ROUNDS:-5}
@@ -21,9 +22,8 @@ mkdir -p "$out"
 cmds=()
 run() { cmds+=("$*"); "$@"; }
 prog=$out/track_frames
-run gcc -O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Iruntime/include -Iruntime/front/host -o "$prog" \
-    tests/bench/track_frames.c runtime/src/particles.c runtime/src/detect.c runtime/src/track.c runtime/src/camera.c runtime/src/sdepth.c \
-    runtime/src/line.c runtime/src/raster.c runtime/src/imgedge.c runtime/src/target.c -lm
+# shellcheck disable=SC2046
+run $(track_frames_cc "$prog")
 val() { sed -n "s/^$1 //p" "$2"; }
 rows=$out/rows.txt
 : >"$rows"

@@ -6,7 +6,7 @@
  *   - with the frame's edges moved by a shift, it finds the shift (within the masks' one-pixel
  *     spread) with every feature matched;
  *   - a pose with nothing on the frame gives 0 and no shift;
- *   - mc_detect_move against the pinhole formula in doubles.
+ *   - mc_detect_move against the pinhole formula in doubles, and in place (out = t) the same.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -187,6 +187,11 @@ static void test_move(void **state)
             const double ex = t[0] + d * (double)z / px, ey = t[1] + (-d / 2) * (double)z / py;
             if (fabs(out[0] - ex) > 1 || fabs(out[1] - ey) > 1 || out[2] != z)
                 fail_msg("z %d, shift %d: (%d, %d, %d), exact (%.1f, %.1f)", z, d, out[0], out[1], out[2], ex, ey);
+            int32_t in_place[3] = {t[0], t[1], t[2]};   /* out may be t (the particle filter's use) */
+            mc_detect_move(&s->cam, in_place, d, -d / 2, in_place);
+            if (in_place[0] != out[0] || in_place[1] != out[1] || in_place[2] != out[2])
+                fail_msg("z %d, shift %d: in place (%d, %d, %d), apart (%d, %d, %d)", z, d, in_place[0], in_place[1],
+                         in_place[2], out[0], out[1], out[2]);
         }
     cube_scene_free(s);
     free(s);

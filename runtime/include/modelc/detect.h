@@ -18,10 +18,11 @@
  *
  * mc_detect_move turns a shift in pixels into the translation that moves the model by it at the
  * depth of its origin (t's z): t + (dx z / px, dy z / py, 0), the camera's focal lengths in Q16,
- * kept within camera.h's +-(2^28 - 1) um per axis (|dx|, |dy| <= 2^16, t within that range).
+ * kept within camera.h's +-(2^28 - 1) um per axis (|dx|, |dy| <= 2^16, t within that range); out may
+ * be t itself.
  *
  * Work: one score, then (2 reach / stride + 1)^2 + (2 stride - 1)^2 shifts times the features, a
- * mask read each. No heap, no floating point, bounded stack (the features on it: 3 bytes each). Deterministic.
+ * mask read each. No heap, no floating point, bounded stack (the features on it: 12 bytes each). Deterministic.
  * Freestanding.
  */
 #ifndef MODELC_DETECT_H
