@@ -162,7 +162,7 @@ inline constexpr Frame kTrackFrames[] = {
     {"mc_filter_recall", 32, 16},
     {"mc_detect_shift", 912, 1008},
     {"best_of", 80, 56},
-    {"mc_detect_move", 24, 8},
+    {"mc_detect_move", 24, 16},
     {"move", 80, 112},
     {"step.part.0", 56, 32},
     {"score", 80, 112},
