@@ -157,12 +157,12 @@ static_assert(stack_bound(8) < (1u << 20), "a function of the call graph is miss
 // -fstack-usage of every function of particles.c, detect.c, track.c, camera.c, raster.c's face pass
 // and imgedge.c that a tracker's frame can reach, measured as kFrames is.
 inline constexpr Frame kTrackFrames[] = {
-    {"mc_filter_step", 232, 288},
+    {"mc_filter_step", 232, 304},
     {"mc_filter_resample", 64, 32},
     {"mc_filter_recall", 32, 16},
     {"mc_detect_shift", 912, 1008},
     {"best_of", 80, 56},
-    {"mc_detect_move", 24, 16},
+    {"mc_detect_move", 24, 8},
     {"move", 80, 112},
     {"step.part.0", 56, 32},
     {"score", 80, 112},
