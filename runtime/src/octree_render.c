@@ -119,18 +119,36 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 /* The squares' depth test: the branch (the four pixels of a leaf mostly win or lose together, and
  * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
 #define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
-/* A 2x2 square whose top-left pixel is z (depth buffer) and f (colour), rows w apart, colour cv read
- * once (a pixel store may alias the colour array): through pointers to the square, the four tests
- * fold into addressing. */
-#define SQUARE2_TEST(z, f, w, depth, cv)                                                           \
+/* The 2x2 square whose top-left pixel is i, colour cv read once (a pixel store may alias the colour
+ * array); fb1 = fb + w, the colour row below, kept apart so that the stores fold into addressing. */
+#define SQUARE2_TEST(i, depth, cv)                                                                 \
     {                                                                                              \
-        uint16_t *const z_ = (z);                                                                  \
-        uint8_t *const f_ = (f);                                                                   \
-        if ((depth) < z_[0]) { z_[0] = (depth); f_[0] = (cv); }                                    \
-        if ((depth) < z_[1]) { z_[1] = (depth); f_[1] = (cv); }                                    \
-        if ((depth) < z_[w]) { z_[w] = (depth); f_[w] = (cv); }                                    \
-        if ((depth) < z_[(w) + 1]) { z_[(w) + 1] = (depth); f_[(w) + 1] = (cv); }                  \
+        uint16_t *const z0_ = zb + (i), *const z1_ = z0_ + w;                                      \
+        if ((depth) < z0_[0]) { z0_[0] = (depth); fb[i] = (cv); }                                  \
+        if ((depth) < z0_[1]) { z0_[1] = (depth); fb[(i) + 1] = (cv); }                            \
+        if ((depth) < z1_[0]) { z1_[0] = (depth); fb1[i] = (cv); }                                 \
+        if ((depth) < z1_[1]) { z1_[1] = (depth); fb1[(i) + 1] = (cv); }                           \
     }
+
+/* The leaves (mask m, colours col) of one level d-1 node as 2x2 squares wholly on the target, no
+ * checks: xy is the node's centre less half a pixel both ways, so that a leaf's position floors to
+ * its square's top-left pixel (as draw_square has it); lv its leaves' vectors. */
+MC_ALWAYS_INLINE void square2_leaves(uint16_t *restrict zb, uint8_t *restrict fb, intptr_t w, const levelvec *lv,
+                                     unsigned m, mc_pos2 xy, mc_pos z, const uint8_t *col)
+{
+    uint8_t *restrict fb1 = fb + w;
+    for (; m; m &= m - 1, col++) {
+        const unsigned k = mc_ctz(m);
+        const mc_pos2 p = POS2_ADD(xy, lv->xy[k]);
+        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);
+        const uint16_t depth = (uint16_t)(z + lv->z[k]);
+        const uint8_t cv = *col;
+        MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col);
+        SQUARE2_TEST(i, depth, cv)
+    }
+}
+
+static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l);
 
 /* Leaves of one level d-1 node that may reach off screen, orthographic: each point checked (a leaf
  * is drawn when its centre is on the target), as one pixel or, with footprints above one pixel, as
@@ -138,6 +156,11 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, const uint8_t *col)
 {
     const unsigned l = c->d - 1;
+    if (c->splat == 2 && classify(c, x, y, l) > 0) {   /* the node's squares are all on the target after all */
+        c->points += mc_popcount8(m);
+        square2_leaves(c->zb, c->fb, c->w, &c->v[l], m, POS2(x - POS_HALF_PIXELS(1), y - POS_HALF_PIXELS(1)), z, col);
+        return;
+    }
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
     for (; m; m &= m - 1, col++) {
@@ -149,19 +172,15 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
         uint16_t depth = (uint16_t)(z + vz[k]);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
-        if (c->splat == 2) {
-            /* the common footprint (640x480 at depth 8): most leaves of a node that reaches off
-             * screen still have their whole square on it */
-            const int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(1)), y0 = pos_floor(fy - POS_HALF_PIXELS(1));
-            if ((uint32_t)x0 < (uint32_t)(c->w - 1) && (uint32_t)y0 < (uint32_t)(c->h - 1)) {
-                uint16_t *zb = c->zb;
-                uint8_t *fb = c->fb;
-                const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
-                const uint8_t cv = *col;
-                SQUARE2_TEST(zb + i, fb + i, w, depth, cv)
-            } else {
-                draw_square(c, fx, fy, 2, depth, *col);
-            }
+        const int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(1)), y0 = pos_floor(fy - POS_HALF_PIXELS(1));
+        if (c->splat == 2 && (uint32_t)x0 < (uint32_t)(c->w - 1) && (uint32_t)y0 < (uint32_t)(c->h - 1)) {
+            /* most leaves of a node whose squares may reach off the target still have theirs on it */
+            uint16_t *zb = c->zb;
+            uint8_t *fb = c->fb;
+            const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
+            uint8_t *fb1 = fb + w;
+            const uint8_t cv = *col;
+            SQUARE2_TEST(i, depth, cv)
         } else if (c->splat > 1) {
             draw_square(c, fx, fy, c->splat, depth, *col);
         } else {
@@ -355,18 +374,18 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     const intptr_t w = c->w;
     const mc_pos half = POS_HALF_PIXELS(s - 1);
     xy = POS2_ADD(xy, POS2(-half, -half));
-    /* each leaf a square; for s = 2 written out (the loops are not unrolled at -O2) */
 #define SQUARE_LEAVES                                                                              \
-    for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
-        const unsigned j = mc_ctz(lm);                                                             \
-        const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                               \
-        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
-        const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
-        const uint8_t cv = *col;   /* once: a pixel store may alias it */                          \
-        MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
-        if (s == 2) {                                                                              \
-            SQUARE2_TEST(zb + i, fb + i, w, depth, cv)                                             \
-        } else {                                                                                   \
+    if (s == 2) {                                                                                  \
+        square2_leaves(zb, fb, w, &L[2], cm, pxy, pz, col);                                        \
+        col += mc_popcount8(cm);                                                                   \
+    } else {                                                                                       \
+        for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                          \
+            const unsigned j = mc_ctz(lm);                                                         \
+            const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                           \
+            const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                      \
+            const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                     \
+            const uint8_t cv = *col;   /* once: a pixel store may alias it */                      \
+            MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                 \
             for (int32_t dy = 0; dy < s; dy++)                                                     \
                 for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, &cv)        \
         }                                                                                          \
@@ -375,13 +394,62 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
 #undef SQUARE_LEAVES
 }
 
+#if MC_LEAF_SWITCH
+/* inside_squares for s = 2 (640x480 at depth 8) with the leaves' tests folded as MC_LEAF_SWITCH
+ * folds them, by half masks: a switch on the low four children's bits and one on the high four's,
+ * 2 x 16 cases (about 4 KB of code, where one switch on all eight bits would be 30 times that). */
+MC_ALWAYS_INLINE void inside_squares2(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
+{
+    const levelvec *restrict L = &c->v[l3];
+    uint8_t *restrict fb = c->fb;
+    uint16_t *restrict zb = c->zb;
+    const intptr_t w = c->w;
+    uint8_t *restrict fb1 = fb + w;
+    xy = POS2_ADD(xy, POS2(-POS_HALF_PIXELS(1), -POS_HALF_PIXELS(1)));
+/* child j0 + b of a node whose half mask is n, when bit b is set; its colour is b's rank in n */
+#define HALF_LEAF(n, b, j0)                                                                        \
+    if ((n) & (1u << (b))) {                                                                       \
+        const mc_pos2 p = POS2_ADD(pxy, L[2].xy[(j0) + (b)]);                                      \
+        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
+        const uint16_t depth = (uint16_t)(pz + L[2].z[(j0) + (b)]);                                \
+        const uint8_t *const col_ = col + MC_POPCOUNT8((n) & ((1u << (b)) - 1u));                  \
+        const uint8_t cv = *col_;                                                                  \
+        MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col_);        \
+        SQUARE2_TEST(i, depth, cv)                                                                 \
+    }
+#define HALF_CASE(n, j0)                                                                           \
+    case n: HALF_LEAF(n, 0, j0) HALF_LEAF(n, 1, j0) HALF_LEAF(n, 2, j0) HALF_LEAF(n, 3, j0)        \
+        col += MC_POPCOUNT8(n); break;
+#define HALF_CASES(j0)                                                                             \
+    HALF_CASE(0, j0) HALF_CASE(1, j0) HALF_CASE(2, j0) HALF_CASE(3, j0) HALF_CASE(4, j0)           \
+    HALF_CASE(5, j0) HALF_CASE(6, j0) HALF_CASE(7, j0) HALF_CASE(8, j0) HALF_CASE(9, j0)           \
+    HALF_CASE(10, j0) HALF_CASE(11, j0) HALF_CASE(12, j0) HALF_CASE(13, j0) HALF_CASE(14, j0)      \
+    HALF_CASE(15, j0)
+#define HALF_LEAVES                                                                                \
+    switch (cm & 15u) { HALF_CASES(0) }                                                            \
+    switch (cm >> 4) { HALF_CASES(4) }
+    WALK_LEVEL3(HALF_LEAVES)
+#undef HALF_LEAVES
+#undef HALF_CASES
+#undef HALF_CASE
+#undef HALF_LEAF
+}
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((noinline))
 #endif
 static void draw_inside_squares(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
 {
-    if (c->splat == 2) inside_squares(c, l3, m, masks2, xy, z, 2);   /* 640x480 at depth 8: the common one */
-    else inside_squares(c, l3, m, masks2, xy, z, c->splat);
+    if (c->splat == 2) {   /* 640x480 at depth 8: the common one */
+#if MC_LEAF_SWITCH
+        inside_squares2(c, l3, m, masks2, xy, z);
+#else
+        inside_squares(c, l3, m, masks2, xy, z, 2);
+#endif
+    } else {
+        inside_squares(c, l3, m, masks2, xy, z, c->splat);
+    }
 }
 
 /* The children of a level d-3 node wholly on screen: one pixel or squares a leaf. */
