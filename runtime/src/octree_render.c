@@ -372,20 +372,20 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     uint8_t *restrict fb = c->fb;
     uint16_t *restrict zb = c->zb;
     const intptr_t w = c->w;
+    uint8_t *restrict fb1 = fb + w;   /* the row below, for SQUARE2_TEST */
     const mc_pos half = POS_HALF_PIXELS(s - 1);
     xy = POS2_ADD(xy, POS2(-half, -half));
 #define SQUARE_LEAVES                                                                              \
-    if (s == 2) {                                                                                  \
-        square2_leaves(zb, fb, w, &L[2], cm, pxy, pz, col);                                        \
-        col += mc_popcount8(cm);                                                                   \
-    } else {                                                                                       \
-        for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                          \
-            const unsigned j = mc_ctz(lm);                                                         \
-            const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                           \
-            const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                      \
-            const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                     \
-            const uint8_t cv = *col;   /* once: a pixel store may alias it */                      \
-            MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                 \
+    for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
+        const unsigned j = mc_ctz(lm);                                                             \
+        const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                               \
+        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
+        const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
+        const uint8_t cv = *col;   /* once: a pixel store may alias it */                          \
+        MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
+        if (s == 2) {                                                                              \
+            SQUARE2_TEST(i, depth, cv)                                                             \
+        } else {                                                                                   \
             for (int32_t dy = 0; dy < s; dy++)                                                     \
                 for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, &cv)        \
         }                                                                                          \
@@ -394,62 +394,13 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
 #undef SQUARE_LEAVES
 }
 
-#if MC_LEAF_SWITCH
-/* inside_squares for s = 2 (640x480 at depth 8) with the leaves' tests folded as MC_LEAF_SWITCH
- * folds them, by half masks: a switch on the low four children's bits and one on the high four's,
- * 2 x 16 cases (about 4 KB of code, where one switch on all eight bits would be 30 times that). */
-MC_ALWAYS_INLINE void inside_squares2(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
-{
-    const levelvec *restrict L = &c->v[l3];
-    uint8_t *restrict fb = c->fb;
-    uint16_t *restrict zb = c->zb;
-    const intptr_t w = c->w;
-    uint8_t *restrict fb1 = fb + w;
-    xy = POS2_ADD(xy, POS2(-POS_HALF_PIXELS(1), -POS_HALF_PIXELS(1)));
-/* child j0 + b of a node whose half mask is n, when bit b is set; its colour is b's rank in n */
-#define HALF_LEAF(n, b, j0)                                                                        \
-    if ((n) & (1u << (b))) {                                                                       \
-        const mc_pos2 p = POS2_ADD(pxy, L[2].xy[(j0) + (b)]);                                      \
-        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
-        const uint16_t depth = (uint16_t)(pz + L[2].z[(j0) + (b)]);                                \
-        const uint8_t *const col_ = col + MC_POPCOUNT8((n) & ((1u << (b)) - 1u));                  \
-        const uint8_t cv = *col_;                                                                  \
-        MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col_);        \
-        SQUARE2_TEST(i, depth, cv)                                                                 \
-    }
-#define HALF_CASE(n, j0)                                                                           \
-    case n: HALF_LEAF(n, 0, j0) HALF_LEAF(n, 1, j0) HALF_LEAF(n, 2, j0) HALF_LEAF(n, 3, j0)        \
-        col += MC_POPCOUNT8(n); break;
-#define HALF_CASES(j0)                                                                             \
-    HALF_CASE(0, j0) HALF_CASE(1, j0) HALF_CASE(2, j0) HALF_CASE(3, j0) HALF_CASE(4, j0)           \
-    HALF_CASE(5, j0) HALF_CASE(6, j0) HALF_CASE(7, j0) HALF_CASE(8, j0) HALF_CASE(9, j0)           \
-    HALF_CASE(10, j0) HALF_CASE(11, j0) HALF_CASE(12, j0) HALF_CASE(13, j0) HALF_CASE(14, j0)      \
-    HALF_CASE(15, j0)
-#define HALF_LEAVES                                                                                \
-    switch (cm & 15u) { HALF_CASES(0) }                                                            \
-    switch (cm >> 4) { HALF_CASES(4) }
-    WALK_LEVEL3(HALF_LEAVES)
-#undef HALF_LEAVES
-#undef HALF_CASES
-#undef HALF_CASE
-#undef HALF_LEAF
-}
-#endif
-
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((noinline))
 #endif
 static void draw_inside_squares(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
 {
-    if (c->splat == 2) {   /* 640x480 at depth 8: the common one */
-#if MC_LEAF_SWITCH
-        inside_squares2(c, l3, m, masks2, xy, z);
-#else
-        inside_squares(c, l3, m, masks2, xy, z, 2);
-#endif
-    } else {
-        inside_squares(c, l3, m, masks2, xy, z, c->splat);
-    }
+    if (c->splat == 2) inside_squares(c, l3, m, masks2, xy, z, 2);   /* 640x480 at depth 8: the common one */
+    else inside_squares(c, l3, m, masks2, xy, z, c->splat);
 }
 
 /* The children of a level d-3 node wholly on screen: one pixel or squares a leaf. */

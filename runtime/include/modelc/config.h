@@ -54,9 +54,7 @@
 
 /* MC_LEAF_SWITCH: how the renderer's hot loop visits the up to eight leaves of a node.
  *   1 (default): a switch with one case per mask value, each case drawing exactly its leaves: one
- *     indirect jump per node and no per-child tests; about 50 KB of code on x86-64. Leaves drawn as
- *     2x2 squares (640x480 at depth 8) take two switches of 16 cases, one per half of the mask
- *     (about 4 KB more; one case per mask would be 30 times that, for 4 % fewer instructions).
+ *     indirect jump per node and no per-child tests; about 50 KB of code on x86-64.
  *   0: the source paper's unrolled loop, a test and a branch per child; about 3 KB of code, for
  *     small flash. Both draw the same pixels. */
 #ifndef MC_LEAF_SWITCH
