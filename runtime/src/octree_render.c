@@ -120,7 +120,8 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
  * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
 #define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
 /* The 2x2 square whose top-left pixel is i, colour cv read once (a pixel store may alias the colour
- * array); fb1 = fb + w, the colour row below, kept apart so that the stores fold into addressing. */
+ * array); fb1 = fb + w, the colour row below, kept in a register of its own so that the stores
+ * fold into addressing. */
 #define SQUARE2_TEST(i, depth, cv)                                                                 \
     {                                                                                              \
         uint16_t *const z0_ = zb + (i), *const z1_ = z0_ + w;                                      \
@@ -136,7 +137,7 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 MC_ALWAYS_INLINE void square2_leaves(uint16_t *restrict zb, uint8_t *restrict fb, intptr_t w, const levelvec *lv,
                                      unsigned m, mc_pos2 xy, mc_pos z, const uint8_t *col)
 {
-    uint8_t *restrict fb1 = fb + w;
+    uint8_t *const fb1 = fb + w;   /* based on fb: the rows overlap from leaf to leaf */
     for (; m; m &= m - 1, col++) {
         const unsigned k = mc_ctz(m);
         const mc_pos2 p = POS2_ADD(xy, lv->xy[k]);
@@ -172,15 +173,18 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
         uint16_t depth = (uint16_t)(z + vz[k]);
         c->points++;
         MC_PLOT_HOOK(fx, fy, col);
-        const int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(1)), y0 = pos_floor(fy - POS_HALF_PIXELS(1));
-        if (c->splat == 2 && (uint32_t)x0 < (uint32_t)(c->w - 1) && (uint32_t)y0 < (uint32_t)(c->h - 1)) {
+        if (c->splat == 2) {
             /* most leaves of a node whose squares may reach off the target still have theirs on it */
-            uint16_t *zb = c->zb;
-            uint8_t *fb = c->fb;
-            const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
-            uint8_t *fb1 = fb + w;
-            const uint8_t cv = *col;
-            SQUARE2_TEST(i, depth, cv)
+            const int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(1)), y0 = pos_floor(fy - POS_HALF_PIXELS(1));
+            if ((uint32_t)x0 < (uint32_t)(c->w - 1) && (uint32_t)y0 < (uint32_t)(c->h - 1)) {
+                uint16_t *zb = c->zb;
+                uint8_t *fb = c->fb, *fb1 = fb + c->w;
+                const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
+                const uint8_t cv = *col;
+                SQUARE2_TEST(i, depth, cv)
+            } else {
+                draw_square(c, fx, fy, 2, depth, *col);
+            }
         } else if (c->splat > 1) {
             draw_square(c, fx, fy, c->splat, depth, *col);
         } else {
@@ -372,9 +376,10 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     uint8_t *restrict fb = c->fb;
     uint16_t *restrict zb = c->zb;
     const intptr_t w = c->w;
-    uint8_t *restrict fb1 = fb + w;   /* the row below, for SQUARE2_TEST */
+    uint8_t *const fb1 = fb + w;   /* the row below, for SQUARE2_TEST; based on fb: the rows overlap */
     const mc_pos half = POS_HALF_PIXELS(s - 1);
     xy = POS2_ADD(xy, POS2(-half, -half));
+    /* each leaf a square; for s = 2 written out (the loops are not unrolled at -O2) */
 #define SQUARE_LEAVES                                                                              \
     for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
         const unsigned j = mc_ctz(lm);                                                             \
