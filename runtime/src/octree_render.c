@@ -117,7 +117,7 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 }
 
 /* The squares' depth test: the branch (the four pixels of a leaf mostly win or lose together, and
- * the select form's two stores a pixel cost more: 64 against 60 instructions a leaf at 640x480) */
+ * the select form's two stores a pixel cost more instructions than the branches they replace) */
 #define SQUARE_TEST(i, depth, col) if ((depth) < zb[i]) { zb[i] = (depth); fb[i] = *(col); }
 /* The 2x2 square whose top-left pixel is i, colour cv read once (a pixel store may alias the colour
  * array); fb1 = fb + w, the colour row below, kept in a register of its own so that the stores
@@ -133,11 +133,11 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
 
 /* The leaves (mask m, colours col) of one level d-1 node as 2x2 squares wholly on the target, no
  * checks: xy is the node's centre less half a pixel both ways, so that a leaf's position floors to
- * its square's top-left pixel (as draw_square has it); lv its leaves' vectors. */
-MC_ALWAYS_INLINE void square2_leaves(uint16_t *restrict zb, uint8_t *restrict fb, intptr_t w, const levelvec *lv,
-                                     unsigned m, mc_pos2 xy, mc_pos z, const uint8_t *col)
+ * its square's top-left pixel (as draw_square has it); lv its leaves' vectors; fb1 = fb + w, which
+ * the caller's loop keeps. Returns col past the node's colours. */
+MC_ALWAYS_INLINE const uint8_t *square2_leaves(uint16_t *restrict zb, uint8_t *restrict fb, uint8_t *fb1, intptr_t w,
+                                               const levelvec *lv, unsigned m, mc_pos2 xy, mc_pos z, const uint8_t *col)
 {
-    uint8_t *const fb1 = fb + w;   /* based on fb: the rows overlap from leaf to leaf */
     for (; m; m &= m - 1, col++) {
         const unsigned k = mc_ctz(m);
         const mc_pos2 p = POS2_ADD(xy, lv->xy[k]);
@@ -147,9 +147,18 @@ MC_ALWAYS_INLINE void square2_leaves(uint16_t *restrict zb, uint8_t *restrict fb
         MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col);
         SQUARE2_TEST(i, depth, cv)
     }
+    return col;
 }
 
-static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l);
+/* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen (or drawn with
+ * checks anyway: c->inside is 0), 1 wholly on screen, -1 wholly off screen (orthographic only). */
+static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l)
+{
+    const mc_pos rx = c->reach_x[l], ry = c->reach_y[l];
+    if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;   /* by the leaves' centres */
+    const mc_pos sx = rx + c->square_margin, sy = ry + c->square_margin;            /* and their squares */
+    return c->inside && x - sx >= 0 && y - sy >= 0 && x + sx < c->wf && y + sy < c->hf;
+}
 
 /* Leaves of one level d-1 node that may reach off screen, orthographic: each point checked (a leaf
  * is drawn when its centre is on the target), as one pixel or, with footprints above one pixel, as
@@ -159,7 +168,8 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
     const unsigned l = c->d - 1;
     if (c->splat == 2 && classify(c, x, y, l) > 0) {   /* the node's squares are all on the target after all */
         c->points += mc_popcount8(m);
-        square2_leaves(c->zb, c->fb, c->w, &c->v[l], m, POS2(x - POS_HALF_PIXELS(1), y - POS_HALF_PIXELS(1)), z, col);
+        square2_leaves(c->zb, c->fb, c->fb + c->w, c->w, &c->v[l], m, POS2(x - POS_HALF_PIXELS(1), y - POS_HALF_PIXELS(1)),
+                       z, col);
         return;
     }
     const mc_pos2 *v = c->v[l].xy;
@@ -177,9 +187,9 @@ static void leaves_clipped(ctx *c, unsigned m, mc_pos x, mc_pos y, mc_pos z, con
             /* most leaves of a node whose squares may reach off the target still have theirs on it */
             const int32_t x0 = pos_floor(fx - POS_HALF_PIXELS(1)), y0 = pos_floor(fy - POS_HALF_PIXELS(1));
             if ((uint32_t)x0 < (uint32_t)(c->w - 1) && (uint32_t)y0 < (uint32_t)(c->h - 1)) {
-                uint16_t *zb = c->zb;
-                uint8_t *fb = c->fb, *fb1 = fb + c->w;
                 const intptr_t w = c->w, i = (intptr_t)y0 * w + x0;
+                uint16_t *zb = c->zb;
+                uint8_t *fb = c->fb, *fb1 = fb + w;
                 const uint8_t cv = *col;
                 SQUARE2_TEST(i, depth, cv)
             } else {
@@ -381,16 +391,16 @@ MC_ALWAYS_INLINE void inside_squares(ctx *c, unsigned l3, unsigned m, const uint
     xy = POS2_ADD(xy, POS2(-half, -half));
     /* each leaf a square; for s = 2 written out (the loops are not unrolled at -O2) */
 #define SQUARE_LEAVES                                                                              \
-    for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                              \
-        const unsigned j = mc_ctz(lm);                                                             \
-        const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                               \
-        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                          \
-        const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                         \
-        const uint8_t cv = *col;   /* once: a pixel store may alias it */                          \
-        MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                     \
-        if (s == 2) {                                                                              \
-            SQUARE2_TEST(i, depth, cv)                                                             \
-        } else {                                                                                   \
+    if (s == 2) {                                                                                  \
+        col = square2_leaves(zb, fb, fb1, w, &L[2], cm, pxy, pz, col);                             \
+    } else {                                                                                       \
+        for (unsigned lm = cm; lm; lm &= lm - 1, col++) {                                          \
+            const unsigned j = mc_ctz(lm);                                                         \
+            const mc_pos2 p = POS2_ADD(pxy, L[2].xy[j]);                                           \
+            const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);                                      \
+            const uint16_t depth = (uint16_t)(pz + L[2].z[j]);                                     \
+            const uint8_t cv = *col;   /* once: a pixel store may alias it */                      \
+            MC_PLOT_HOOK(POS2_X(p) + half, POS2_Y(p) + half, col);                                 \
             for (int32_t dy = 0; dy < s; dy++)                                                     \
                 for (int32_t dx = 0; dx < s; dx++) SQUARE_TEST(i + dy * w + dx, depth, &cv)        \
         }                                                                                          \
@@ -415,15 +425,6 @@ static inline void draw_level3(ctx *c, unsigned l3, unsigned m, const uint8_t *m
     else draw_inside(c, l3, m, masks2, xy, z);
 }
 
-/* Where the leaves under a level-l node centred at (x, y) land: 0 partly on screen (or drawn with
- * checks anyway: c->inside is 0), 1 wholly on screen, -1 wholly off screen (orthographic only). */
-static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l)
-{
-    const mc_pos rx = c->reach_x[l], ry = c->reach_y[l];
-    if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;   /* by the leaves' centres */
-    const mc_pos sx = rx + c->square_margin, sy = ry + c->square_margin;            /* and their squares */
-    return c->inside && x - sx >= 0 && y - sy >= 0 && x + sx < c->wf && y + sy < c->hf;
-}
 
 /* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
  * with checks: it may reach off screen, or the projection is perspective. */
