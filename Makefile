@@ -272,6 +272,11 @@ $(BUILD)/bench/visp_track: tests/bench/visp_track.cpp
 	@mkdir -p $(@D)
 	g++ -O2 -g -std=c++17 -Wall -Wextra $(VISP_CFLAGS) -o $@ $< $(VISP_LIBS)
 
+# preloaded into visp_track under callgrind only: see the file's header
+$(BUILD)/bench/hwy_timer_stub.so: tests/bench/hwy_timer_stub.c
+	@mkdir -p $(@D)
+	gcc -O2 -Wall -Wextra -shared -fPIC -o $@ $<
+
 # the automatic level of detail holding frame-time targets (a RESULTS.md section; make bench runs it too)
 .PHONY: bench-lod-auto
 bench-lod-auto: $(MODELC) models
