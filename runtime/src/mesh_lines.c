@@ -1,5 +1,6 @@
 /* Line drawings of a progressive mesh: see modelc/mesh_lines.h. */
 #include "modelc/mesh_lines.h"
+#include "modelc/bits.h"   /* mc_ctz */
 
 static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
 
@@ -276,41 +277,66 @@ static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xverte
     return 1;
 }
 
+/* The counts of an edge pass, kept in locals (a pixel store could alias *st). */
+typedef struct edge_counts {
+    uint32_t edges, sil, crease, border;
+} edge_counts;
+
+/* Edge k of face f in the edge pass, o its stored opposite as read (all ones for a border), fr and fc
+ * the face's facing bit and crease bits: counted once, from the face with the lower number at the
+ * level (or its only face), and drawn when of a kind in flags (edge_run). k is a constant where
+ * called, so that the three edges of a face are one straight run. */
+MC_ALWAYS_INLINE void edge_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
+                               unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st,
+                               edge_counts *c, uint32_t f, uint32_t k, uint32_t o, uint32_t fr, uint32_t fc)
+{
+    o = mc_pmesh_lod_across(lod, o);
+    unsigned kind;
+    if (o == MC_NO_HALF_EDGE) {
+        kind = MC_EDGE_BORDER;
+        c->edges++, c->border++;
+    } else {
+        /* whether the edge is this face's (the other face's number higher) is a coin toss to a
+         * predictor: taken as a value, and the one branch is on a line to draw, which few edges are */
+        const uint32_t g = MC_HALF_FACE(o), own = g > f;
+        const uint32_t sil = front(facing, g) ^ fr, crease = (fc >> k) & 1u;
+        c->edges += own;
+        if (!(own & (sil | crease))) return;
+        kind = sil ? MC_EDGE_SILHOUETTE : MC_EDGE_CREASE;
+        c->sil += sil, c->crease += sil ^ 1u;
+    }
+    if (!(kind & flags)) return;
+    mc_line_vertex la, lb;
+    if (!edge_line(lod, x, cache, MC_HALF_EDGE(f, k), o, st, &la, &lb, &style->depth_offset)) return;
+    st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style->depth_offset)
+                     : mc_line(t, la, lb, (uint8_t)kind_color(kind), style);
+}
+
+/* A stored opposite, hb bytes wide (2 or 4: a constant where called), as a half-edge id. */
+MC_ALWAYS_INLINE uint32_t stored_opposite(const uint8_t *r, unsigned hb)
+{
+    if (hb == 4) return mc_le32(r);
+    const uint32_t o = mc_le16(r);
+    return o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
+}
+
 /* The edge pass over faces f0 .. f0 + n - 1, whose opposite records start at r (hb: the index width,
- * 2 or 4): each edge once, from the face with the lower number (or its only face), its kind from the
- * facing and crease bits; those of a kind in flags drawn as their lines, into t with mc_line's depth
- * test (sd null) or offered to sd (t null). The counts are kept in locals (a pixel store could alias
- * *st). */
+ * 2 or 4, a constant where called): each edge once, from the face with the lower number (or its only
+ * face), its kind from the facing and crease bits; those of a kind in flags drawn as their lines,
+ * into t with mc_line's depth test (sd null) or offered to sd (t null). */
 MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
                                const uint8_t *cr, unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd,
                                mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb)
 {
-    uint32_t edges = 0, sil = 0, crease = 0, border = 0;
+    edge_counts c = {0, 0, 0, 0};
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = creases(cr, f);
-        for (uint32_t k = 0; k < 3; k++) {
-            uint32_t o;
-            if (hb == 2) o = mc_le16(r + 2u * k), o = o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
-            else o = mc_le32(r + 4u * k);
-            o = mc_pmesh_lod_across(lod, o);
-            unsigned kind;
-            if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
-            else if (MC_HALF_FACE(o) < f) continue;   /* the earlier face's */
-            else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
-                        : (fc >> k) & 1u                     ? MC_EDGE_CREASE
-                                                             : MC_EDGE_PLAIN;
-            edges++;
-            if (!kind) continue;
-            sil += kind == MC_EDGE_SILHOUETTE, crease += kind == MC_EDGE_CREASE, border += kind == MC_EDGE_BORDER;
-            if (!(kind & flags)) continue;
-            mc_line_vertex la, lb;
-            if (!edge_line(lod, x, cache, MC_HALF_EDGE(f, k), o, st, &la, &lb, &style->depth_offset)) continue;
-            st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style->depth_offset)
-                             : mc_line(t, la, lb, (uint8_t)kind_color(kind), style);
-        }
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 0, stored_opposite(r, hb), fr, fc);
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 1, stored_opposite(r + hb, hb), fr, fc);
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 2, stored_opposite(r + 2u * hb, hb), fr, fc);
     }
-    st->edges += edges;
-    st->silhouettes += sil, st->creases += crease, st->borders += border;
+    st->edges += c.edges;
+    st->silhouettes += c.sil, st->creases += c.crease, st->borders += c.border;
 }
 
 /* Both ways' edge pass: the level's crease and facing bits in mem, then every edge of a kind in
@@ -332,7 +358,9 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
     /* the stored opposites read in order, a run of records a chunk */
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
-        edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, pm->opposite[f0 >> shift].data, pm->half_bytes);
+        const uint8_t *r = pm->opposite[f0 >> shift].data;
+        if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2);
+        else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4);
     }
 }
 
@@ -382,27 +410,47 @@ MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_raster_vertex v[3], int 
         mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
 }
 
+/* The facing bits of the 32 faces from face f on (bit i: face f + i), of a level of `faces` faces
+ * (bits past its last face are whatever the array holds). */
+MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint32_t faces)
+{
+    const uint32_t b = f >> 3, nb = MC_MESH_FACING_BYTES(faces);
+    uint64_t w = 0;
+    for (uint32_t k = 0; k < 5u; k++)
+        if (b + k < nb) w |= (uint64_t)facing[b + k] << (8u * k);
+    return (uint32_t)(w >> (f & 7u));
+}
+
 /* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
- * cache (ib: the index width, a constant where called). */
+ * cache (ib: the index width, a constant where called). When culling, the front faces are taken 32
+ * at a time from their facing bits, lowest first: whether a face is front-facing is a coin toss to a
+ * predictor, and a branch on it costs more than the face's own tests. */
 MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
                                const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib)
 {
     const uint16_t *anc16 = (const uint16_t *)lod->anc;
     const uint32_t *anc32 = (const uint32_t *)lod->anc;
-    for (uint32_t f = f0; f < f0 + n; f++, r += 3u * ib) {
-        if (cull && !front(facing, f)) continue;
-        const mc_xvertex *a, *b, *c;
-        if (ib == 2) a = &cache[anc16[mc_le16(r)]], b = &cache[anc16[mc_le16(r + 2)]], c = &cache[anc16[mc_le16(r + 4)]];
-        else a = &cache[anc32[mc_le32(r)]], b = &cache[anc32[mc_le32(r + 4)]], c = &cache[anc32[mc_le32(r + 8)]];
-        if (a->flags | b->flags | c->flags) {
-            hide_clipped(sd, lod, x, f);
-            continue;
+    for (uint32_t i0 = 0; i0 < n; i0 += 32u) {
+        const uint32_t m = n - i0 < 32u ? n - i0 : 32u;
+        uint32_t bits = m == 32u ? 0xFFFFFFFFu : (UINT32_C(1) << m) - 1u;
+        if (cull) bits &= facing_window(facing, f0 + i0, lod->faces);
+        while (bits) {
+            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i;
+            bits &= bits - 1u;
+            const uint8_t *q = r + i * 3u * ib;
+            const mc_xvertex *a, *b, *c;
+            if (ib == 2) a = &cache[anc16[mc_le16(q)]], b = &cache[anc16[mc_le16(q + 2)]], c = &cache[anc16[mc_le16(q + 4)]];
+            else a = &cache[anc32[mc_le32(q)]], b = &cache[anc32[mc_le32(q + 4)]], c = &cache[anc32[mc_le32(q + 8)]];
+            if (a->flags | b->flags | c->flags) {
+                hide_clipped(sd, lod, x, f);
+                continue;
+            }
+            mc_raster_vertex v[3];
+            v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
+            v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
+            v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
+            hide_face(sd, v, cull);
         }
-        mc_raster_vertex v[3];
-        v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
-        v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
-        v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
-        hide_face(sd, v, cull);
     }
 }
 

@@ -173,7 +173,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--cull] [--no-cache] [--style shaded|lines]\n");
+                    "[--yaw U] [--size WxH] [--vertices N] [--cull] [--no-cache] [--style shaded|lines]\n");
     return 2;
 }
 
@@ -181,6 +181,7 @@ int main(int argc, char **argv)
 {
     int time_n = 0, frames_n = 0, w = 320, h = 240, lines = 0;
     unsigned flags = 0;
+    long vertices = -1;   /* the level: -1 the full mesh */
     long yaw = 0;
     const char *ppm = NULL, *mask = NULL;
     mc_xvertex *cache = vcache;
@@ -196,6 +197,7 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--ppm")) ppm = v;
         else if (!strcmp(a, "--mask")) mask = v;
         else if (!strcmp(a, "--yaw")) yaw = atol(v);
+        else if (!strcmp(a, "--vertices")) vertices = atol(v);
         else if (!strcmp(a, "--style")) {
             if (!strcmp(v, "lines")) lines = 1;
             else if (strcmp(v, "shaded")) return usage();
@@ -212,7 +214,8 @@ int main(int argc, char **argv)
 
     mc_pmesh_lod lod;
     mc_pmesh_lod_init(&lod, &PM, anc);
-    mc_pmesh_lod_set(&lod, PM.vertices);   /* the full mesh */
+    if (vertices > (long)PM.vertices) vertices = (long)PM.vertices;
+    mc_pmesh_lod_set(&lod, vertices < 0 ? PM.vertices : (uint32_t)vertices);   /* (below the base: the base) */
     const mc_target t = {color, depth, (uint16_t)w, (uint16_t)h};
     mc_mesh_stats st;
     if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw);
