@@ -282,6 +282,18 @@ typedef struct edge_counts {
     uint32_t edges, sil, crease, border;
 } edge_counts;
 
+/* The line of half-edge h (opposite o) of kind `kind`, drawn into t with mc_line's depth test (sd
+ * null) or offered to sd (t null). Apart (noinline): few edges are lines, and each of the edge pass's
+ * copies (two sinks, two record widths, three edges a face) would otherwise carry it. */
+static NOINLINE void draw_edge(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_line_style *style,
+                               const mc_target *t, mc_sdepth *sd, mc_lines_stats *st, uint32_t h, uint32_t o, unsigned kind)
+{
+    mc_line_vertex la, lb;
+    if (!edge_line(lod, x, cache, h, o, st, &la, &lb, &style->depth_offset)) return;
+    st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style->depth_offset)
+                     : mc_line(t, la, lb, (uint8_t)kind_color(kind), style);
+}
+
 /* Edge k of face f in the edge pass, o its stored opposite as read (all ones for a border), fr and fc
  * the face's facing bit and crease bits: counted once, from the face with the lower number at the
  * level (or its only face), and drawn when of a kind in flags (edge_run). k is a constant where
@@ -292,12 +304,13 @@ MC_ALWAYS_INLINE void edge_one(const mc_pmesh_lod *lod, const mc_xform *x, const
 {
     o = mc_pmesh_lod_across(lod, o);
     unsigned kind;
+#if MC_MESH_SELECT
     if (o == MC_NO_HALF_EDGE) {
         kind = MC_EDGE_BORDER;
         c->edges++, c->border++;
     } else {
-        /* whether the edge is this face's (the other face's number higher) is a coin toss to a
-         * predictor: taken as a value, and the one branch is on a line to draw, which few edges are */
+        /* whether the edge is this face's (the other face's number higher) taken as a value; the
+         * one branch is on a line to draw, which few edges are */
         const uint32_t g = MC_HALF_FACE(o), own = g > f;
         const uint32_t sil = front(facing, g) ^ fr, crease = (fc >> k) & 1u;
         c->edges += own;
@@ -305,11 +318,17 @@ MC_ALWAYS_INLINE void edge_one(const mc_pmesh_lod *lod, const mc_xform *x, const
         kind = sil ? MC_EDGE_SILHOUETTE : MC_EDGE_CREASE;
         c->sil += sil, c->crease += sil ^ 1u;
     }
-    if (!(kind & flags)) return;
-    mc_line_vertex la, lb;
-    if (!edge_line(lod, x, cache, MC_HALF_EDGE(f, k), o, st, &la, &lb, &style->depth_offset)) return;
-    st->pixels += sd ? mc_line_sdepth(sd, la, lb, (uint8_t)kind_color(kind), style->depth_offset)
-                     : mc_line(t, la, lb, (uint8_t)kind_color(kind), style);
+#else
+    if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
+    else if (MC_HALF_FACE(o) < f) return;   /* the earlier face's */
+    else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
+                : (fc >> k) & 1u                     ? MC_EDGE_CREASE
+                                                     : MC_EDGE_PLAIN;
+    c->edges++;
+    if (!kind) return;
+    c->sil += kind == MC_EDGE_SILHOUETTE, c->crease += kind == MC_EDGE_CREASE, c->border += kind == MC_EDGE_BORDER;
+#endif
+    if (kind & flags) draw_edge(lod, x, cache, style, t, sd, st, MC_HALF_EDGE(f, k), o, kind);
 }
 
 /* A stored opposite, hb bytes wide (2 or 4: a constant where called), as a half-edge id. */
@@ -331,9 +350,14 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
     edge_counts c = {0, 0, 0, 0};
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = creases(cr, f);
+#if MC_MESH_SELECT   /* a straight run of three (a loop's branches would come back) */
         edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 0, stored_opposite(r, hb), fr, fc);
         edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 1, stored_opposite(r + hb, hb), fr, fc);
         edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 2, stored_opposite(r + 2u * hb, hb), fr, fc);
+#else                /* a loop: a firmware's flash */
+        for (uint32_t k = 0; k < 3u; k++)
+            edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, k, stored_opposite(r + k * hb, hb), fr, fc);
+#endif
     }
     st->edges += c.edges;
     st->silhouettes += c.sil, st->creases += c.crease, st->borders += c.border;
@@ -401,13 +425,34 @@ static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const 
 }
 
 /* Empties the entries of sd that face v (no corner flagged) hides, culled when cull; a face whose
- * box holds no pixel centre or no entry is rejected here, inline. */
+ * box holds no pixel centre or no entry is rejected here, inline. With MC_MESH_SELECT, for a box of
+ * at most two rows within one 32-pixel block (a face of a dense mesh is a pixel or two across) both
+ * tests are taken as values, the rows' words read at indices clamped to the frame (which an empty
+ * box may leave), and only the answer branches. */
 MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_raster_vertex v[3], int cull)
 {
+    const unsigned rflags = cull ? MC_RASTER_CULL_BACK : 0u;
+#if MC_MESH_SELECT
+    mc_raster_box b = {0, -1, 0, -1};   /* (what a corner beyond the rasterizer's limit leaves: nothing) */
+    const int ok = mc_raster_centre_run(v[0].y, v[1].y, v[2].y, sd->height, &b.j0, &b.j1) &
+                   mc_raster_centre_run(v[0].x, v[1].x, v[2].x, sd->width, &b.i0, &b.i1);
+    const uint32_t i0 = (uint32_t)b.i0, i1 = (uint32_t)b.i1, j0 = (uint32_t)b.j0;   /* i0, j0 >= 0 */
+    if (b.j1 - b.j0 > 1 || (i0 >> 5) != (i1 >> 5)) {   /* (i1 < 0 lands here too) */
+        if (ok && mc_sdepth_any(sd, i0, i1, j0, (uint32_t)b.j1)) mc_raster_triangle_hide(sd, v, rflags);
+        return;
+    }
+    const uint32_t jc = j0 < sd->height - 1u ? j0 : sd->height - 1u, jr = jc + (b.j1 > b.j0);
+    const uint32_t ic = i0 < sd->width - 1u ? i0 : sd->width - 1u;
+    const uint32_t *u = sd->used + (ic >> 5);
+    const uint32_t words = u[jc * sd->blocks] | u[jr * sd->blocks];
+    const uint32_t mask = (0xFFFFFFFFu >> (i0 & 31u)) & (0xFFFFFFFFu << (31u - (i1 & 31u)));
+    if (ok & ((words & mask) != 0)) mc_raster_triangle_hide(sd, v, rflags);
+#else
     mc_raster_box b;
     if (mc_raster_centres(v, sd->width, sd->height, &b) &&
         mc_sdepth_any(sd, (uint32_t)b.i0, (uint32_t)b.i1, (uint32_t)b.j0, (uint32_t)b.j1))
-        mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
+        mc_raster_triangle_hide(sd, v, rflags);
+#endif
 }
 
 /* The facing bits of the 32 faces from face f on (bit i: face f + i), of a level of `faces` faces
@@ -421,37 +466,50 @@ MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint3
     return (uint32_t)(w >> (f & 7u));
 }
 
+/* Face f of the face pass, its corner record at q (ib: the index width, a constant where called). */
+MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd, int cull,
+                               uint32_t f, const uint8_t *q, unsigned ib)
+{
+    const mc_xvertex *a, *b, *c;
+    if (ib == 2) {
+        const uint16_t *anc = (const uint16_t *)lod->anc;
+        a = &cache[anc[mc_le16(q)]], b = &cache[anc[mc_le16(q + 2)]], c = &cache[anc[mc_le16(q + 4)]];
+    } else {
+        const uint32_t *anc = (const uint32_t *)lod->anc;
+        a = &cache[anc[mc_le32(q)]], b = &cache[anc[mc_le32(q + 4)]], c = &cache[anc[mc_le32(q + 8)]];
+    }
+    if (a->flags | b->flags | c->flags) {
+        hide_clipped(sd, lod, x, f);
+        return;
+    }
+    mc_raster_vertex v[3];
+    v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
+    v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
+    v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
+    hide_face(sd, v, cull);
+}
+
 /* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
- * cache (ib: the index width, a constant where called). When culling, the front faces are taken 32
- * at a time from their facing bits, lowest first: whether a face is front-facing is a coin toss to a
- * predictor, and a branch on it costs more than the face's own tests. */
+ * cache (ib: the index width, a constant where called). Culling, with MC_MESH_SELECT, the front faces
+ * are taken 32 at a time from their facing bits, lowest first, instead of a branch on each face's. */
 MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
                                const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib)
 {
-    const uint16_t *anc16 = (const uint16_t *)lod->anc;
-    const uint32_t *anc32 = (const uint32_t *)lod->anc;
+#if MC_MESH_SELECT
     for (uint32_t i0 = 0; i0 < n; i0 += 32u) {
         const uint32_t m = n - i0 < 32u ? n - i0 : 32u;
         uint32_t bits = m == 32u ? 0xFFFFFFFFu : (UINT32_C(1) << m) - 1u;
         if (cull) bits &= facing_window(facing, f0 + i0, lod->faces);
         while (bits) {
-            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i;
+            const uint32_t i = i0 + mc_ctz(bits);
             bits &= bits - 1u;
-            const uint8_t *q = r + i * 3u * ib;
-            const mc_xvertex *a, *b, *c;
-            if (ib == 2) a = &cache[anc16[mc_le16(q)]], b = &cache[anc16[mc_le16(q + 2)]], c = &cache[anc16[mc_le16(q + 4)]];
-            else a = &cache[anc32[mc_le32(q)]], b = &cache[anc32[mc_le32(q + 4)]], c = &cache[anc32[mc_le32(q + 8)]];
-            if (a->flags | b->flags | c->flags) {
-                hide_clipped(sd, lod, x, f);
-                continue;
-            }
-            mc_raster_vertex v[3];
-            v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
-            v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
-            v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
-            hide_face(sd, v, cull);
+            hide_one(lod, x, cache, sd, cull, f0 + i, r + i * 3u * ib, ib);
         }
     }
+#else
+    for (uint32_t i = 0; i < n; i++, r += 3u * ib)
+        if (!cull || front(facing, f0 + i)) hide_one(lod, x, cache, sd, cull, f0 + i, r, ib);
+#endif
 }
 
 int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
@@ -470,7 +528,7 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
     /* then the faces mc_mesh_render would draw empty the entries they hide (a face with a flagged
      * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
      * corners and its box */
-    if (!(flags & MC_LINES_NO_HIDING)) {
+    if (!(flags & MC_LINES_NO_HIDING) && sd->width && sd->height) {   /* (an empty frame has nothing to hide) */
         const mc_pmesh *pm = lod->pm;
         const int cull = pm->closed;
         if (!cache) {

@@ -29,6 +29,14 @@ TAP_PREFIX="pmesh: "
 temp_dir
 out=$tmp/out
 rt=$(rt_objs | tr '\n' ' ')   # the runtime as the viewers have it
+# and with the line drawings' other form of their coin-toss tests (config.h MC_MESH_SELECT: the
+# default's values on x86-64, branches elsewhere), which must draw the same
+mesh_select_alt=$(printf '#include "modelc/config.h"\nMC_MESH_SELECT\n' | gcc -E -P -Iruntime/include - | tail -n 1)
+mesh_select_alt=$((1 - mesh_select_alt))
+gcc -O2 -std=c99 -ffreestanding -Wall -Wextra -Werror -Iruntime/include -ffunction-sections -fdata-sections \
+    -DMC_MESH_SELECT=$mesh_select_alt -c -o "$tmp/mesh_lines_alt.o" runtime/src/mesh_lines.c ||
+    { notok "runtime/src/mesh_lines.c compiles with MC_MESH_SELECT=$mesh_select_alt" ""; exit 1; }
+rt_alt="$(tr ' ' '\n' <<<"$rt" | grep -v '/mesh_lines\.o$' | tr '\n' ' ') $tmp/mesh_lines_alt.o"
 # the double-precision references the checker links, compiled once (the same for every bake)
 ref_objs=""
 for f in raster_ref xform_ref; do
@@ -74,6 +82,12 @@ bake_check() {
         notok "$label: the bake compiles with the runtime (-Wall -Wextra -Werror)" "$(head -n 3 "$tmp/$name.cc" | oneline)"
         return 1
     fi
+    # shellcheck disable=SC2086
+    if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
+        -o "$checker-alt" tests/gen/pmesh_check.c $ref_objs $rt_alt "$bobjs"/*.o -lm >"$tmp/$name.alt.cc" 2>&1; then
+        notok "$label: the checker compiles with MC_MESH_SELECT=$mesh_select_alt" "$(head -n 3 "$tmp/$name.alt.cc" | oneline)"
+        return 1
+    fi
     if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include "-DPM=mc_pmesh_$name" -include "$bake/$name.h" \
         -o "$checker-sil" tests/gen/sil_check.c $rt "$bobjs"/*.o -lm >"$tmp/$name.sil.cc" 2>&1; then
         notok "$label: the silhouette checker compiles" "$(head -n 3 "$tmp/$name.sil.cc" | oneline)"
@@ -90,7 +104,7 @@ bake_check() {
 # catalogue's closed meshes also inside and culled (clipped faces culled by their planes: an open
 # shape seen so may show no face at all)
 renders() {
-    local label=$1 n view r views
+    local label=$1 n view r d views
     shift
     views=("96 72 0 0 0 0 65536 131072 0" "96 72 0 700 -300 200 98304 131072 1" "80 60 1 -1100 250 0 65536 131072 1"
         "80 60 1 2048 100 0 65536 16384 0")
@@ -109,6 +123,16 @@ renders() {
             r=$("$checker" lines "$n" $view 2>&1)
             if [[ $r == ok:* ]]; then ok "$label: mc_mesh_lines, view ($view): ${r#ok: }"
             else notok "$label: mc_mesh_lines, view ($view)" "${r#not ok: }"; fi
+        done
+        # the other form (MC_MESH_SELECT): the same checks, and the same words as the default's
+        for view in "160 120 0 700 -300 200 262144 131072" "120 90 1 -1100 250 0 65536 131072"; do
+            r=$("$checker-alt" lines "$n" $view 2>&1)
+            d=$("$checker" lines "$n" $view 2>&1)
+            if [[ $r == ok:* ]] && [ "$r" = "$d" ]; then
+                ok "$label: mc_mesh_lines with MC_MESH_SELECT=$mesh_select_alt, view ($view): as the default"
+            elif [[ $r == ok:* ]]; then
+                notok "$label: mc_mesh_lines with MC_MESH_SELECT=$mesh_select_alt, view ($view)" "${r#ok: }; the default: ${d#ok: }"
+            else notok "$label: mc_mesh_lines with MC_MESH_SELECT=$mesh_select_alt, view ($view)" "${r#not ok: }"; fi
         done
     done
     # silhouettes, exact and searched (sil_check.c check)
