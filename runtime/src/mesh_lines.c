@@ -424,37 +424,47 @@ static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const 
     }
 }
 
-/* Empties the entries of sd that face v (no corner flagged) hides, culled when cull; a face whose
- * box holds no pixel centre or no entry is rejected here, inline. With MC_MESH_SELECT, for a box of
- * at most two rows within one 32-pixel block (a face of a dense mesh is a pixel or two across) both
- * tests are taken as values, the rows' words read at indices clamped to the frame (which an empty
- * box may leave), and only the answer branches. */
-MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_raster_vertex v[3], int cull)
+/* Empties the entries of sd that the face with projected corners a, b, c (none flagged) hides, culled
+ * when cull; a face whose box holds no pixel centre or no entry is rejected here, inline, before its
+ * corners are copied. With MC_MESH_SELECT, for a box of at most two rows within one 32-pixel block (a
+ * face of a dense mesh is a pixel or two across) both tests are taken as values, the rows' words read
+ * at indices clamped to the frame (which an empty box may leave), and only the answer branches. */
+MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xvertex *b, const mc_xvertex *c, int cull)
 {
-    const unsigned rflags = cull ? MC_RASTER_CULL_BACK : 0u;
+    mc_raster_vertex v[3];
 #if MC_MESH_SELECT
-    mc_raster_box b = {0, -1, 0, -1};   /* (what a corner beyond the rasterizer's limit leaves: nothing) */
-    const int ok = mc_raster_centre_run(v[0].y, v[1].y, v[2].y, sd->height, &b.j0, &b.j1) &
-                   mc_raster_centre_run(v[0].x, v[1].x, v[2].x, sd->width, &b.i0, &b.i1);
-    const uint32_t i0 = (uint32_t)b.i0, i1 = (uint32_t)b.i1, j0 = (uint32_t)b.j0;   /* i0, j0 >= 0 */
-    if (b.j1 - b.j0 > 1 || (i0 >> 5) != (i1 >> 5)) {   /* (i1 < 0 lands here too) */
-        if (ok && mc_sdepth_any(sd, i0, i1, j0, (uint32_t)b.j1)) mc_raster_triangle_hide(sd, v, rflags);
-        return;
+    mc_raster_box box = {0, -1, 0, -1};   /* (what a corner beyond the rasterizer's limit leaves: nothing) */
+    const int ok = mc_raster_centre_run(a->y, b->y, c->y, sd->height, &box.j0, &box.j1) &
+                   mc_raster_centre_run(a->x, b->x, c->x, sd->width, &box.i0, &box.i1);
+    const uint32_t i0 = (uint32_t)box.i0, i1 = (uint32_t)box.i1, j0 = (uint32_t)box.j0;   /* i0, j0 >= 0 */
+    int hit;
+    if (box.j1 - box.j0 > 1 || (i0 >> 5) != (i1 >> 5)) {   /* (i1 < 0 lands here too) */
+        hit = ok && mc_sdepth_any(sd, i0, i1, j0, (uint32_t)box.j1);
+    } else {
+        const uint32_t jc = j0 < sd->height - 1u ? j0 : sd->height - 1u, jr = jc + (box.j1 > box.j0);
+        const uint32_t ic = i0 < sd->width - 1u ? i0 : sd->width - 1u;
+        const uint32_t *u = sd->used + (ic >> 5);
+        const uint32_t words = u[jc * sd->blocks] | u[jr * sd->blocks];
+        const uint32_t mask = (0xFFFFFFFFu >> (i0 & 31u)) & (0xFFFFFFFFu << (31u - (i1 & 31u)));
+        hit = ok & ((words & mask) != 0);
     }
-    const uint32_t jc = j0 < sd->height - 1u ? j0 : sd->height - 1u, jr = jc + (b.j1 > b.j0);
-    const uint32_t ic = i0 < sd->width - 1u ? i0 : sd->width - 1u;
-    const uint32_t *u = sd->used + (ic >> 5);
-    const uint32_t words = u[jc * sd->blocks] | u[jr * sd->blocks];
-    const uint32_t mask = (0xFFFFFFFFu >> (i0 & 31u)) & (0xFFFFFFFFu << (31u - (i1 & 31u)));
-    if (ok & ((words & mask) != 0)) mc_raster_triangle_hide(sd, v, rflags);
+    if (!hit) return;
+    v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
+    v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
+    v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
 #else
-    mc_raster_box b;
-    if (mc_raster_centres(v, sd->width, sd->height, &b) &&
-        mc_sdepth_any(sd, (uint32_t)b.i0, (uint32_t)b.i1, (uint32_t)b.j0, (uint32_t)b.j1))
-        mc_raster_triangle_hide(sd, v, rflags);
+    v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
+    v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
+    v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
+    mc_raster_box box;
+    if (!mc_raster_centres(v, sd->width, sd->height, &box) ||
+        !mc_sdepth_any(sd, (uint32_t)box.i0, (uint32_t)box.i1, (uint32_t)box.j0, (uint32_t)box.j1))
+        return;
 #endif
+    mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
 }
 
+#if MC_MESH_SELECT
 /* The facing bits of the 32 faces from face f on (bit i: face f + i), of a level of `faces` faces
  * (bits past its last face are whatever the array holds). */
 MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint32_t faces)
@@ -465,6 +475,7 @@ MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint3
         if (b + k < nb) w |= (uint64_t)facing[b + k] << (8u * k);
     return (uint32_t)(w >> (f & 7u));
 }
+#endif
 
 /* Face f of the face pass, its corner record at q (ib: the index width, a constant where called). */
 MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd, int cull,
@@ -482,11 +493,7 @@ MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const
         hide_clipped(sd, lod, x, f);
         return;
     }
-    mc_raster_vertex v[3];
-    v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
-    v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
-    v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
-    hide_face(sd, v, cull);
+    hide_face(sd, a, b, c, cull);
 }
 
 /* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
@@ -534,9 +541,12 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
         if (!cache) {
             for (uint32_t f = 0; f < lod->faces; f++) {
                 if (cull && !front(facing, f)) continue;
-                mc_raster_vertex v[3];
-                if (corners(lod, &x, 0, f, v)) hide_clipped(sd, lod, &x, f);
-                else hide_face(sd, v, cull);
+                int32_t p[3][3];
+                mc_xvertex v[3];
+                face_positions(lod, f, p);
+                for (int k = 0; k < 3; k++) mc_xform_vertex(&x, p[k], &v[k]);
+                if (v[0].flags | v[1].flags | v[2].flags) hide_clipped(sd, lod, &x, f);
+                else hide_face(sd, &v[0], &v[1], &v[2], cull);
             }
         } else {
             const unsigned shift = pm->record_shift;
