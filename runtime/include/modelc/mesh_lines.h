@@ -49,6 +49,9 @@
  * edge's neighbour (pmesh.h) and, for drawn edges, the line's pixels; the crease test of every edge
  * only when the level changed. A face with a flagged corner costs its plane test, and a clipping of
  * its polygon for each drawn edge beside it (the slope); an edge with a flagged end, its clipping.
+ * The tests of the passes over every edge and every face whose outcome is a coin toss (is the edge
+ * this face's or its neighbour's, is the face front-facing, does its box hold a centre and an entry)
+ * are branches or values as config.h MC_MESH_SELECT chooses; the pixels are the same either way.
  * Memory: the caller's, MC_MESH_LINES_BYTES(faces); no heap, no floating point; bounded stack (the
  * clipping's buffers, about 300 bytes, only below a face with a flagged corner). Freestanding.
  */
