@@ -9,7 +9,8 @@
 #     lines, the vertex cache changing nothing;
 #   - magnified views (zoom 64 on 256 x 256) whose faces are cut at the band as well;
 #   - random views across and beyond the clamped ranges, faces and lines with every flag, under
-#     ASan + UBSan: no finding, guard zones untouched, the counts adding up.
+#     ASan + UBSan: no finding, guard zones untouched, the counts adding up; and the hidden lines
+#     over the sparse depth buffer (its arrays allocated to the byte) showing the z-buffer way's.
 # The two models are baked, built and checked side by side (two jobs).
 #
 # usage: tests/gen/clip.sh [MODELC]        (default build/bin/modelc)

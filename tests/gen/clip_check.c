@@ -29,7 +29,9 @@
 #define CLIP_REFERENCE_ONLY
 #include "../unit/test_clip.c"
 
+#include "modelc/finish.h"   /* MC_DEPTH_FILLED */
 #include "modelc/mesh_lines.h"
+#include "modelc/sdepth.h"
 #include "modelc/pmesh.h"
 
 extern const mc_pmesh PM;
@@ -322,6 +324,40 @@ static int frame_check(mc_pmesh_lod *lod, char **a)
 
 /* ---- random views (for the sanitizers) ----------------------------------------------------------- */
 
+/* The hidden lines over the sparse depth buffer (mc_mesh_lines_sparse, with the vertex cache) against
+ * the z-buffer way (the faces in paper, culled when the part is closed, then mc_mesh_lines): the same
+ * counts, and a line shown at the same pixels (the colour may differ where lines of two kinds meet).
+ * The buffer's arrays are allocated to the byte, so that a read past them is the sanitizers' finding,
+ * and its depths and colours sit between guard zones. Returns 1 when some line shows. */
+static int sparse_check(mc_pmesh_lod *lod, const mc_view *v, uint32_t w, uint32_t h, uint8_t *mem, mc_xvertex *cache, long k)
+{
+    gtarget z = gt_new(w, h), s = gt_new(w, h);
+    uint32_t *bits = malloc(4u * MC_SDEPTH_WORDS(w, h));
+    if (!bits) exit(2);
+    mc_mesh_render(lod, v, MC_MESH_DRAW_PAPER | (PM.closed ? MC_MESH_CULL_BACK : 0u), &z.t, NULL, NULL);
+    mc_lines_stats lz, ls;
+    mc_mesh_lines(lod, v, MC_LINES_ALL, &z.t, mem, NULL, &lz);
+    mc_sdepth sd;
+    int rc = mc_sdepth_init(&sd, (uint16_t)w, (uint16_t)h, bits, s.t.depth, s.t.color, MC_DEPTH_FILLED, MC_MESH_PAPER);
+    if (rc == MC_OK) rc = mc_mesh_lines_sparse(lod, v, MC_LINES_ALL, &sd, mem, cache, &ls);
+    if (rc != MC_OK || memcmp(&lz, &ls, sizeof lz))
+        PROBLEM("view %ld: sparse lines rc %d, %u edges %u %u %u %u px; z-buffer %u edges %u %u %u %u px", k, rc, ls.edges,
+                ls.silhouettes, ls.creases, ls.borders, ls.pixels, lz.edges, lz.silhouettes, lz.creases, lz.borders, lz.pixels);
+    unsigned long diff = 0, shown = 0;
+    for (size_t i = 0; i < z.px; i++) {
+        const unsigned cz = z.t.color[i], cs = s.t.color[i];
+        const int lzi = z.t.depth[i] != MC_DEPTH_EMPTY && (cz == MC_LINES_SILHOUETTE_COLOR || cz == MC_LINES_CREASE_COLOR ||
+                                                          cz == MC_LINES_BORDER_COLOR);
+        const int lsi = cs == MC_LINES_SILHOUETTE_COLOR || cs == MC_LINES_CREASE_COLOR || cs == MC_LINES_BORDER_COLOR;
+        diff += lzi != lsi || (!lsi && (cs != MC_MESH_PAPER || s.t.depth[i] != MC_DEPTH_FILLED));
+        shown += lsi;
+    }
+    if (diff) PROBLEM("view %ld: %lu pixels show a line over the sparse depth buffer and not by the z-buffer, or the other way", k, diff);
+    if (gt_guard(&z) || gt_guard(&s)) PROBLEM("view %ld: sparse lines: guard zones written", k);
+    free(bits), gt_free(&z), gt_free(&s);
+    return shown != 0;
+}
+
 static int random_check(mc_pmesh_lod *lod, long count, uint64_t seed)
 {
     mc_rng g;
@@ -329,7 +365,7 @@ static int random_check(mc_pmesh_lod *lod, long count, uint64_t seed)
     mc_xvertex *cache = malloc(MC_MESH_CACHE_BYTES(PM.vertices));
     uint8_t *mem = calloc(MC_MESH_LINES_BYTES(PM.faces), 1);
     if (!cache || !mem) return 2;
-    unsigned long flagged_views = 0, clipped = 0, away = 0, lines_clipped = 0;
+    unsigned long flagged_views = 0, clipped = 0, away = 0, lines_clipped = 0, sparse_views = 0;
     for (long k = 0; k < count && !problems; k++) {
         mc_view v = mc_view_default();
         v.projection = mc_rng_below(&g, 5) ? MC_PERSPECTIVE : MC_ORTHOGRAPHIC;
@@ -373,12 +409,14 @@ static int random_check(mc_pmesh_lod *lod, long count, uint64_t seed)
             if (gt_guard(&a) || gt_guard(&b)) PROBLEM("view %ld flags %u: guard zones written", k, fl);
             gt_free(&a), gt_free(&b);
         }
+        sparse_views += sparse_check(lod, &v, w, h, mem, cache, k);
     }
     if (problems)
         printf("not ok: %lu problems; first: %s\n", problems, first);
     else
         printf("ok: %ld views (%lu with a flagged corner): %lu faces clipped, %lu clipped away, %lu lines clipped; guard zones "
-               "untouched, the cache changing nothing\n", count, flagged_views, clipped, away, lines_clipped);
+               "untouched, the cache changing nothing; over the sparse depth buffer the same lines shown in %lu views with one\n",
+               count, flagged_views, clipped, away, lines_clipped, sparse_views);
     free(cache), free(mem);
     return problems ? 1 : 0;
 }
