@@ -103,9 +103,10 @@
 #error "MC_LINE_SELECT must be 0 (branches) or 1 (masks)"
 #endif
 
-/* MC_MESH_SELECT: how the line drawings' passes over every edge and every face (mesh_lines.c) take
- * the tests whose outcome is a coin toss: whether an edge is this face's or its neighbour's, whether
- * a face is front-facing, whether a face a pixel or two across covers a pixel centre and an entry.
+/* MC_MESH_SELECT: how the line drawings' passes over every edge and every face (mesh_lines.c) and
+ * the rasterizer's triangle setup (raster.h, raster.c) take the tests whose outcome is a coin toss:
+ * whether an edge is this face's or its neighbour's, whether a face is front-facing, whether a face
+ * a pixel or two across covers a pixel centre and an entry, which corner is the least or greatest.
  *   0 (default except on x86-64): a branch each. Right for Cortex-M, where a branch costs a cycle or
  *     two and the values cost instructions.
  *   1 (default on x86-64): taken as values, and only a rare answer branches (a line to draw, a face

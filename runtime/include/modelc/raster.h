@@ -40,6 +40,7 @@
 #define MODELC_RASTER_H
 
 #include <stdint.h>
+#include "config.h"   /* MC_MESH_SELECT */
 #include "sdepth.h"
 #include "target.h"
 
@@ -76,9 +77,13 @@ typedef struct mc_raster_box {
  * mc_raster_centre_run gives one axis's run of pixels (lo .. hi of side; 0 when empty). */
 MC_ALWAYS_INLINE int mc_raster_centre_run(int32_t c0, int32_t c1, int32_t c2, uint32_t side, int32_t *lo, int32_t *hi)
 {
-    /* two selects each (conditional moves, not branches: which corner is the least is a coin toss) */
+#if MC_MESH_SELECT   /* two selects each: which corner is the least is a coin toss to a predictor */
     int32_t cmin = c0 < c1 ? c0 : c1, cmax = c0 > c1 ? c0 : c1;
     cmin = cmin < c2 ? cmin : c2, cmax = cmax > c2 ? cmax : c2;
+#else                /* branches: fewer instructions where a branch costs a cycle or two */
+    const int32_t cmin = c0 < c1 ? (c0 < c2 ? c0 : c2) : (c1 < c2 ? c1 : c2);
+    const int32_t cmax = c0 > c1 ? (c0 > c2 ? c0 : c2) : (c1 > c2 ? c1 : c2);
+#endif
     if (cmin < -MC_RASTER_COORD_LIMIT || cmax > MC_RASTER_COORD_LIMIT) return 0;
     int32_t a = mc_raster_floor16(cmin + 7), b = mc_raster_floor16(cmax - 9);
     if (a < 0) a = 0;
