@@ -41,9 +41,12 @@ MC_ALWAYS_INLINE int64_t ortho_round_shift_small(int64_t v, unsigned s)
     return (int64_t)(u >> s) - ((int64_t)1 << (63 - s));
 }
 
+/* a * b for |a| <= 2^30 and |b| <= 2^15 taken as 32-bit values, so that a 32-bit core multiplies
+ * them in one step (a 64 x 64 product is three) */
+#define ORTHO_MUL(a, b) ((int64_t)(int32_t)(a) * (int64_t)(int32_t)(b))
 /* R p, Q30: |q| < 2^30 (sums below 3 * 2^45 before the shift) */
 #define ORTHO_ROTATE(x, row, p0, p1, p2) \
-    ortho_round_shift_small((x)->r[row][0] * (p0) + (x)->r[row][1] * (p1) + (x)->r[row][2] * (p2), 16)
+    ortho_round_shift_small(ORTHO_MUL((x)->r[row][0], p0) + ORTHO_MUL((x)->r[row][1], p1) + ORTHO_MUL((x)->r[row][2], p2), 16)
 
 /* The orthographic projection of q = R p: S q in 1/16 pixel, Q16 * Q30 >> 42 */
 MC_ALWAYS_INLINE void ortho_project(int64_t scale, int64_t cx, int64_t cy, int64_t q0, int64_t q1, int64_t q2,
@@ -57,7 +60,7 @@ MC_ALWAYS_INLINE void ortho_project(int64_t scale, int64_t cx, int64_t cy, int64
 }
 
 typedef struct mc_xform_ortho {
-    int64_t r[3][3];         /* x->r, widened once */
+    int32_t r[3][3];         /* x->r */
     int64_t scale, cx, cy;
 } mc_xform_ortho;
 
