@@ -192,20 +192,31 @@ static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
     *crease_tag(mem) = lod->level + 1u;
 }
 
+/* The cache entries of the corners of the face whose corner record is r (ib: the index width, a
+ * constant where called), each corner standing for its ancestor present at the level. */
+MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *cache, const uint8_t *r, unsigned ib,
+                                     const mc_xvertex **a, const mc_xvertex **b, const mc_xvertex **c)
+{
+    if (ib == 2) {
+        const uint16_t *anc = (const uint16_t *)lod->anc;
+        *a = &cache[anc[mc_le16(r)]], *b = &cache[anc[mc_le16(r + 2)]], *c = &cache[anc[mc_le16(r + 4)]];
+    } else {
+        const uint32_t *anc = (const uint32_t *)lod->anc;
+        *a = &cache[anc[mc_le32(r)]], *b = &cache[anc[mc_le32(r + 4)]], *c = &cache[anc[mc_le32(r + 8)]];
+    }
+}
+
 /* The facing bits of faces f0 .. f0 + n - 1, whose corner records start at r, from the cache; *acc
  * holds the bits of the byte being filled, stored as each byte is complete. ib is the part's index
  * width (a constant where called, so that one loop is made for each width). */
 MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing,
                                  uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, uint32_t *acc)
 {
-    const uint16_t *anc16 = (const uint16_t *)lod->anc;
-    const uint32_t *anc32 = (const uint32_t *)lod->anc;
     uint32_t bits = *acc;
     for (uint32_t i = 0; i < n; i++, r += 3u * ib) {
         const uint32_t f = f0 + i;
         const mc_xvertex *a, *b, *c;
-        if (ib == 2) a = &cache[anc16[mc_le16(r)]], b = &cache[anc16[mc_le16(r + 2)]], c = &cache[anc16[mc_le16(r + 4)]];
-        else a = &cache[anc32[mc_le32(r)]], b = &cache[anc32[mc_le32(r + 4)]], c = &cache[anc32[mc_le32(r + 8)]];
+        record_corners(lod, cache, r, ib, &a, &b, &c);
         uint32_t fr;
         if (a->flags | b->flags | c->flags) fr = (uint32_t)face_front(lod, x, f);
         else fr = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
@@ -431,7 +442,6 @@ static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const 
  * at indices clamped to the frame (which an empty box may leave), and only the answer branches. */
 MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xvertex *b, const mc_xvertex *c, int cull)
 {
-    mc_raster_vertex v[3];
 #if MC_MESH_SELECT
     mc_raster_box box = {0, -1, 0, -1};   /* (what a corner beyond the rasterizer's limit leaves: nothing) */
     const int ok = mc_raster_centre_run(a->y, b->y, c->y, sd->height, &box.j0, &box.j1) &
@@ -449,13 +459,12 @@ MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xve
         hit = ok & ((words & mask) != 0);
     }
     if (!hit) return;
+#endif
+    mc_raster_vertex v[3];
     v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
     v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
     v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
-#else
-    v[0].x = a->x, v[0].y = a->y, v[0].z = a->z;
-    v[1].x = b->x, v[1].y = b->y, v[1].z = b->z;
-    v[2].x = c->x, v[2].y = c->y, v[2].z = c->z;
+#if !MC_MESH_SELECT
     mc_raster_box box;
     if (!mc_raster_centres(v, sd->width, sd->height, &box) ||
         !mc_sdepth_any(sd, (uint32_t)box.i0, (uint32_t)box.i1, (uint32_t)box.j0, (uint32_t)box.j1))
@@ -482,13 +491,7 @@ MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const
                                uint32_t f, const uint8_t *q, unsigned ib)
 {
     const mc_xvertex *a, *b, *c;
-    if (ib == 2) {
-        const uint16_t *anc = (const uint16_t *)lod->anc;
-        a = &cache[anc[mc_le16(q)]], b = &cache[anc[mc_le16(q + 2)]], c = &cache[anc[mc_le16(q + 4)]];
-    } else {
-        const uint32_t *anc = (const uint32_t *)lod->anc;
-        a = &cache[anc[mc_le32(q)]], b = &cache[anc[mc_le32(q + 4)]], c = &cache[anc[mc_le32(q + 8)]];
-    }
+    record_corners(lod, cache, q, ib, &a, &b, &c);
     if (a->flags | b->flags | c->flags) {
         hide_clipped(sd, lod, x, f);
         return;

@@ -425,7 +425,6 @@ static inline void draw_level3(ctx *c, unsigned l3, unsigned m, const uint8_t *m
     else draw_inside(c, l3, m, masks2, xy, z);
 }
 
-
 /* A node at level d-2 (or the root when d < 2) whose mask m is already read, drawn point by point
  * with checks: it may reach off screen, or the projection is perspective. */
 static void draw_checked(ctx *c, unsigned l, unsigned m, mc_pos x, mc_pos y, mc_pos z)

@@ -526,15 +526,8 @@ MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_r
     const int32_t i0 = box.i0, i1 = box.i1, j0 = box.j0, j1 = box.j1;
     if (sd && !mc_sdepth_any(sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1)) return 0;
     const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
-#if MC_MESH_SELECT   /* by selects, as mc_raster_centre_run's (config.h) */
-    int32_t xmin = x0 < x1 ? x0 : x1, xmax = x0 > x1 ? x0 : x1, ymin = y0 < y1 ? y0 : y1, ymax = y0 > y1 ? y0 : y1;
-    xmin = xmin < x2 ? xmin : x2, xmax = xmax > x2 ? xmax : x2, ymin = ymin < y2 ? ymin : y2, ymax = ymax > y2 ? ymax : y2;
-#else
-    const int32_t xmin = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
-    const int32_t xmax = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
-    const int32_t ymin = y0 < y1 ? (y0 < y2 ? y0 : y2) : (y1 < y2 ? y1 : y2);
-    const int32_t ymax = y0 > y1 ? (y0 > y2 ? y0 : y2) : (y1 > y2 ? y1 : y2);
-#endif
+    const int32_t xmin = mc_raster_min3(x0, x1, x2), xmax = mc_raster_max3(x0, x1, x2);
+    const int32_t ymin = mc_raster_min3(y0, y1, y2), ymax = mc_raster_max3(y0, y1, y2);
 
     /* twice the signed area; below 2^46 in magnitude: a triangle fills at most half its 2^23-sided box */
     const int64_t area = (int64_t)(x1 - x0) * (y2 - y0) - (int64_t)(x2 - x0) * (y1 - y0);

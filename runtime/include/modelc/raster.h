@@ -67,6 +67,28 @@ typedef struct mc_raster_box {
     int32_t i0, i1, j0, j1;
 } mc_raster_box;
 
+/* The least and the greatest of three coordinates: by selects with MC_MESH_SELECT (which corner is
+ * the least is a coin toss to a predictor), else by branches (fewer instructions where a branch
+ * costs a cycle or two); config.h. */
+MC_ALWAYS_INLINE int32_t mc_raster_min3(int32_t c0, int32_t c1, int32_t c2)
+{
+#if MC_MESH_SELECT
+    const int32_t a = c0 < c1 ? c0 : c1;
+    return a < c2 ? a : c2;
+#else
+    return c0 < c1 ? (c0 < c2 ? c0 : c2) : (c1 < c2 ? c1 : c2);
+#endif
+}
+MC_ALWAYS_INLINE int32_t mc_raster_max3(int32_t c0, int32_t c1, int32_t c2)
+{
+#if MC_MESH_SELECT
+    const int32_t a = c0 > c1 ? c0 : c1;
+    return a > c2 ? a : c2;
+#else
+    return c0 > c1 ? (c0 > c2 ? c0 : c2) : (c1 > c2 ? c1 : c2);
+#endif
+}
+
 /* The box of the pixels of a width x height frame whose centres triangle v may cover (every pixel it
  * covers lies in it); 0 when there is none, or when a corner lies beyond MC_RASTER_COORD_LIMIT (the
  * triangle then draws nothing). The rasterizer's own first test, so that a pass over many faces can
@@ -77,13 +99,7 @@ typedef struct mc_raster_box {
  * mc_raster_centre_run gives one axis's run of pixels (lo .. hi of side; 0 when empty). */
 MC_ALWAYS_INLINE int mc_raster_centre_run(int32_t c0, int32_t c1, int32_t c2, uint32_t side, int32_t *lo, int32_t *hi)
 {
-#if MC_MESH_SELECT   /* two selects each: which corner is the least is a coin toss to a predictor */
-    int32_t cmin = c0 < c1 ? c0 : c1, cmax = c0 > c1 ? c0 : c1;
-    cmin = cmin < c2 ? cmin : c2, cmax = cmax > c2 ? cmax : c2;
-#else                /* branches: fewer instructions where a branch costs a cycle or two */
-    const int32_t cmin = c0 < c1 ? (c0 < c2 ? c0 : c2) : (c1 < c2 ? c1 : c2);
-    const int32_t cmax = c0 > c1 ? (c0 > c2 ? c0 : c2) : (c1 > c2 ? c1 : c2);
-#endif
+    const int32_t cmin = mc_raster_min3(c0, c1, c2), cmax = mc_raster_max3(c0, c1, c2);
     if (cmin < -MC_RASTER_COORD_LIMIT || cmax > MC_RASTER_COORD_LIMIT) return 0;
     int32_t a = mc_raster_floor16(cmin + 7), b = mc_raster_floor16(cmax - 9);
     if (a < 0) a = 0;
