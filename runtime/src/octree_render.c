@@ -633,7 +633,7 @@ static int linear_frame(ctx *c, unsigned l0, mc_pos x, mc_pos y, mc_pos z, mc_po
     c->reach_y[b] = c->reach_y[l0];
     const int32_t s = c->leaf_side ? pos_footprint(pos_project((mc_pos)c->leaf_side, q)) : 1;
     c->splat = s;
-    c->square_margin = s > 1 ? POS_HALF_PIXELS(s) + POS_PIXELS(1) : 0;
+    c->square_margin = POS_HALF_PIXELS(s - 1);
     c->inside = s == 1 || !MC_TEST_CLIPPED_SQUARES;
 #if MC_DEPTH_SELECT
     if (2 * ((mc_pos_wide)rx + POS_PIXELS(1)) >= (mc_pos_wide)c->wf &&
@@ -777,11 +777,11 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
         if (c->perspective) c->leaf_side = leaf;
         else c->splat = pos_footprint(leaf);
     }
-    /* wholly on screen: a node's leaves, and with footprints their squares, which reach (s - 1) / 2
-     * pixels to the top and left of the leaf's centre and s / 2 to the bottom and right (plus one
-     * pixel for the floor of the corner) */
+    /* wholly on screen: a node's leaves, and with footprints their squares. A square's top-left
+     * pixel is floor(p - (s - 1) / 2) and its bottom-right one s - 1 further, so it is on the target
+     * exactly when (s - 1) / 2 <= p and p + (s - 1) / 2 < w, both ways: the margin is (s - 1) / 2 */
     c->inside = !c->perspective && (c->splat == 1 || !MC_TEST_CLIPPED_SQUARES);
-    c->square_margin = c->splat > 1 ? POS_HALF_PIXELS(c->splat) + POS_PIXELS(1) : 0;
+    c->square_margin = POS_HALF_PIXELS(c->splat - 1);
 #if MC_DEPTH_SELECT
     /* draw_inside needs a pixel outside the reach of each level d-3 node (spare_pixel): on targets
      * so small that a node's reach spans both their width and height, every node is checked */
