@@ -7,6 +7,7 @@
 #include "modelc/octree_render.h"
 #include "modelc/bits.h"
 #include "modelc/chunk.h"
+#include "child_bits.h"
 #include "pos.h"
 
 /* Depth: offset so the model's bounding sphere spans [0, 2 * radius] and never goes negative. The
@@ -32,10 +33,26 @@ typedef struct exactvec {
     mc_pos x[8], y[8], z[8];
 } exactvec;
 
+/* FLAT_SQUARES: orthographic 2x2 squares walked flat (config.h MC_FLAT_SQUARES), where positions are
+ * exact sums (POS_EXACT_SUMS, pos.h): the walk adds the last two levels' vectors first. Else
+ * draw_inside_squares draws them: the same pixels. */
+#define FLAT_SQUARES (MC_FLAT_SQUARES && POS_EXACT_SUMS)
+
+/* Orthographic squares of two pixels (draw_squares2): from the centre of a level d-2 node to that
+ * of each of its 64 possible leaves, leaf 8 j + k being child k of its child j: the sums of the last
+ * two levels' vectors, set per frame. */
+typedef struct leafvec {
+    mc_pos2 xy[64];
+    mc_pos z[64];
+} leafvec;
+
 typedef struct ctx {
     mc_cursor mask[MC_MAX_DEPTH];
     mc_cursor color;                     /* colours of the drawn level */
     levelvec v[MC_MAX_DEPTH];            /* level-l node -> child k */
+#if FLAT_SQUARES
+    leafvec leaves2;                     /* with 2x2 squares, orthographic (see leafvec) */
+#endif
     mc_pos radius;                       /* bounding sphere of the model, Q F pixels */
     /* how far the drawn leaves under a level-l node can lie from its centre, per screen axis: the
      * sum of the largest displacement of each level below, so exact for the fixed-point positions
@@ -314,11 +331,11 @@ static intptr_t spare_pixel(const ctx *c, unsigned l, mc_pos2 xy)
     const uint8_t *mp = mc->p, *mend = mc->end;                                                    \
     const uint8_t *col = c->color.p, *cend = c->color.end, *first = col;                           \
     uint32_t points = 0;                                                                           \
-    for (; m; m &= m - 1) {                                                                        \
-        const unsigned k3 = mc_ctz(m);                                                             \
+    for (child_iter s3 = CHILDREN(m); s3; s3 = NEXT_CHILD(s3)) {                                   \
+        const intptr_t k3 = CHILD(s3);                                                             \
         const mc_pos2 xy2 = POS2_ADD(xy, L[0].xy[k3]);                                             \
         const mc_pos zz2 = z + L[0].z[k3];                                                         \
-        unsigned m2 = *masks2++;                                                                   \
+        const unsigned m2 = *masks2++;                                                             \
         if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }          \
         const uint8_t *masks1 = mp;                                                                \
         mp += mc_popcount8(m2);                                                                    \
@@ -329,8 +346,8 @@ static intptr_t spare_pixel(const ctx *c, unsigned l, mc_pos2 xy)
             col = first = c->color.p;                                                              \
             cend = c->color.end;                                                                   \
         }                                                                                          \
-        for (; m2; m2 &= m2 - 1) {                                                                 \
-            const unsigned k2 = mc_ctz(m2);                                                        \
+        for (child_iter s2 = CHILDREN(m2); s2; s2 = NEXT_CHILD(s2)) {                              \
+            const intptr_t k2 = CHILD(s2);                                                         \
             const mc_pos2 pxy = POS2_ADD(xy2, L[1].xy[k2]);                                        \
             const mc_pos pz = zz2 + L[1].z[k2];                                                    \
             const unsigned cm = *masks1++;                                                         \
@@ -418,9 +435,91 @@ static void draw_inside_squares(ctx *c, unsigned l3, unsigned m, const uint8_t *
     else inside_squares(c, l3, m, masks2, xy, z, c->splat);
 }
 
+#if FLAT_SQUARES
+/* Orthographic 2x2 squares, the 640x480 view at depth 8, walked flat (FLAT_SQUARES): a level d-2
+ * node's leaves are one 64-bit mask (bit 8 j + k: child k of its child j) over c->leaves2, drawn in
+ * one loop. So a leaf costs its square and a bit scan, its node's masks one shift and OR each, and
+ * the loop's one hard branch (its end) comes once per level d-2 node, not once per level d-1 node.
+ * The same leaves, in the same order, as square2_leaves under WALK_LEVEL3. */
+typedef struct square_run {
+    mc_pos2 xy;                          /* the level d-2 node's centre, less half a pixel both ways */
+    uint64_t leaves;
+    mc_pos z;
+} square_run;
+
+/* The leaves of runs r..end-1, colours from c->color. A function of its own: none of the walk's
+ * state is live across its loop, which then keeps everything in registers. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void draw_runs2(ctx *c, const square_run *r, const square_run *end)
+{
+    uint16_t *restrict zb = c->zb;
+    uint8_t *restrict fb = c->fb;
+    const intptr_t w = c->w;
+    uint8_t *const fb1 = fb + w;   /* the row below, for SQUARE2_TEST; based on fb: the rows overlap */
+    const leafvec *const lv = &c->leaves2;
+    const uint8_t *col = c->color.p, *first = col;
+    uint32_t points = 0;
+    for (; r < end; r++) {
+        if (col >= c->color.end) {   /* one cousin group per level d-2 node, from one chunk */
+            points += (uint32_t)(col - first);
+            c->color.p = col;
+            mc_cursor_refill(&c->color);
+            col = first = c->color.p;
+        }
+        const mc_pos2 xy = r->xy;
+        const mc_pos z = r->z;
+        for (uint64_t m = r->leaves; m; m &= m - 1, col++) {
+            const uint64_t k = mc_ctz64(m);
+            const mc_pos2 p = POS2_ADD(xy, lv->xy[k]);
+            const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);
+            const uint16_t depth = (uint16_t)(z + lv->z[k]);
+            const uint8_t cv = *col;
+            MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col);
+            SQUARE2_TEST(i, depth, cv)
+        }
+    }
+    c->color.p = col;
+    c->points += points + (uint32_t)(col - first);
+}
+
+/* draw_inside_squares for s = 2, orthographic: the level d-2 children (mask m) of a level d-3 node
+ * centred at (xy, z) as runs, then their leaves (draw_runs2). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static void draw_squares2(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
+{
+    const levelvec *restrict L = &c->v[l3];
+    mc_cursor *const mc = &c->mask[l3 + 2];
+    const uint8_t *mp = mc->p, *mend = mc->end;
+    square_run runs[8], *r = runs;
+    xy = POS2_ADD(xy, POS2(-POS_HALF_PIXELS(1), -POS_HALF_PIXELS(1)));
+    for (child_iter s3 = CHILDREN(m); s3; s3 = NEXT_CHILD(s3), r++) {
+        const intptr_t k3 = CHILD(s3);
+        const unsigned m2 = *masks2++;
+        if (mp >= mend) { mc->p = mp; mc_cursor_refill(mc); mp = mc->p; mend = mc->end; }
+        uint64_t leaves = 0;   /* its children's masks, one sibling group, each at its child's byte */
+        for (child_iter s2 = CHILDREN(m2); s2; s2 = NEXT_CHILD(s2)) leaves |= (uint64_t)*mp++ << (8 * CHILD(s2));
+        r->xy = POS2_ADD(xy, L[0].xy[k3]);
+        r->z = z + L[0].z[k3];
+        r->leaves = leaves;
+    }
+    mc->p = mp;
+    draw_runs2(c, runs, r);
+}
+#endif
+
 /* The children of a level d-3 node wholly on screen: one pixel or squares a leaf. */
 static inline void draw_level3(ctx *c, unsigned l3, unsigned m, const uint8_t *masks2, mc_pos2 xy, mc_pos z)
 {
+#if FLAT_SQUARES
+    if (c->splat == 2 && !c->perspective) {
+        draw_squares2(c, l3, m, masks2, xy, z);
+        return;
+    }
+#endif
     if (c->splat > 1) draw_inside_squares(c, l3, m, masks2, xy, z);
     else draw_inside(c, l3, m, masks2, xy, z);
 }
@@ -479,21 +578,40 @@ static int poll_abort(ctx *c)
     return c->aborted;
 }
 
+/* A node at level l = d-3 of an orthographic subtree wholly on screen: its grandchildren's leaves
+ * in one loop (draw_level3). Inlined into visit_inside's loop, so a node there costs no call of
+ * its own. */
+MC_ALWAYS_INLINE void inside_level3(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
+{
+    if (l == c->poll_level && c->abort && poll_abort(c)) return;
+    if (l == c->cone_level && culled(c, l)) return;
+    const unsigned m = *mc_cursor_take(&c->mask[l], 1);
+    draw_level3(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), xy, z);
+}
+
 /* A node at level l <= d-3 of an orthographic subtree wholly on screen: no checks at all, packed
  * positions. Its level d-3 nodes draw their grandchildren's leaves in one loop (draw_inside). */
 static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 {
+    if (l + 3 == c->d) {
+        inside_level3(c, l, xy, z);
+        return;
+    }
     if (l == c->poll_level && c->abort && poll_abort(c)) return;
     if (l == c->cone_level && culled(c, l)) return;
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
-    if (l + 3 == c->d) {
-        draw_level3(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), xy, z);
+    if (l + 4 == c->d) {
+        for (child_iter s = CHILDREN(m); s; s = NEXT_CHILD(s)) {
+            const intptr_t k = CHILD(s);
+            inside_level3(c, l + 1, POS2_ADD(xy, v[k]), z + vz[k]);
+            if (c->aborted) return;
+        }
         return;
     }
-    for (; m; m &= m - 1) {
-        unsigned k = mc_ctz(m);
+    for (child_iter s = CHILDREN(m); s; s = NEXT_CHILD(s)) {
+        const intptr_t k = CHILD(s);
         visit_inside(c, l + 1, POS2_ADD(xy, v[k]), z + vz[k]);
         if (c->aborted) return;
     }
@@ -782,6 +900,15 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
      * exactly when (s - 1) / 2 <= p and p + (s - 1) / 2 < w, both ways: the margin is (s - 1) / 2 */
     c->inside = !c->perspective && (c->splat == 1 || !MC_TEST_CLIPPED_SQUARES);
     c->square_margin = POS_HALF_PIXELS(c->splat - 1);
+#if FLAT_SQUARES
+    if (c->splat == 2 && !c->perspective && c->d >= 2) {
+        const levelvec *const v2 = &c->v[c->d - 2], *const v1 = &c->v[c->d - 1];
+        for (int j = 0; j < 64; j++) {
+            c->leaves2.xy[j] = POS2_ADD(v2->xy[j >> 3], v1->xy[j & 7]);
+            c->leaves2.z[j] = v2->z[j >> 3] + v1->z[j & 7];
+        }
+    }
+#endif
 #if MC_DEPTH_SELECT
     /* draw_inside needs a pixel outside the reach of each level d-3 node (spare_pixel): on targets
      * so small that a node's reach spans both their width and height, every node is checked */

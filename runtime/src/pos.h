@@ -37,6 +37,9 @@ typedef int64_t mc_pos_mag;                /* a perspective magnification, Q24 *
 /* How far a computed sum of vectors may lie from the exact one beyond what the reaches cover: the
  * sums of integers are exact, so nothing. */
 #define POS_REACH_SLACK 0
+/* Whether adding vectors in another grouping gives the same positions (the renderer then sums two
+ * levels' vectors once a frame): integers, yes. */
+#define POS_EXACT_SUMS 1
 
 #define POS2(x, y) ((int64_t)(x) * 4294967296 + (y))
 #define POS2_ADD(a, b) ((a) + (b))

@@ -22,6 +22,8 @@ typedef float mc_pos_mag;
  * MC_COORD_LIMIT * 2^-23, so widening every reach by MC_MAX_DEPTH + 2 such half-spacings keeps
  * "wholly on screen" (no bounds checks) true of the computed positions. */
 #define POS_REACH_SLACK ((MC_MAX_DEPTH + 2) * (float)MC_COORD_LIMIT * 0x1p-24f)
+/* float sums round: (a + b) + c is not a + (b + c) */
+#define POS_EXACT_SUMS 0
 
 #define POS2(x, y) ((mc_pos2){(x), (y)})
 #define POS2_ADD(a, b) ((mc_pos2){(a).x + (b).x, (a).y + (b).y})

@@ -199,7 +199,7 @@ if bad:
     sys.exit(1)
 PY
 }
-if measure host gcc; then
+if measure host gcc -DMC_FLAT_SQUARES=0; then   # the firmware's configuration (runtime_costs.hpp)
     check "stack tables >= host gcc -O2 -fstack-usage for every function; every octree_render.c function in kFrames, every particles.c, detect.c and track.c one in kTrackFrames" tables host "$tmp/su-host" size
 else
     nok "host -fstack-usage build of runtime/src"

@@ -1,5 +1,5 @@
 /* Number helpers against independent references: bits.h (popcount, lowest set bit, leading zeros)
- * against bit-by-bit loops, rng.h (PCG32) against the reference implementation's published demo
+ * and the renderer's child lists (runtime/src/child_bits.h, every mask) against bit-by-bit loops, rng.h (PCG32) against the reference implementation's published demo
  * output, chunk.h's cursor against the bytes of its chunks read one by one, and bytes.h's word-wide
  * copy, OR and clear against byte loops at every alignment and length up to a few words, the bytes
  * around each run untouched.
@@ -20,6 +20,10 @@
 #include <modelc/bytes.h>
 #include <modelc/chunk.h>
 #include <modelc/rng.h>
+
+#undef MC_LEAF_SWITCH
+#define MC_LEAF_SWITCH 1   /* the table exists in the switch form only */
+#include "../../runtime/src/child_bits.h"
 
 static unsigned naive_popcount(uint32_t v)
 {
@@ -66,6 +70,7 @@ static void test_bits(void **state)
     for (int i = 0; i < 32; i++) {
         const uint32_t b = (uint32_t)1 << i;
         assert_int_equal(mc_ctz(b), (unsigned)i);
+        assert_int_equal(mc_ctz64((uint64_t)b << 32 | (uint64_t)1 << 63), 32u + (unsigned)i);
         assert_int_equal(mc_clz32(b), 31u - (unsigned)i);
         assert_int_equal(mc_clz32(b | (b - 1u)), 31u - (unsigned)i);
     }
@@ -74,6 +79,35 @@ static void test_bits(void **state)
         assert_int_equal(mc_popcount32(v), naive_popcount(v));
         assert_int_equal(mc_clz32(v), naive_clz(v));
         if (v) assert_int_equal(mc_ctz(v), naive_ctz(v));
+        /* 64 bits: the word in either half, or both */
+        const uint64_t hi = (uint64_t)v << 32, both = hi | (next_word() >> (i % 32));
+        if (v) assert_int_equal(mc_ctz64(v), naive_ctz(v));
+        if (v) assert_int_equal(mc_ctz64(hi), 32u + naive_ctz(v));
+        if (both) assert_int_equal(mc_ctz64(both), (uint32_t)both ? naive_ctz((uint32_t)both) : 32u + naive_ctz(v));
+    }
+}
+
+/* child_seq and the walk over it (child_bits.h) for every mask, against the mask's bits read one
+ * by one */
+static void test_child_lists(void **state)
+{
+    (void)state;
+    for (unsigned m = 0; m < 256; m++) {
+        unsigned bits[8], n = 0;
+        for (unsigned k = 0; k < 8; k++)
+            if (m >> k & 1u) bits[n++] = k;
+        for (unsigned j = 0; j < 8; j++) {
+            const unsigned want = j < n ? bits[j] + 1 : 0;
+            if ((unsigned)(child_seq[m] >> (8 * j) & 0xff) != want)
+                fail_msg("child_seq[%u] byte %u: %u, not %u", m, j, (unsigned)(child_seq[m] >> (8 * j) & 0xff), want);
+        }
+        unsigned seen = 0;
+        for (child_iter s = CHILDREN(m); s; s = NEXT_CHILD(s)) {
+            assert_true(seen < n);
+            assert_int_equal(CHILD(s), bits[seen]);
+            seen++;
+        }
+        assert_int_equal(seen, n);
     }
 }
 
@@ -180,6 +214,7 @@ int main(void)
     setvbuf(stdout, NULL, _IONBF, 0);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bits),
+        cmocka_unit_test(test_child_lists),
         cmocka_unit_test(test_rng_reference),
         cmocka_unit_test(test_rng_streams_and_bounds),
         cmocka_unit_test(test_cursor),
