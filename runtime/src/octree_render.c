@@ -148,6 +148,19 @@ static void draw_square(ctx *c, mc_pos fx, mc_pos fy, int32_t s, uint16_t depth,
         if ((depth) < z1_[1]) { z1_[1] = (depth); fb1[(i) + 1] = (cv); }                           \
     }
 
+/* One leaf as a 2x2 square: its position xy + vxy floors to the square's top-left pixel, its depth
+ * is z + vz, its colour *col (read once: a pixel store may alias the colour array); zb, fb, fb1 and
+ * w as SQUARE2_TEST has them. */
+#define SQUARE2_LEAF(xy, z, vxy, vz, col)                                                          \
+    {                                                                                              \
+        const mc_pos2 p_ = POS2_ADD(xy, vxy);                                                      \
+        const intptr_t i_ = POS2_ROW(p_) * w + POS2_COL(p_);                                       \
+        const uint16_t depth_ = (uint16_t)((z) + (vz));                                            \
+        const uint8_t cv_ = *(col);                                                                \
+        MC_PLOT_HOOK(POS2_X(p_) + POS_HALF_PIXELS(1), POS2_Y(p_) + POS_HALF_PIXELS(1), col);       \
+        SQUARE2_TEST(i_, depth_, cv_)                                                              \
+    }
+
 /* The leaves (mask m, colours col) of one level d-1 node as 2x2 squares wholly on the target, no
  * checks: xy is the node's centre less half a pixel both ways, so that a leaf's position floors to
  * its square's top-left pixel (as draw_square has it); lv its leaves' vectors; fb1 = fb + w, which
@@ -157,12 +170,7 @@ MC_ALWAYS_INLINE const uint8_t *square2_leaves(uint16_t *restrict zb, uint8_t *r
 {
     for (; m; m &= m - 1, col++) {
         const unsigned k = mc_ctz(m);
-        const mc_pos2 p = POS2_ADD(xy, lv->xy[k]);
-        const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);
-        const uint16_t depth = (uint16_t)(z + lv->z[k]);
-        const uint8_t cv = *col;
-        MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col);
-        SQUARE2_TEST(i, depth, cv)
+        SQUARE2_LEAF(xy, z, lv->xy[k], lv->z[k], col)
     }
     return col;
 }
@@ -472,12 +480,7 @@ static void draw_runs2(ctx *c, const square_run *r, const square_run *end)
         const mc_pos z = r->z;
         for (uint64_t m = r->leaves; m; m &= m - 1, col++) {
             const uint64_t k = mc_ctz64(m);
-            const mc_pos2 p = POS2_ADD(xy, lv->xy[k]);
-            const intptr_t i = POS2_ROW(p) * w + POS2_COL(p);
-            const uint16_t depth = (uint16_t)(z + lv->z[k]);
-            const uint8_t cv = *col;
-            MC_PLOT_HOOK(POS2_X(p) + POS_HALF_PIXELS(1), POS2_Y(p) + POS_HALF_PIXELS(1), col);
-            SQUARE2_TEST(i, depth, cv)
+            SQUARE2_LEAF(xy, z, lv->xy[k], lv->z[k], col)
         }
     }
     c->color.p = col;

@@ -98,8 +98,8 @@ static void test_child_lists(void **state)
             if (m >> k & 1u) bits[n++] = k;
         for (unsigned j = 0; j < 8; j++) {
             const unsigned want = j < n ? bits[j] + 1 : 0;
-            if ((unsigned)(child_seq[m] >> (8 * j) & 0xff) != want)
-                fail_msg("child_seq[%u] byte %u: %u, not %u", m, j, (unsigned)(child_seq[m] >> (8 * j) & 0xff), want);
+            const unsigned got = (unsigned)(child_seq[m] >> (MC_CHILD_BITS * j) & ((1u << MC_CHILD_BITS) - 1));
+            if (got != want) fail_msg("child_seq[%u] slot %u of %d bits: %u, not %u", m, j, MC_CHILD_BITS, got, want);
         }
         unsigned seen = 0;
         for (child_iter s = CHILDREN(m); s; s = NEXT_CHILD(s)) {
