@@ -358,7 +358,8 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
                                const uint8_t *cr, unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd,
                                mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb)
 {
-    edge_counts c = {0, 0, 0, 0};
+    edge_counts c;   /* zeroed field by field: clang -O0 clears an aggregate initializer with memset */
+    c.edges = c.sil = c.crease = c.border = 0;
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = creases(cr, f);
 #if MC_MESH_SELECT   /* a straight run of three (a loop's branches would come back) */
