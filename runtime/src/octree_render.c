@@ -38,6 +38,7 @@ typedef struct exactvec {
  * draw_inside_squares draws them: the same pixels. */
 #define FLAT_SQUARES (MC_FLAT_SQUARES && POS_EXACT_SUMS)
 
+#if FLAT_SQUARES
 /* Orthographic squares of two pixels (draw_squares2): from the centre of a level d-2 node to that
  * of each of its 64 possible leaves, leaf 8 j + k being child k of its child j: the sums of the last
  * two levels' vectors, set per frame. */
@@ -45,6 +46,7 @@ typedef struct leafvec {
     mc_pos2 xy[64];
     mc_pos z[64];
 } leafvec;
+#endif
 
 typedef struct ctx {
     mc_cursor mask[MC_MAX_DEPTH];
@@ -68,7 +70,6 @@ typedef struct ctx {
     int perspective;
     int inside;                          /* 0: every node drawn with checks (small targets, splats) */
     int32_t splat;                       /* orthographic footprint side, pixels (1: one pixel) */
-    mc_pos square_margin;                /* how far its squares reach past the leaves, Q F (0: none) */
     mc_pos_wide leaf_side;               /* perspective zoom splats: leaf side at magnification 1,
                                           * Q F pixels; 0: one pixel per leaf */
     mc_pos cx, cy;                       /* perspective: screen centre plus translation, Q F */
@@ -181,7 +182,9 @@ static int classify(const ctx *c, mc_pos x, mc_pos y, unsigned l)
 {
     const mc_pos rx = c->reach_x[l], ry = c->reach_y[l];
     if (x + rx < 0 || y + ry < 0 || x - rx >= c->wf || y - ry >= c->hf) return -1;   /* by the leaves' centres */
-    const mc_pos sx = rx + c->square_margin, sy = ry + c->square_margin;            /* and their squares */
+    /* and their squares: a square's top-left pixel is floor(p - (s - 1) / 2) and its bottom-right
+     * one s - 1 further, so it is on the target exactly when (s - 1) / 2 <= p and p + (s - 1) / 2 < w */
+    const mc_pos margin = POS_HALF_PIXELS(c->splat - 1), sx = rx + margin, sy = ry + margin;
     return c->inside && x - sx >= 0 && y - sy >= 0 && x + sx < c->wf && y + sy < c->hf;
 }
 
@@ -581,13 +584,21 @@ static int poll_abort(ctx *c)
     return c->aborted;
 }
 
+/* On entering a node at level l: polls the abort callback at c->poll_level and tests the cone at
+ * c->cone_level. Non-zero when the node is not to be drawn: the frame was given up, or the node
+ * was culled (its subtree stepped over). */
+MC_ALWAYS_INLINE int passed_over(ctx *c, unsigned l)
+{
+    if (l == c->poll_level && c->abort && poll_abort(c)) return 1;
+    return l == c->cone_level && culled(c, l);
+}
+
 /* A node at level l = d-3 of an orthographic subtree wholly on screen: its grandchildren's leaves
  * in one loop (draw_level3). Inlined into visit_inside's loop, so a node there costs no call of
  * its own. */
 MC_ALWAYS_INLINE void inside_level3(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
 {
-    if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    if (l == c->cone_level && culled(c, l)) return;
+    if (passed_over(c, l)) return;
     const unsigned m = *mc_cursor_take(&c->mask[l], 1);
     draw_level3(c, l, m, mc_cursor_take(&c->mask[l + 1], mc_popcount8(m)), xy, z);
 }
@@ -600,8 +611,7 @@ static void visit_inside(ctx *c, unsigned l, mc_pos2 xy, mc_pos z)
         inside_level3(c, l, xy, z);
         return;
     }
-    if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    if (l == c->cone_level && culled(c, l)) return;
+    if (passed_over(c, l)) return;
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
     const mc_pos2 *v = c->v[l].xy;
     const mc_pos *vz = c->v[l].z;
@@ -690,8 +700,7 @@ MC_ALWAYS_INLINE void visit_children(ctx *c, unsigned l, unsigned m, mc_pos x, m
 
 static void visit(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
 {
-    if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    if (l == c->cone_level && culled(c, l)) return;
+    if (passed_over(c, l)) return;
     unsigned m = *mc_cursor_take(&c->mask[l], 1);
     if (l + 2 >= c->d) {                                 /* d <= 2: the root draws everything */
         draw_checked(c, l, m, x, y, z);
@@ -754,7 +763,6 @@ static int linear_frame(ctx *c, unsigned l0, mc_pos x, mc_pos y, mc_pos z, mc_po
     c->reach_y[b] = c->reach_y[l0];
     const int32_t s = c->leaf_side ? pos_footprint(pos_project((mc_pos)c->leaf_side, q)) : 1;
     c->splat = s;
-    c->square_margin = POS_HALF_PIXELS(s - 1);
     c->inside = s == 1 || !MC_TEST_CLIPPED_SQUARES;
 #if MC_DEPTH_SELECT
     if (2 * ((mc_pos_wide)rx + POS_PIXELS(1)) >= (mc_pos_wide)c->wf &&
@@ -787,8 +795,7 @@ static void exact_level2(ctx *c, mc_pos x, mc_pos y, mc_pos z)
  * frame where the bound holds, else each child through its own frame, else leaf by leaf. */
 static void persp_node(ctx *c, unsigned l, mc_pos x, mc_pos y, mc_pos z)
 {
-    if (l == c->poll_level && c->abort && poll_abort(c)) return;
-    if (l == c->cone_level && culled(c, l)) return;      /* before the frame: no frame for it */
+    if (passed_over(c, l)) return;                       /* before the frame: no frame for it */
     mc_pos sx, sy, sz;
     if (linear_frame(c, l, x, y, z, &sx, &sy, &sz)) {
         int where = classify(c, sx, sy, l);
@@ -898,13 +905,10 @@ static int32_t setup_vectors(ctx *c, const mc_view *v, mc_splat splat)
         if (c->perspective) c->leaf_side = leaf;
         else c->splat = pos_footprint(leaf);
     }
-    /* wholly on screen: a node's leaves, and with footprints their squares. A square's top-left
-     * pixel is floor(p - (s - 1) / 2) and its bottom-right one s - 1 further, so it is on the target
-     * exactly when (s - 1) / 2 <= p and p + (s - 1) / 2 < w, both ways: the margin is (s - 1) / 2 */
+    /* wholly on screen: a node's leaves, and with footprints their squares (classify) */
     c->inside = !c->perspective && (c->splat == 1 || !MC_TEST_CLIPPED_SQUARES);
-    c->square_margin = POS_HALF_PIXELS(c->splat - 1);
 #if FLAT_SQUARES
-    if (c->splat == 2 && !c->perspective && c->d >= 2) {
+    if (c->splat == 2 && !c->perspective && c->d >= 3) {   /* draw_squares2 draws level d-3 nodes */
         const levelvec *const v2 = &c->v[c->d - 2], *const v1 = &c->v[c->d - 1];
         for (int j = 0; j < 64; j++) {
             c->leaves2.xy[j] = POS2_ADD(v2->xy[j >> 3], v1->xy[j & 7]);

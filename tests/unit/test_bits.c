@@ -1,8 +1,9 @@
 /* Number helpers against independent references: bits.h (popcount, lowest set bit, leading zeros)
- * and the renderer's child lists (runtime/src/child_bits.h, every mask) against bit-by-bit loops, rng.h (PCG32) against the reference implementation's published demo
- * output, chunk.h's cursor against the bytes of its chunks read one by one, and bytes.h's word-wide
- * copy, OR and clear against byte loops at every alignment and length up to a few words, the bytes
- * around each run untouched.
+ * and the renderer's child lists (runtime/src/child_bits.h, every mask) against bit-by-bit loops,
+ * rng.h (PCG32) against the reference implementation's published demo output, chunk.h's cursor
+ * against the bytes of its chunks read one by one, and bytes.h's word-wide copy, OR and clear
+ * against byte loops at every alignment and length up to a few words, the bytes around each run
+ * untouched.
  *
  * PCG32 reference: pcg-c-basic's pcg32-demo seeds with pcg32_srandom_r(&rng, 42u, 54u) and prints
  * 0xa15c02b7 0x7b47f409 0xba1d3330 0x83d2f293 0xbfa4784b 0xcbed606e as its first six numbers
