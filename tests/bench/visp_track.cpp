@@ -26,7 +26,10 @@
 // --judge POSES.csv: no tracking; for each frame, ViSP's projection error (as the confidence column
 // above) of the pose POSES.csv gives it (any tracker's CSV with frame, tx..tuz), written as the CSV
 // "frame,error". ViSP's own measure of how well a pose's lines lie on the frame's gradients, so that
-// where two trackers disagree a third party says which pose fits the image better.
+// where two trackers disagree a third party says which pose fits the image better. With --overlay
+// DIR, each judged frame (every --overlay-every th from --first) is drawn as tracking draws it, at
+// the judged pose, and with --overlay-ref REF.csv the visible lines of REF's pose for that frame too
+// (green, 1 px): two trackers' poses on the one frame.
 //
 // --settings: ViSP's tracker XML (camera, moving-edge parameters, face angles, clipping), as
 // loadConfigFile reads it. --scale K: each frame shrunk K times by a KxK box average (as cube-track's
@@ -79,10 +82,12 @@ const char *usage =
     "  --overlay DIR      DIR/frameNNNN.png every 20th frame and the last\n"
     "  --overlay-every N  every Nth frame instead (default 20)\n"
     "  --judge POSES.csv  no tracking: ViSP's projection error of each frame's pose in POSES.csv\n"
-    "                     (columns frame, tx..tuz), written as the CSV frame,error\n";
+    "                     (columns frame, tx..tuz), written as the CSV frame,error; with --overlay, each\n"
+    "                     judged frame drawn at that pose\n"
+    "  --overlay-ref R.csv  with --judge and --overlay: R's pose of each frame drawn too (green)\n";
 
 struct Options {
-  std::string frames, model, settings, init, out, overlay, judge;
+  std::string frames, model, settings, init, out, overlay, judge, overlay_ref;
   long first = 0, count = -1, scale = 1, overlay_every = 20;
   long range = -1, mask_size = -1;
   double sample_step = -1, me_threshold = -1;
@@ -122,6 +127,7 @@ Options parse(int argc, char **argv)
     else if (!std::strcmp(a, "--out")) str(o.out);
     else if (!std::strcmp(a, "--overlay")) str(o.overlay);
     else if (!std::strcmp(a, "--judge")) str(o.judge);
+    else if (!std::strcmp(a, "--overlay-ref")) str(o.overlay_ref);
     else if (!std::strcmp(a, "--first")) o.first = (long)num();
     else if (!std::strcmp(a, "--count")) o.count = (long)num();
     else if (!std::strcmp(a, "--scale")) o.scale = (long)num();
@@ -138,6 +144,8 @@ Options parse(int argc, char **argv)
   if (o.scale < 1 || o.scale > 16) die(2, "--scale: expected 1..16");
   if (o.first < 0) die(2, "--first: expected >= 0");
   if (o.overlay_every < 1) die(2, "--overlay-every: expected >= 1");
+  if (!o.overlay_ref.empty() && (o.judge.empty() || o.overlay.empty()))
+    die(2, "--overlay-ref: only with --judge and --overlay");
   return o;
 }
 
@@ -229,7 +237,7 @@ std::map<long, vpPoseVector> read_poses(const std::string &path)
 }
 
 void write_overlay(const std::string &dir, long k, const vpImage<unsigned char> &I, vpMbGenericTracker &tracker,
-                   const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam)
+                   const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam, const vpHomogeneousMatrix *ref = nullptr)
 {
   vpImage<vpRGBa> C;
   vpImageConvert::convert(I, C);
@@ -241,6 +249,11 @@ void write_overlay(const std::string &dir, long k, const vpImage<unsigned char> 
   for (const auto &m : tracker.getModelForDisplay(I.getWidth(), I.getHeight(), cMo, cam, false))
     if (m.size() == 5 && m[0] == 0)
       vpImageDraw::drawLine(C, vpImagePoint(m[1], m[2]), vpImagePoint(m[3], m[4]), vpColor::red, 2);
+  // another tracker's pose of the frame, its visible lines over the rest
+  if (ref)
+    for (const auto &m : tracker.getModelForDisplay(I.getWidth(), I.getHeight(), *ref, cam, false))
+      if (m.size() == 5 && m[0] == 0)
+        vpImageDraw::drawLine(C, vpImagePoint(m[1], m[2]), vpImagePoint(m[3], m[4]), vpColor::green, 1);
   char name[64];
   std::snprintf(name, sizeof name, "/frame%04ld.png", k);
   vpImageIo::write(C, dir + name);
@@ -294,6 +307,8 @@ int main(int argc, char **argv)
 
     if (!o.judge.empty()) {   // no tracking: ViSP's projection error of the given poses
       const std::map<long, vpPoseVector> poses = read_poses(o.judge);
+      std::map<long, vpPoseVector> refs;
+      if (!o.overlay_ref.empty()) refs = read_poses(o.overlay_ref);
       std::ostringstream csv;
       csv << "frame,error\n";
       char row[128];
@@ -307,6 +322,11 @@ int main(int argc, char **argv)
         std::snprintf(row, sizeof row, "%ld,%.4f\n", k,
                       tracker.computeCurrentProjectionError(I, vpHomogeneousMatrix(fp.second), cam));
         csv << row;
+        if (!o.overlay.empty() && (k - o.first) % o.overlay_every == 0) {
+          const auto r = refs.find(k);
+          const vpHomogeneousMatrix ref = r != refs.end() ? vpHomogeneousMatrix(r->second) : vpHomogeneousMatrix();
+          write_overlay(o.overlay, k, I, tracker, vpHomogeneousMatrix(fp.second), cam, r != refs.end() ? &ref : nullptr);
+        }
       }
       if (o.out.empty()) std::cout << csv.str();
       else {
