@@ -185,6 +185,9 @@ build_and_run "unit: trig: " test_trig
 build_and_run "unit: bits, rng, chunk: " test_bits
 # the renderer's child lists in the other slot width too (child_bits.h: nibbles on 32-bit targets)
 build_and_run "unit: bits, child lists in nibbles: " test_bits-n4 "@-DMC_CHILD_BITS=4"
+# the bit helpers' other ways: portable C99, and the compiler's builtin where x86-64 takes assembly
+build_and_run "unit: bits, portable C99: " test_bits-c99 "@-DMC_BITS_BUILTINS=0"
+build_and_run "unit: bits, builtins without assembly: " test_bits-noasm "@-DMC_BITS_ASM=0"
 build_and_run "unit: pmesh: " test_pmesh
 # test_line counts the walk's steps (MC_LINE_STEP_HOOK) to check work follows on-target pixels: its
 # own line.c with the hook, in front of the default archive

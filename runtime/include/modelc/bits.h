@@ -21,10 +21,35 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define MC_ALWAYS_INLINE static inline __attribute__((always_inline))
-#define MC_BITS_BUILTINS 1
 #else
 #define MC_ALWAYS_INLINE static inline
+#endif
+
+/* MC_BITS_BUILTINS: 1 (default with GCC and Clang) takes the compiler's builtins, 0 the portable
+ * C99 below; the unit tests build both. MC_BITS_ASM: 1 (default with the builtins on x86-64) takes
+ * mc_ctz64 as one instruction of inline assembly, 0 the builtin. */
+#ifndef MC_BITS_BUILTINS
+#if defined(__GNUC__) || defined(__clang__)
+#define MC_BITS_BUILTINS 1
+#else
 #define MC_BITS_BUILTINS 0
+#endif
+#endif
+#if MC_BITS_BUILTINS != 0 && MC_BITS_BUILTINS != 1
+#error "MC_BITS_BUILTINS must be 0 (portable C99) or 1 (GCC or Clang builtins)"
+#endif
+#if MC_BITS_BUILTINS && !(defined(__GNUC__) || defined(__clang__))
+#error "MC_BITS_BUILTINS=1 needs GCC's or Clang's builtins"
+#endif
+#ifndef MC_BITS_ASM
+#if MC_BITS_BUILTINS && defined(__x86_64__)
+#define MC_BITS_ASM 1
+#else
+#define MC_BITS_ASM 0
+#endif
+#endif
+#if MC_BITS_ASM && !(MC_BITS_BUILTINS && defined(__x86_64__))
+#error "MC_BITS_ASM=1 needs MC_BITS_BUILTINS=1 on x86-64"
 #endif
 
 #define MC_POPCOUNT8(n) (((n) & 1) + ((n) >> 1 & 1) + ((n) >> 2 & 1) + ((n) >> 3 & 1) + \
@@ -74,7 +99,7 @@ MC_ALWAYS_INLINE unsigned mc_ctz(unsigned m)
 
 MC_ALWAYS_INLINE uint64_t mc_ctz64(uint64_t m)
 {
-#if MC_BITS_BUILTINS && defined(__x86_64__)
+#if MC_BITS_ASM
     /* the instruction alone: GCC pads __builtin_ctzll with a register clear and a sign extension of
      * its int result, two instructions a leaf in the renderer's squares loop. rep bsf is tzcnt where
      * the CPU has it and bsf elsewhere, the same for m != 0 */
