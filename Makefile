@@ -249,6 +249,12 @@ bench-pmesh: $(MODELC) models
 bench-mesh: $(MODELC) models
 	@tests/bench/mesh.sh
 
+# the point renderer's two walks over 2x2 squares (config.h MC_FLAT_SQUARES) side by side: instructions
+# per point and CPU time (a RESULTS.md section; make bench runs it too)
+.PHONY: bench-squares
+bench-squares: $(MODELC) models
+	@tests/bench/flat_squares.sh
+
 # the probabilistic silhouette search against the exact scan: recall and instructions (a RESULTS.md
 # section and tests/bench/silhouette.png; make bench runs it too)
 .PHONY: bench-silhouette

@@ -216,6 +216,8 @@ INTERACTION_RUNTIME=$SNAP tests/bench/interaction.sh tests/bench/RESULTS.md >"$R
 tests/bench/holes.sh tests/bench/RESULTS.md >"$RES/holes.log" || true
 step "depth test as a branch and as a select, side by side with Mesa: section appended"
 tests/bench/depth_select.sh tests/bench/RESULTS.md "$SNAP" >"$RES/select.log"
+step "squares walked by a loop per node and by a mask: section appended"
+tests/bench/flat_squares.sh tests/bench/RESULTS.md >"$RES/flat.log"
 step "the progressive mesh against OpenMesh: section appended"
 tests/bench/pmesh.sh tests/bench/RESULTS.md >"$RES/pmesh.log"
 step "filled triangles and line drawings against Mesa's llvmpipe: section appended"
