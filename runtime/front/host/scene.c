@@ -99,6 +99,7 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     mc_front_style style = (mc_front_style)s->mode;
     if (!s->lod.pm->opposite) style = MC_FRONT_SHADED;   /* a streamed mesh before its adjacency */
     const double t0 = mc_host_now_ms();
+    const uint32_t level = s->lod.level;
     if (s->target_ms > 0) {
         if (s->face_ms > 0) {
             const double budget = s->target_ms / s->face_ms, now = s->lod.faces;
@@ -108,7 +109,9 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     }
     int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, s->app->pmesh_sdepth, v,
                                  style, t, &st);
-    if (s->target_ms > 0) {
+    /* the cost per face from frames that kept the level: one that changed it also paid the change
+     * (its splits, and in the line styles the new level's creases), which the next frames do not */
+    if (s->target_ms > 0 && (s->lod.level == level || s->face_ms <= 0)) {
         const double ms = mc_host_now_ms() - t0;
         const double per = ms / (s->lod.faces ? s->lod.faces : 1u);
         s->face_ms = s->face_ms > 0 ? s->face_ms + (per - s->face_ms) / 5 : per;
