@@ -138,7 +138,7 @@
  *     summed once a frame, drawn in one loop: a leaf costs its square and a bit scan, and the
  *     loop's end, which a desktop pipeline mispredicts, comes once per level d-2 node instead of
  *     once per level d-1 node. On the benchmark machine (gcc 12 -O2, bunny00 at depth 8 and 640x480)
- *     0.86 times the instructions and 0.94 times the CPU time of a frame, side by side
+ *     0.86 times the instructions and 0.95 times the CPU time of a frame, side by side
  *     (tests/bench/flat_squares.sh, make bench-squares: RESULTS.md, "Squares").
  * Both draw the same pixels in the same order. */
 #ifndef MC_FLAT_SQUARES
