@@ -2,6 +2,7 @@
 """Helpers for tests/bench/run.sh (standard library only).
 
   bench_tools.py cg-total FILE                     total Ir of a callgrind output file
+  bench_tools.py ir-per-point CG.log FRAMES.txt    Ir per drawn point of a callgrind_frames run
   bench_tools.py cg-lines FILE SRCDIR N            top N source lines (self Ir) and functions, markdown
   bench_tools.py ply-check ORIG.ply DECODED.ply    are the decoded (draco_decoder) points the same cells?
   bench_tools.py image-cmp A.ppm B.ppm A.pgm B.pgm  compare two frames (colour) and their coverage masks
@@ -69,6 +70,21 @@ def cg_total(path):
     cg_parse(path)
     for k, v in cg_parse.totals.items():
         print(f"{k}: {v}")
+
+
+def ir_per_point(cg_log, frames_txt):
+    """Instructions per drawn point of a tests/bench/callgrind_frames.c run under callgrind: the
+    instructions valgrind's log counted over the sum of points drawn that the program printed."""
+    refs = int(re.search(r"refs:\s+([\d,]+)", open(cg_log).read()).group(1).replace(",", ""))
+    pts = int(re.search(r"points drawn \(sum\): (\d+)", open(frames_txt).read()).group(1))
+    return refs / pts
+
+
+def rounds(path):
+    """A side-by-side benchmark's rounds, one line of numbers each (tests/bench/*_select.sh,
+    flat_squares.sh), and the median over rounds of column k."""
+    rows = [list(map(float, line.split())) for line in open(path) if line.strip()]
+    return rows, lambda k: statistics.median(r[k] for r in rows)
 
 
 def cg_lines(path, srcdir, n):
@@ -486,6 +502,8 @@ def main():
     cmd, args = sys.argv[1], sys.argv[2:]
     if cmd == "cg-total":
         cg_total(args[0])
+    elif cmd == "ir-per-point":
+        print(f"{ir_per_point(args[0], args[1]):.4f}")
     elif cmd == "cg-lines":
         cg_lines(args[0], args[1], int(args[2]))
     elif cmd == "ply-check":

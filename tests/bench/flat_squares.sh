@@ -48,15 +48,12 @@ for r in $(seq 1 "$rounds"); do
 done
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$out" "$same" "$load" "$size" "$frames" "$rounds" "$runtime_from" >"$out/section.md" <<'PY'
-import re, statistics, sys
+import statistics, sys
 out, same, load, size, frames, rounds, runtime_from = sys.argv[1:8]
-def ir(s):
-    txt = open(f"{out}/cg{s}.log").read()
-    refs = int(re.search(r"refs:\s+([\d,]+)", txt).group(1).replace(",", ""))
-    pts = int(re.search(r"points drawn \(sum\): (\d+)", open(f"{out}/cg{s}.txt").read()).group(1))
-    return refs / pts
-rows = [list(map(float, l.split())) for l in open(f"{out}/times.txt")]
-med = lambda k: statistics.median(r[k] for r in rows)
+sys.path.insert(0, "tests/bench")
+from bench_tools import ir_per_point, rounds as read_rounds
+ir = lambda s: ir_per_point(f"{out}/cg{s}.log", f"{out}/cg{s}.txt")
+rows, med = read_rounds(f"{out}/times.txt")
 ratio = statistics.median(r[1] / r[0] for r in rows)
 ir0, ir1 = ir(0), ir(1)
 print("## Squares: a loop per level d-1 node or a mask per level d-2 node\n")
