@@ -88,16 +88,26 @@ static uint32_t half_at(const mc_pmesh *pm, const mc_chunk *list, unsigned per, 
     return hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
 }
 
-uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o)
+/* The walk with the opposite records hb bytes wide, a constant where called: one loop for each
+ * width, a step a few instructions (at coarse levels most edges walk, several steps each). */
+MC_ALWAYS_INLINE uint32_t opposite_walk(const mc_pmesh_lod *lod, uint32_t o, unsigned hb)
 {
     const mc_pmesh *pm = lod->pm;
+    const unsigned shift = pm->record_shift;
     /* bounded by F steps, so arrays not made by the generator cannot hang it */
     for (uint32_t steps = 0; o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) >= lod->faces; steps++) {
         const uint32_t j = MC_HALF_EDGE_INDEX(o);
         if (j == 0u || j == 3u || steps >= pm->faces) return MC_NO_HALF_EDGE;
-        o = half_at(pm, pm->opposite, 3u, MC_HALF_FACE(o), 3u - j);
+        const uint32_t h =
+            mc_le_index(mc_chunk_record(pm->opposite, shift, 3u * hb, MC_HALF_FACE(o)) + (3u - j) * hb, hb);
+        o = hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
     }
     return o;
+}
+
+uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o)
+{
+    return lod->pm->half_bytes == 2 ? opposite_walk(lod, o, 2) : opposite_walk(lod, o, 4);
 }
 
 uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i) { return half_at(pm, pm->edge_order, 1u, i, 0u); }
