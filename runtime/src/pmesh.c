@@ -81,11 +81,19 @@ void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
     for (unsigned k = 0; k < 3; k++) xyz[k] = (int32_t)mc_le16(r + 2 * k) - 32768;
 }
 
+/* Field k of record i of list (per half-edge fields a record, 2^shift records a chunk), a half-edge
+ * id read hb bytes wide; hb is a constant where the walk calls it (one loop for each width), and the
+ * walk keeps shift in a register. */
+MC_ALWAYS_INLINE uint32_t half_field(const mc_chunk *list, unsigned shift, unsigned per, uint32_t i, unsigned k,
+                                     unsigned hb)
+{
+    const uint32_t h = mc_le_index(mc_chunk_record(list, shift, per * hb, i) + k * hb, hb);
+    return hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
+}
+
 static uint32_t half_at(const mc_pmesh *pm, const mc_chunk *list, unsigned per, uint32_t i, unsigned k)
 {
-    const unsigned hb = pm->half_bytes;
-    uint32_t h = mc_le_index(mc_chunk_record(list, pm->record_shift, per * hb, i) + k * hb, hb);
-    return hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
+    return half_field(list, pm->record_shift, per, i, k, pm->half_bytes);
 }
 
 /* The walk with the opposite records hb bytes wide, a constant where called: one loop for each
@@ -98,9 +106,7 @@ MC_ALWAYS_INLINE uint32_t opposite_walk(const mc_pmesh_lod *lod, uint32_t o, uns
     for (uint32_t steps = 0; o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) >= lod->faces; steps++) {
         const uint32_t j = MC_HALF_EDGE_INDEX(o);
         if (j == 0u || j == 3u || steps >= pm->faces) return MC_NO_HALF_EDGE;
-        const uint32_t h =
-            mc_le_index(mc_chunk_record(pm->opposite, shift, 3u * hb, MC_HALF_FACE(o)) + (3u - j) * hb, hb);
-        o = hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
+        o = half_field(pm->opposite, shift, 3u, MC_HALF_FACE(o), 3u - j, hb);
     }
     return o;
 }

@@ -7,6 +7,7 @@
 # Needs build/bench/bunny00_d8/ and build/bench/bin/bunny00_d8-osmesa from run.sh.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh   # write_section
 results=${1:-tests/bench/RESULTS.md}
 rt=${2:-runtime}
 d=${SELECT_DEPTH:-8} rounds=${SELECT_ROUNDS:-5} frames=${SELECT_FRAMES:-200} size=${BENCH_SIZE:-320x240}
@@ -58,16 +59,5 @@ print()
 print("Per round (branch / select / Mesa ms): " + "; ".join(" / ".join(f"{v:.3f}" for v in r) for r in rows) + ".")
 print(f"Load average at the end: {load}.")
 PY
-sed -i '/^<!-- select: begin -->$/,/^<!-- select: end -->$/d' "$results"
-{
-    echo "<!-- select: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}" "$out/frames0 --time $frames --size $size  # and frames1, and LP_NUM_THREADS=0 $mesa --frames $frames --views 0 --size $size, per round"
-    echo '```'
-    echo "<!-- select: end -->"
-} >>"$results"
-cat "$out/section.md"
+write_section "$results" select "$out/section.md" "${cmds[@]}" \
+    "$out/frames0 --time $frames --size $size  # and frames1, and LP_NUM_THREADS=0 $mesa --frames $frames --views 0 --size $size, per round"

@@ -11,6 +11,7 @@
 #   tree's runtime/; else a git revision to take it from)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. tests/bench/section.sh   # write_section
 . tests/lib.sh   # runtime_snapshot, model_file
 results=${1:-tests/bench/RESULTS.md}
 size=${FLAT_SIZE:-640x480} rounds=${FLAT_ROUNDS:-7} frames=${FLAT_FRAMES:-200} rev=${FLAT_RUNTIME_REV:-}
@@ -73,16 +74,5 @@ print(f"The mask: **{ir1 / ir0:.2f}** times the instructions and **{ratio:.2f}**
 print("Per round (loop / mask ms): " + "; ".join(" / ".join(f"{v:.3f}" for v in r) for r in rows) + ".")
 print(f"Load average at the end: {load}.")
 PY
-sed -i '/^<!-- flat: begin -->$/,/^<!-- flat: end -->$/d' "$results"
-{
-    echo "<!-- flat: begin -->"
-    cat "$out/section.md"
-    echo
-    echo "Commands:"
-    echo
-    echo '```'
-    printf '%s\n' "${cmds[@]}" "$out/frames0 --time $frames --size $size; $out/frames1 --time $frames --size $size   # per round, alternately"
-    echo '```'
-    echo "<!-- flat: end -->"
-} >>"$results"
-cat "$out/section.md"
+write_section "$results" flat "$out/section.md" "${cmds[@]}" \
+    "$out/frames0 --time $frames --size $size; $out/frames1 --time $frames --size $size   # per round, alternately"

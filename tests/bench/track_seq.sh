@@ -82,12 +82,13 @@ judged_z5=$(judged_median "$out/visp_640_z5.judge.csv")
 judged_z10=$(judged_median "$out/visp_640_z10.judge.csv")
 python3 -c 'import csv,sys; [print(r["tux"], r["tuy"], r["tuz"]) for r in csv.DictReader(open(sys.argv[1]))]' "$out/visp_640.csv" >"$out/visp_orientation.txt"
 T=("${F[@]}" --camera "$mbt/cube.xml" --init "$mbt/cube.0.pos")
+heavy="--scale 1 --particles 300 --layers 4"   # the 4 layers of 300 at 640x480, also run with seeds 2 .. 5
 names=(m6_320_1 m6_320 m6_640_1 m6_640 m6_640_200 m6_640_300x4 m3_320)
 labels=("modelc 6-DOF, 320x240, one layer of 300 particles (the paper's)" "modelc 6-DOF, 320x240, 3 layers of 100 (the default)"
         "modelc 6-DOF, 640x480, one layer of 300 particles, radius 3" "modelc 6-DOF, 640x480, 3 layers of 100 (the default)"
         "modelc 6-DOF, 640x480, 3 layers of 200" "modelc 6-DOF, 640x480, 4 layers of 300" "modelc 3-DOF (ViSP's orientation as the IMU), 320x240, 3 layers of 100")
 opts=("--scale 2 --particles 300 --layers 1" "--scale 2" "--scale 1 --particles 300 --layers 1 --radius 3" "--scale 1"
-      "--scale 1 --particles 200" "--scale 1 --particles 300 --layers 4" "--scale 2 --orientation $out/visp_orientation.txt")
+      "--scale 1 --particles 200" "$heavy" "--scale 2 --orientation $out/visp_orientation.txt")
 real_rows=$out/real_rows.txt
 : >"$real_rows"
 # ViSP's runs under callgrind preload tests/bench/hwy_timer_stub.c (an instruction valgrind does not
@@ -142,23 +143,21 @@ for s in 640 320; do
     printf '| ViSP vpMbGenericTracker (edges), %sx%s | %.3f | %s | %s |\n' "$s" "$((s * 3 / 4))" "$ms" "$(irf "$ir")" "$agree" >>"$real_rows"
 done
 python3 tests/bench/cube_compare.py "$out/visp_640.csv" "$out/visp_640.csv" --quiet >/dev/null   # the comparer runs at all
-# the default at 640x480 again with seeds 2 .. 5: how much of its agreement is the random stream's
+# the default and the 4 layers of 300 at 640x480 again with seeds 2 .. 5: how much of their
+# agreement is the random stream's
 seeds=""
 for sd in 2 3 4 5; do
     run "$track" "${T[@]}" --scale 1 --seed "$sd" --out "$out/m6_640_s$sd.csv"
     judge "$out/m6_640_s$sd.csv"
     seeds="$seeds${seeds:+, }$(cmp_visp "$out/m6_640_s$sd.csv" | awk -F' [|] ' '{print $3}' | sed 's/ of .*//')"
-done
-# 4 layers of 300 at 640x480 with seeds 2 .. 5 too; for each seed, the frames outside 1 cm and 3
-# degrees of ViSP and how many of them ViSP's own measure scores better for modelc's pose than for
-# its own (ViSP is then the one off the cube's edges, by its own measure)
-heavy="--scale 1 --particles 300 --layers 4"
-heavy_seeds=""
-for sd in 2 3 4 5; do
     # shellcheck disable=SC2086
     run "$track" "${T[@]}" $heavy --seed "$sd" --out "$out/m6_640_300x4_s$sd.csv"
     judge "$out/m6_640_300x4_s$sd.csv"
 done
+# for each seed of the 4 layers of 300, the frames outside 1 cm and 3 degrees of ViSP and how many
+# of them ViSP's own measure scores better for modelc's pose than for its own (ViSP is then the one
+# off the cube's edges, by its own measure)
+heavy_seeds=""
 parted_of() {   # CSV (judged): "N M" = frames 0..180 outside 1 cm and 3 deg of ViSP, and of them those ViSP's measure prefers CSV's pose in
     python3 - "$1" "$out/visp_640.csv" "${1%.csv}.judge.csv" "$out/visp_640.judge.csv" <<'PYEOF'
 import csv, math, sys

@@ -11,11 +11,11 @@
  * Automatic level of detail (mesh modes, target_ms > 0): after every frame that kept the level the
  * time per face of the level is updated (a moving average over about five frames of the measured
  * time over the level's faces; a frame that changed the level also paid for the change, which the
- * next frames do not), and the next frame's face budget is the target at that cost. With a fixed part a in the
- * frame time (a + b F), budget F' = F T / (a + b F) settles where a + b F = T. The level is set to the finest within the budget
- * (mc_pmesh_lod_fit: the same level on every machine for the same budget), and changed only when
- * the budget moves by more than 4 % of the level's faces, so measurement noise does not move the
- * level every frame (a change costs its splits, and in the lines styles the level's creases). A
+ * next frames do not), and the next frame's face budget is the target at that cost. With a fixed
+ * part a in the frame time (a + b F), budget F' = F T / (a + b F) settles where a + b F = T. The
+ * level is set to the finest within the budget (mc_pmesh_lod_fit: the same level on every machine
+ * for the same budget), and changed only when the budget moves by more than 4 % of the level's
+ * faces, so measurement noise does not move the level every frame (a change costs its splits, and in the lines styles the level's creases). A
  * streamed mesh caps it at the level that has come (mc_pmesh_lod_fit_to).
  */
 #ifndef MODELC_HOST_SCENE_H
