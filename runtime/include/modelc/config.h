@@ -138,8 +138,10 @@
  *     summed once a frame, drawn in one loop: a leaf costs its square and a bit scan, and the
  *     loop's end, which a desktop pipeline mispredicts, comes once per level d-2 node instead of
  *     once per level d-1 node. On the benchmark machine (gcc 12 -O2, bunny00 at depth 8 and 640x480)
- *     0.86 times the instructions and 0.94 to 0.96 times the CPU time of a frame over three runs,
- *     side by side (tests/bench/flat_squares.sh, make bench-squares: RESULTS.md, "Squares").
+ *     0.86 times the instructions of a frame (tests/bench/flat_squares.sh, make bench-squares:
+ *     RESULTS.md, "Squares"); its CPU time side by side has come out 0.94 to 1.27 times the loop's
+ *     over four runs, as this machine's frame times jump between two levels (about 0.95 and 1.23 ms
+ *     for either build) from one run of the program to the next.
  * Both draw the same pixels in the same order. */
 #ifndef MC_FLAT_SQUARES
 #if defined(__x86_64__) || defined(_M_X64)
