@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Hole filling and splats against a reference: runs tests/finish/suite.sh (bunny00 and nefertiti, depth
-# 8, against the double-precision renderer of the same model baked at depth 9) and appends its PSNR
+# 8, against the double-precision renderer of the same model baked at depth 9) and writes its PSNR
 # table as a section of tests/bench/RESULTS.md (or of the file given as $1). Called by
 # tests/bench/run.sh after its report; runs on its own too.
 set -uo pipefail
@@ -11,11 +11,8 @@ mkdir -p "$out"
 make -s build/bunny00/budget.json build/nefertiti/budget.json >/dev/null || exit 1
 tests/finish/suite.sh >"$out/suite.log" 2>&1
 rc=$?
-# an earlier copy of this section (between its markers) is replaced, not repeated
-drop_section() { [ -f "$1" ] && sed -i '/^<!-- holes: begin -->$/,/^<!-- holes: end -->$/d' "$1"; true; }
-drop_section "$results"
+. tests/bench/section.sh
 {
-    echo "<!-- holes: begin -->"
     echo
     echo "## Hole filling and splats"
     echo
@@ -44,7 +41,7 @@ drop_section "$results"
     grep -E '^(ok|not ok) - finish: (bunny00|nefertiti).*(raises|highest|same image)' "$out/suite.log" | sed 's/^/    /'
     echo
     echo "Suite exit status: $rc."
-    echo "<!-- holes: end -->"
-} >>"$results"
+} >"$out/section.md"
+write_section "$results" holes "$out/section.md" "make -s build/bunny00/budget.json build/nefertiti/budget.json" "tests/finish/suite.sh" >/dev/null
 grep -E '^(not ok)' "$out/suite.log"
 exit $rc
