@@ -5,8 +5,10 @@ CSV with frame,tx,ty,tz,tux,tuy,tuz (metres, theta-u radians, ViSP's convention)
 usage: errors.py TRUTH.csv POSES.csv [--jump K] [--from F]
 Prints one line of key=value figures: frames, success (translation error < 5 cm and rotation error
 < 5 degrees), rate, median and largest errors (mm, degrees), and with --jump K the frames from K to
-the first of 5 successes in a row (the re-detection; -1 if it never comes) and the rate of the frames
-outside that window (tracked_rate). Frames before --from are left out of the rates.""" 
+the first of 5 successes in a row (the re-detection; -1 if it never comes), the rate of the frames
+outside that window (tracked_rate), and the frames from K to the first of 5 in a row with the
+translation alone within 5 cm (found: the object found again, whatever its orientation; -1 never).
+Frames before --from are left out of the rates.""" 
 import csv
 import math
 import sys
@@ -67,14 +69,16 @@ def main():
         len(counted), succ, succ / len(counted), median([et[k] for k in counted]), median([er[k] for k in counted]),
         max(et[k] for k in counted), max(er[k] for k in counted))
     if jump is not None:
-        red = -1
-        for k in frames:
-            if k >= jump and all(ok.get(k + j, False) for j in range(5)):
-                red = k - jump
-                break
+        def first_run(good):   # frames from the jump to the first of 5 good frames in a row, -1 never
+            for k in frames:
+                if k >= jump and all(good(k + j) for j in range(5)):
+                    return k - jump
+            return -1
+        red = first_run(lambda k: ok.get(k, False))
+        found = first_run(lambda k: k in et and et[k] < 50)
         # tracking apart from finding it again: the frames outside [jump, jump + redetect)
         kept = [k for k in counted if not (jump <= k < (jump + red if red >= 0 else 1 << 30))]
-        line += " redetect=%d tracked_rate=%.4f" % (red, sum(ok[k] for k in kept) / max(1, len(kept)))
+        line += " redetect=%d tracked_rate=%.4f found=%d" % (red, sum(ok[k] for k in kept) / max(1, len(kept)), found)
     print(line)
 
 
