@@ -14,18 +14,12 @@ pose's score. Prints the angle (degrees) and distance (mm) between A and B, a li
 min_visible, max_visible."""
 import csv
 import math
+import os
 import subprocess
 import sys
 
-
-def rot(tu):
-    th = math.sqrt(sum(v * v for v in tu))
-    u = [v / th for v in tu] if th > 1e-15 else [1.0, 0.0, 0.0]
-    c, s, C = math.cos(th), math.sin(th), 1 - math.cos(th)
-    x, y, z = u
-    return [[c + x * x * C, x * y * C - z * s, x * z * C + y * s],
-            [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
-            [z * x * C - y * s, z * y * C + x * s, c + z * z * C]]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from errors import rot   # noqa: E402  (theta-u to a rotation matrix, as errors.py measures)
 
 
 def mul(a, b):
