@@ -39,6 +39,8 @@ for m in $models; do
     echo "$m" >>"$out/rows.txt"
 done
 cmds+=("$out/NAME-lod 1; $out/openmesh_pm --read $out/NAME.pm 1   # per round, $rounds rounds")
+# what the same records would take coded by variable-length fields read in split order
+for m in $models; do run python3 tests/bench/pmesh_bits.py "$out" "$m" >"$out/$m.bits.txt"; done
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$out" "$rounds" "$load" >"$out/section.md" <<'PY'
 import json, re, statistics, sys
@@ -71,6 +73,17 @@ for m in open(f"{out}/rows.txt").read().split():
     per_round.append(f"{m}: " + ", ".join(f"{r[0]:.2f} / {r[1]:.1f}" for r in rows))
 print()
 print("Per round (modelc / OpenMesh ns): " + "; ".join(per_round) + ".")
+print()
+print("The flash per split against a sequential coding: `tests/bench/pmesh_bits.py` reads each bake's arrays back and "
+      "counts what its records would take as variable-length fields decoded in split order (a measure, not a format: "
+      "such a stream could not be read at random, so the faces and positions of the level drawn would have to be "
+      "decoded into RAM). Corners: at its split's level each corner of a new face is the split vertex, its parent or a "
+      "third vertex x, and the full mesh's corner an offset in that vertex's subtree; parent and subtree size Elias "
+      "gamma; positions the Elias-gamma difference to the parent's.\n")
+print("```")
+for m in open(f"{out}/rows.txt").read().split():
+    print(open(f"{out}/{m}.bits.txt").read().rstrip())
+print("```")
 print(f"Load average at the end: {load}.")
 PY
 write_section "$results" pmesh "$out/section.md" "${cmds[@]}"
