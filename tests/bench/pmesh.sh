@@ -79,7 +79,9 @@ print("The flash per split against a sequential coding: `tests/bench/pmesh_bits.
       "such a stream could not be read at random, so the faces and positions of the level drawn would have to be "
       "decoded into RAM). Corners: at its split's level each corner of a new face is the split vertex, its parent or a "
       "third vertex x, and the full mesh's corner an offset in that vertex's subtree; parent and subtree size Elias "
-      "gamma; positions the Elias-gamma difference to the parent's.\n")
+      "gamma; positions the Elias-gamma difference to the parent's. Below that, a decoder that also keeps the level's "
+      "mesh, each vertex's faces, as it goes (a half-edge mesh in RAM, as OpenMesh's): x as a rank among the parent's "
+      "neighbours, the position from the mean of the new vertex's neighbours.\n")
 print("```")
 for m in open(f"{out}/rows.txt").read().split():
     print(open(f"{out}/{m}.bits.txt").read().rstrip())

@@ -13,7 +13,11 @@ Reads the bake's chunk arrays back from its NAME_data_*.c files and prints, in b
     its offset in the vertex's subtree (DFS numbering: [a, a + size(a))) takes ceil(log2 size(a))
     bits, and x itself an index among the level's vertices;
   - parent as v - parent (Elias gamma), subtree size (Elias gamma of size);
-  - positions as the difference to the parent's, each axis Elias gamma of its zigzag.
+  - positions as the difference to the parent's, each axis Elias gamma of its zigzag;
+and, for a decoder that keeps the level's mesh (each vertex's faces) as it goes, so that it knows
+each vertex's neighbours: x as its rank among the parent's neighbours before the split, and the
+position as the difference to the mean of the split vertex's neighbours after it. (Each x is checked
+to be such a neighbour.)
 """
 import collections
 import glob
@@ -62,36 +66,68 @@ def main():
             c = par[c]
         return c
 
+    corner = lambda f, k: idx(cor, 3 * ib * f + ib * k)
+    xyz = lambda v: [int.from_bytes(pos[6 * v + 2 * k:6 * v + 2 * k + 2], "little") for k in range(3)]
+    zigzag_gamma = lambda q: gamma(2 * q if q > 0 else -2 * q + 1)
+    # the decoder's view: the faces of each present vertex at the current level
+    faces_of = collections.defaultdict(set)
+    for f in range(F0):
+        for k in range(3):
+            faces_of[at(corner(f, k), 0)].add(f)
     bits = collections.Counter()
     f = F0
     for s, v in enumerate(order):
+        p = par[v]
+        ring = sorted({at(corner(g, k), s) for g in faces_of[p] for k in range(3)} - {p})   # p's neighbours before
+        xs = []
         for _ in range(nf[s]):
             for k in range(3):
-                c = idx(cor, 3 * ib * f + ib * k)
+                c = corner(f, k)
                 a = at(c, s + 1)
                 if a == v:
                     bits["corner v"] += width(size[a])
-                elif a == par[v]:
+                elif a == p:
                     bits["corner p"] += width(size[a])
                 else:
                     bits["corner x index"] += width(V0 + s + 1)
+                    if a not in ring:   # the format would not hold: say so rather than count it
+                        sys.exit("pmesh_bits.py: split %d: its face's third corner %d is not a neighbour of %d" % (s, a, p))
+                    bits["corner x in p's ring"] += width(len(ring))
                     bits["corner x"] += width(size[a])
+                    xs.append(a)
             f += 1
-    for v in order:
-        bits["parent"] += gamma(v - par[v])
+        # the split: p's faces with a corner now standing for v go to v; the new faces join
+        for g in list(faces_of[p]):
+            if any(at(corner(g, k), s + 1) == v for k in range(3)):
+                faces_of[p].discard(g)
+                faces_of[v].add(g)
+        for g in range(f - nf[s], f):
+            for k in range(3):
+                faces_of[at(corner(g, k), s + 1)].add(g)
+        bits["parent"] += gamma(v - p)
         bits["size"] += gamma(size[v])
+        pv, pp = xyz(v), xyz(p)
+        nb = {at(corner(g, k), s + 1) for g in faces_of[v] for k in range(3)} - {v}   # v's ring after the split
+        ctr = [sum(xyz(u)[k] for u in nb) / len(nb) for k in range(3)] if nb else pp
         for k in range(3):
-            q = int.from_bytes(pos[6 * v + 2 * k:6 * v + 2 * k + 2], "little") - \
-                int.from_bytes(pos[6 * par[v] + 2 * k:6 * par[v] + 2 * k + 2], "little")
-            bits["position"] += gamma(2 * q if q > 0 else -2 * q + 1)
+            bits["position"] += zigzag_gamma(pv[k] - pp[k])
+            bits["position from v's ring"] += zigzag_gamma(pv[k] - round(ctr[k]))
         bits["split vertex"] += 8 * ib
         bits["faces (1 or 2)"] += 1
     per = lambda b: b / 8 / S
     print("%s: %d vertices, %d splits, %d faces; fixed records: %.2f B per split (positions 6, tree %d, splits %d, corners %.2f)" % (
         name, V, S, F, (6 * S + 2 * ib * S + (ib + 1) * S + 3 * ib * (F - F0)) / S, 2 * ib, ib + 1, 3 * ib * (F - F0) / S))
-    for k in ("position", "split vertex", "faces (1 or 2)", "parent", "size", "corner v", "corner p", "corner x index", "corner x"):
-        print("  %-16s %5.2f B per split" % (k, per(bits[k])))
-    print("  total            %5.2f B per split" % per(sum(bits.values())))
+    plain = ("position", "split vertex", "faces (1 or 2)", "parent", "size", "corner v", "corner p", "corner x index", "corner x")
+    for k in plain:
+        print("  %-22s %5.2f B per split" % (k, per(bits[k])))
+    print("  total                  %5.2f B per split" % per(sum(bits[k] for k in plain)))
+    ring = ("position from v's ring", "split vertex", "faces (1 or 2)", "parent", "size", "corner v", "corner p",
+            "corner x in p's ring", "corner x")
+    print("  with the mesh of the level kept while decoding (x a rank in p's ring of neighbours, the position")
+    print("  from the mean of v's ring after the split):")
+    for k in ("position from v's ring", "corner x in p's ring"):
+        print("  %-22s %5.2f B per split" % (k, per(bits[k])))
+    print("  total                  %5.2f B per split" % per(sum(bits[k] for k in ring)))
 
 
 if __name__ == "__main__":
