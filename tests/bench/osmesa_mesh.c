@@ -68,6 +68,7 @@
 #include "modelc/mesh_lines.h"    /* the edge list of --style lines: mc_mesh_facing, mc_mesh_edge_kind */
 #include "modelc/mesh_render.h"   /* mc_mesh_shade, mc_mesh_face */
 #include "modelc/pmesh.h"
+#include "osmesa_start.h"   /* tests/bench: the context, and what it is */
 #include "timing.h"               /* runtime/front/host: clocks, medians */
 #include "turn.h"                 /* tests/bench: the views of the turn mesh_frames draws */
 
@@ -248,20 +249,8 @@ int main(int argc, char **argv)
         vb = all.v;
     }
 
-    OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 16, 0, 0, NULL);
-    if (!ctx) { fprintf(stderr, "osmesa_mesh: OSMesaCreateContextExt failed\n"); return 1; }
-    uint8_t *buf = calloc((size_t)w * h, 4);
-    if (!buf || !OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, w, h)) {
-        fprintf(stderr, "osmesa_mesh: OSMesaMakeCurrent failed\n");
-        return 1;
-    }
-    GLint depth_bits = 0;
-    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
-    const char *lp = getenv("LP_NUM_THREADS");
-    printf("renderer: %s\n", (const char *)glGetString(GL_RENDERER));
-    printf("version: %s\n", (const char *)glGetString(GL_VERSION));
-    printf("LP_NUM_THREADS: %s\n", lp ? lp : "(unset)");
-    printf("depth bits: %d\n", depth_bits);
+    uint8_t *buf = osmesa_start("osmesa_mesh", w, h);
+    if (!buf) return 1;
 
     GLuint vbo;
     glGenBuffers(1, &vbo);
@@ -342,7 +331,7 @@ int main(int argc, char **argv)
     }
     if (glGetError() != GL_NO_ERROR) { fprintf(stderr, "osmesa_mesh: GL error\n"); return 1; }
     glDeleteBuffers(1, &vbo);
-    OSMesaDestroyContext(ctx);
+    OSMesaDestroyContext(OSMesaGetCurrentContext());
     free(buf);
     return 0;
 }

@@ -48,6 +48,7 @@
 
 #include <modelc/app.h>
 #include "cells.h"
+#include "osmesa_start.h"   /* tests/bench: the context, and what it is */
 #include "timing.h"   /* runtime/front/host: clocks, medians */
 
 #define ANGLE_FULL 4096
@@ -204,20 +205,8 @@ int main(int argc, char **argv)
     if (ply_rgb && write_ply(ply_rgb, cells, n, scene->palette, 1)) return 1;
     if (!bench && !ppm && !mask && views == 0) return 0;
 
-    OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 16, 0, 0, NULL);
-    if (!ctx) { fprintf(stderr, "osmesa_points: OSMesaCreateContextExt failed\n"); return 1; }
-    uint8_t *buf = calloc((size_t)w * h, 4);
-    if (!buf || !OSMesaMakeCurrent(ctx, buf, GL_UNSIGNED_BYTE, w, h)) {
-        fprintf(stderr, "osmesa_points: OSMesaMakeCurrent failed\n");
-        return 1;
-    }
-    GLint depth_bits = 0;
-    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
-    const char *lp = getenv("LP_NUM_THREADS");
-    printf("renderer: %s\n", (const char *)glGetString(GL_RENDERER));
-    printf("version: %s\n", (const char *)glGetString(GL_VERSION));
-    printf("LP_NUM_THREADS: %s\n", lp ? lp : "(unset)");
-    printf("depth bits: %d\n", depth_bits);
+    uint8_t *buf = osmesa_start("osmesa_points", w, h);
+    if (!buf) return 1;
 
     vertex *vb = malloc((size_t)n * sizeof *vb);
     if (!vb) return 1;
@@ -309,7 +298,7 @@ int main(int argc, char **argv)
         if (mask && write_image(mask, buf, 1)) return 1;
     }
     glDeleteBuffers(1, &vbo);
-    OSMesaDestroyContext(ctx);
+    OSMesaDestroyContext(OSMesaGetCurrentContext());
     free(buf);
     free(cells);
     return 0;
