@@ -6,6 +6,7 @@
 
 #include <GL/osmesa.h>
 #include <GL/gl.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 

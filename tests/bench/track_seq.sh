@@ -297,6 +297,7 @@ jump_rows=$out/jump_rows.txt
 : >"$jump_rows"
 redet() { fig "$(errline "$1" "$2" --jump 50)" redetect; }   # TRUTH POSES: frames from the jump (50) to 5 successes in a row, -1 never
 found() { fig "$(errline "$1" "$2" --jump 50)" found; }       # the same for 5 frames in a row within 5 cm, orientation aside
+pc() { echo "$1 of 392 ($(echo "scale=1; $1 * 100 / 392" | bc) %)"; }   # FRAMES held of 51..99 over 8 seeds
 jsum() {   # FRAMES...: "n of 8 within 30 (median m)", -1 counted as never
     python3 - "$@" <<'PYEOF'
 import sys
@@ -317,11 +318,10 @@ for turn in 15,20,0 -15,-20,0 0,0,25 20,-15,0 -20,15,0; do
         run "$track" "${J[@]}" --out "$d/d0.csv" --detect 0
         run "$track" "${J[@]}" --out "$d/d8_3.csv" --orientation "$d/orientation.txt"
         run "$track" "${J[@]}" --out "$d/d0_3.csv" --orientation "$d/orientation.txt" --detect 0
-        # the control: started on the truth just after the jump, how many of frames 51..99 it holds
-        run "$track" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$(sed -n 53p "$d/truth.csv" | cut -d, -f2-7)" \
-            --first 51 --search 100 --out "$d/ctl.csv"
-        # and ViSP's tracker, with the settings above, started on the same truth
+        # the controls: modelc's default and ViSP's tracker (the settings above) started on the truth
+        # just after the jump (frame 51: line 53 of truth.csv), how many of frames 51..99 each holds
         sed -n 53p "$d/truth.csv" | cut -d, -f2-7 | tr ',' '\n' >"$d/truth51.pos"
+        run "$track" --frames "$d/image%04d.pgm" --camera "$cam2" --init "$d/truth51.pos" --first 51 --search 100 --out "$d/ctl.csv"
         run "$visp" --frames "$d/image%04d.pgm" --model "$mbt/cube.cao" --settings "$out/cube_320.xml" --init "$d/truth51.pos" \
             --first 51 --range 4 --sample-step 2 --no-error --out "$d/visp_ctl.csv" >/dev/null
         r6+=("$(redet "$d/truth.csv" "$d/d8.csv")") r6f+=("$(found "$d/truth.csv" "$d/d8.csv")") r6n+=("$(redet "$d/truth.csv" "$d/d0.csv")")
@@ -329,13 +329,12 @@ for turn in 15,20,0 -15,-20,0 0,0,25 20,-15,0 -20,15,0; do
         ctl=$((ctl + $(succ "$d/truth.csv" "$d/ctl.csv" --from 51)))
         vctl=$((vctl + $(succ "$d/truth.csv" "$d/visp_ctl.csv" --from 51)))
     done
-    pc() { echo "$1 of 392 ($(echo "scale=1; $1 * 100 / 392" | bc) %)"; }
     echo "| ($turn) | $(jsum "${r6[@]}") | $(jsum "${r6f[@]}") | $(jsum "${r6n[@]}") | $(jsum "${r3[@]}") | $(jsum "${r3n[@]}") | $(pc $ctl) | $(pc $vctl) |" >>"$jump_rows"
 done
 cmds+=("$out/synth_cube --out DIR --frames 100 --occlude 30:45 --seed S --jump 50 --jump-turn T   # S = 1..8, each T below"
        "$track --frames DIR/image%04d.pgm --camera $cam2 --init DIR/init.pos --search 100 [--detect 0] [--orientation DIR/orientation.txt] --out DIR/X.csv"
-       "$track --frames DIR/image%04d.pgm --camera $cam2 --init \"\$(sed -n 53p DIR/truth.csv | cut -d, -f2-7)\" --first 51 --search 100 --out DIR/ctl.csv   # the control"
-       "$visp --frames DIR/image%04d.pgm --model $mbt/cube.cao --settings $out/cube_320.xml --init DIR/truth51.pos --first 51 --range 4 --sample-step 2 --no-error --out DIR/visp_ctl.csv   # ViSP's control, DIR/truth51.pos: line 53 of DIR/truth.csv")
+       "$track --frames DIR/image%04d.pgm --camera $cam2 --init DIR/truth51.pos --first 51 --search 100 --out DIR/ctl.csv   # the control; DIR/truth51.pos: line 53 of DIR/truth.csv, frame 51"
+       "$visp --frames DIR/image%04d.pgm --model $mbt/cube.cao --settings $out/cube_320.xml --init DIR/truth51.pos --first 51 --range 4 --sample-step 2 --no-error --out DIR/visp_ctl.csv   # ViSP's control")
 # the (15,20,0) jump at frame 70: the scores of the poses on the way from the truth to the default's
 path_rows=$out/path_rows.txt
 : >"$path_rows"
@@ -344,20 +343,11 @@ for sd in 1 2 3 4 5 6 7 8; do
     for r in 2 1; do
         python3 tests/track/pose_path.py "$track" "$d/image%04d.pgm" "$cam2" 70 "$d/truth.csv" "$d/d8.csv" --radius $r >"$d/path$r.txt"
     done
-    python3 - "$sd" "$d/path2.txt" "$d/path1.txt" >>"$path_rows" <<'PYEOF'
-import sys
-def read(path):
-    lines = open(path).read().split("\n")
-    head = dict(kv.split("=") for kv in lines[0].split())
-    steps = [[int(x) for x in l.split()] for l in lines[1:] if l and "=" not in l]
-    return head, steps
-h, s2 = read(sys.argv[2])
-_, s1 = read(sys.argv[3])
-ratios = lambda s: [m / v for _, v, m in s[1:]]
-print("| %s | %s | %s | %d, %d | %d .. %d | %.3f .. %.3f | %.3f | %.3f .. %.3f | %.3f |" % (
-    sys.argv[1], h["angle_deg"], h["distance_mm"], s2[0][1], s2[0][2], min(v for _, v, _ in s2[1:]), max(v for _, v, _ in s2[1:]),
-    min(ratios(s2)), max(ratios(s2)), s2[0][2] / s2[0][1], min(ratios(s1)), max(ratios(s1)), s1[0][2] / s1[0][1]))
-PYEOF
+    w2=$(tail -n 1 "$d/path2.txt") w1=$(tail -n 1 "$d/path1.txt")
+    printf '| %s | %s | %s | %s, %s | %s .. %s | %.3f .. %.3f | %.3f | %.3f .. %.3f | %.3f |\n' "$sd" \
+        "$(fig "$w2" angle_deg)" "$(fig "$w2" distance_mm)" "$(fig "$w2" a_visible)" "$(fig "$w2" a_matched)" \
+        "$(fig "$w2" way_min_visible)" "$(fig "$w2" way_max_visible)" "$(fig "$w2" way_min_ratio)" "$(fig "$w2" way_max_ratio)" \
+        "$(fig "$w2" a_ratio)" "$(fig "$w1" way_min_ratio)" "$(fig "$w1" way_max_ratio)" "$(fig "$w1" a_ratio)" >>"$path_rows"
 done
 cmds+=("python3 tests/track/pose_path.py $track DIR/image%04d.pgm $cam2 70 DIR/truth.csv DIR/d8.csv --radius R   # DIR: the (15,20,0) jump's, each seed; R = 2, 1")
 

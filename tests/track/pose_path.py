@@ -9,9 +9,10 @@ The way: the translation linear, the rotation along the shortest arc (B's rotati
 its angle shared out), N steps (default 10). Each pose is scored by one run of TRACKER on FRAME with
 one particle that does not move (--particles 1 --fresh 0 --step-t 0 --step-r 0 --layers 1 --detect 0,
 --radius R, default 2): the estimate it prints is that pose, and its visible and matched columns the
-pose's score. Prints the angle (degrees) and distance (mm) between A and B, a line per step
-"s visible matched", then one line of key=value figures: min_ratio, max_ratio (matched / visible),
-min_visible, max_visible."""
+pose's score. Prints a line per step "s visible matched", then one line of key=value figures: the
+angle (degrees) and distance (mm) between A and B; A's score (a_visible, a_matched, a_ratio =
+matched / visible); and over the steps after A, the least and most of visible and of the ratio
+(way_min_visible, way_max_visible, way_min_ratio, way_max_ratio)."""
 import csv
 import math
 import os
@@ -72,19 +73,21 @@ def main():
     a, b = pose_of(args[4], frame), pose_of(args[5], frame)
     ra = rot(a[3:])
     w = log(mul(rot(b[3:]), transpose(ra)))   # the turn from A to B
-    print("angle_deg=%.2f distance_mm=%.2f" % (math.degrees(math.sqrt(sum(v * v for v in w))),
-                                                1000 * math.sqrt(sum((a[i] - b[i]) ** 2 for i in range(3)))))
-    ratios, visibles = [], []
+    scores = []
     for s in range(steps + 1):
         f = s / steps
         t = [a[i] + f * (b[i] - a[i]) for i in range(3)]
         r = log(mul(rot([f * v for v in w]), ra))
         v, m = score(tracker, frames, camera, frame, t + r, radius)
         print("%d %d %d" % (s, v, m))
-        ratios.append(m / v if v else 0.0)
-        visibles.append(v)
-    print("min_ratio=%.4f max_ratio=%.4f min_visible=%d max_visible=%d" % (min(ratios), max(ratios), min(visibles), max(visibles)))
-
+        scores.append((v, m))
+    ratio = lambda v, m: m / v if v else 0.0
+    way = scores[1:]
+    print("angle_deg=%.2f distance_mm=%.2f a_visible=%d a_matched=%d a_ratio=%.4f way_min_visible=%d way_max_visible=%d "
+          "way_min_ratio=%.4f way_max_ratio=%.4f" % (
+              math.degrees(math.sqrt(sum(v * v for v in w))), 1000 * math.sqrt(sum((a[i] - b[i]) ** 2 for i in range(3))),
+              scores[0][0], scores[0][1], ratio(*scores[0]), min(v for v, _ in way), max(v for v, _ in way),
+              min(ratio(*x) for x in way), max(ratio(*x) for x in way)))
 
 if __name__ == "__main__":
     main()

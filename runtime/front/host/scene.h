@@ -15,8 +15,9 @@
  * part a in the frame time (a + b F), budget F' = F T / (a + b F) settles where a + b F = T. The
  * level is set to the finest within the budget (mc_pmesh_lod_fit: the same level on every machine
  * for the same budget), and changed only when the budget moves by more than 4 % of the level's
- * faces, so measurement noise does not move the level every frame (a change costs its splits, and in the lines styles the level's creases). A
- * streamed mesh caps it at the level that has come (mc_pmesh_lod_fit_to).
+ * faces, so measurement noise does not move the level every frame (a change costs its splits, and
+ * in the lines styles the level's creases). A streamed mesh caps it at the level that has come
+ * (mc_pmesh_lod_fit_to).
  */
 #ifndef MODELC_HOST_SCENE_H
 #define MODELC_HOST_SCENE_H
