@@ -405,7 +405,7 @@ std::string emit_model(const Octree &t, const Voxels &vox, const EmitOptions &op
     Stream st;
     EmitOptions opt = options;
     if (opt.stream) {
-        st = bake_stream(t, opt.pmesh);
+        st = bake_stream(t, opt.pmesh, opt.stream_packed);
         opt.stream_bytes = st.buffer;
     }
     const Plan plan = make_plan(t, opt);

@@ -24,6 +24,7 @@ struct EmitOptions {
     int screen_w = 640, screen_h = 480;
     bool lib = false;          // --emit lib: no NAME_app.c (no frame buffers, no mc_app_model)
     bool stream = false;       // --emit stream: also NAME.mcs, the bake as one stream (stream.h)
+    bool stream_packed = false;   // --stream-splits packed: the mesh's splits packed (version 3)
     size_t stream_bytes = 0;   // its receive buffer, set by emit_model: NAME.h's MC_NAME_STREAM_BYTES and the app's
     UpAxis up = UpAxis::y;     // the file's axis shown as up (--up): recorded in the model descriptor
     int leaf_switch = 1;       // the MC_LEAF_SWITCH the runtime is built with, for its code size
@@ -48,7 +49,7 @@ struct Stream {
     size_t buffer = 0;
 };
 struct PMesh;
-Stream bake_stream(const Octree &tree, const PMesh *pmesh);
+Stream bake_stream(const Octree &tree, const PMesh *pmesh, bool packed = false);
 
 // The mesh part's field widths (pmesh.h), one rule for the baked arrays (emit.cpp) and the stream's
 // mesh records (emit_stream.cpp): vertex indices 2 bytes up to 65,535 vertices, else 4; half-edges

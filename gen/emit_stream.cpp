@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <iterator>
+#include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,7 +18,7 @@ namespace mc {
 namespace {
 
 constexpr int kKindPalette = 1, kKindLevel = 2, kKindEnd = 3, kKindMesh = 4, kKindBase = 5, kKindSplits = 6,
-              kKindAdjacency = 7;
+              kKindAdjacency = 7, kKindPacked = 8;
 constexpr size_t kHeaderBytes = 20, kRecordBytes = 12;
 
 uint32_t crc32(const std::string &s, size_t from, size_t n) {
@@ -43,6 +46,187 @@ void put_position(std::string &s, const std::array<uint16_t, 3> &q) {
     for (uint16_t c : q) put16(s, c);
 }
 
+// Bits, most significant first within each byte (stream.h, kind 8).
+struct BitWriter {
+    std::string bytes;
+    unsigned used = 8;   // bits used in the last byte
+    void bit(unsigned b) {
+        if (used == 8) bytes.push_back(0), used = 0;
+        if (b) bytes.back() = static_cast<char>(static_cast<uint8_t>(bytes.back()) | 0x80u >> used);
+        used++;
+    }
+    void bits(uint32_t v, unsigned n) {
+        while (n--) bit(v >> n & 1u);
+    }
+    // Exp-Golomb of order k: u + 2^k has n + 1 bits; n - k zeros, then those n + 1 bits.
+    void exp_golomb(uint32_t u, unsigned k) {
+        const uint64_t w = static_cast<uint64_t>(u) + (uint64_t{1} << k);
+        unsigned n = 0;
+        while (w >> (n + 1)) n++;
+        for (unsigned i = k; i < n; i++) bit(0);
+        for (unsigned i = n + 1; i-- > 0;) bit(static_cast<unsigned>(w >> i & 1u));
+    }
+};
+
+unsigned exp_golomb_bits(uint32_t u, unsigned k) {
+    const uint64_t w = static_cast<uint64_t>(u) + (uint64_t{1} << k);
+    unsigned n = 0;
+    while (w >> (n + 1)) n++;
+    return 2 * n + 1 - k;
+}
+
+// Bits of an offset below n (0 for n <= 1): stream.h's width(n).
+unsigned width(uint32_t n) {
+    unsigned b = 0;
+    while (b < 32 && (uint64_t{1} << b) < n) b++;
+    return b;
+}
+
+uint32_t zigzag(int32_t r) { return r >= 0 ? 2u * static_cast<uint32_t>(r) : 2u * static_cast<uint32_t>(-r) - 1u; }
+
+// The packed splits (stream.h, kind 8): what a decoder that keeps the level's mesh can infer is left
+// out. This coder keeps that mesh its own way (sets of corners per vertex, walked ancestors) and
+// shares nothing with the runtime's decoder but the format.
+class SplitPacker {
+    struct Split {
+        uint32_t p, size, faces;
+        std::vector<std::array<uint32_t, 3>> face_bits;   // per face: p first, x's rank, p's neighbours
+        std::array<uint32_t, 3> residual;                 // the position's, zigzagged
+    };
+
+  public:
+    explicit SplitPacker(const PMesh &pm)
+        : pm_(pm), V_(static_cast<uint32_t>(pm.vertices())), since_(V_, 0), slot_(V_), corners_of_(V_),
+          level_(3 * pm.faces.size()) {
+        const size_t S = pm.split_vertex.size();
+        for (size_t s = 0; s < S; s++) since_[pm.split_vertex[s]] = static_cast<uint32_t>(s + 1);
+        for (uint32_t v = 0; v < V_; v++) slot_[v] = v + 1;
+        for (size_t f = 0; f < pm.base_faces; f++) add_face(f, 0);
+    }
+
+    // Splits first .. first + k - 1 into one record's payload (after its first and count).
+    std::string pack(size_t first, size_t k) {
+        std::vector<Split> out;
+        for (size_t s = first; s < first + k; s++) out.push_back(split(s));
+        // positions: the Exp-Golomb order that codes this record's residuals in the fewest bits
+        unsigned best = 0;
+        uint64_t best_bits = UINT64_MAX;
+        for (unsigned order = 0; order <= 15; order++) {
+            uint64_t b = 0;
+            for (const Split &x : out)
+                for (uint32_t r : x.residual) b += exp_golomb_bits(r, order);
+            if (b < best_bits) best_bits = b, best = order;
+        }
+        BitWriter w;
+        size_t face = face_at(first);
+        for (size_t i = 0; i < out.size(); i++) {
+            const Split &x = out[i];
+            const uint32_t v = pm_.split_vertex[first + i];
+            w.bits(x.p, width(V_));
+            w.exp_golomb(x.size - 1, 0);
+            w.bit(x.faces - 1);
+            for (unsigned j = 0; j < x.faces; j++, face++) {
+                const auto &fb = x.face_bits[j];
+                w.bit(fb[0]);
+                w.bits(fb[1], width(fb[2]));
+                // each full-mesh corner as its offset in the subtree of the vertex it is at this level
+                const std::array<uint32_t, 3> at = {fb[0] ? x.p : v, fb[0] ? v : x.p, third_[face]};
+                for (unsigned c = 0; c < 3; c++)
+                    w.bits(pm_.faces[face][c] - at[c], width(pm_.size[at[c]]));
+            }
+            for (uint32_t r : x.residual) w.exp_golomb(r, best);
+        }
+        std::string p;
+        p.push_back(static_cast<char>(best));
+        p += w.bytes;
+        return p;
+    }
+
+  private:
+    const PMesh &pm_;
+    uint32_t V_;
+    std::vector<uint32_t> since_, slot_;
+    std::vector<std::set<uint32_t>> corners_of_;   // corner ids 3 f + c at each vertex, this level
+    std::vector<uint32_t> level_;                  // each placed corner's vertex at this level
+    std::vector<uint32_t> third_;                  // per face: its third corner at its split's level
+    std::vector<size_t> face_first_;               // per split: its first face
+    size_t faces_ = 0;
+
+    size_t face_at(size_t s) const { return s < face_first_.size() ? face_first_[s] : faces_; }
+
+    // c's nearest ancestor present after `splits` splits
+    uint32_t at(uint32_t c, size_t splits) const {
+        while (since_[c] > splits) c = pm_.parent[c];
+        return c;
+    }
+    void add_face(size_t f, size_t splits) {
+        for (unsigned c = 0; c < 3; c++) {
+            const uint32_t a = at(pm_.faces[f][c], splits);
+            level_[3 * f + c] = a;
+            corners_of_[a].insert(static_cast<uint32_t>(3 * f + c));
+        }
+        faces_ = f + 1;
+        if (third_.size() <= f) third_.resize(f + 1, 0);
+    }
+    // the distinct vertices sharing a face with u at this level
+    std::set<uint32_t> ring(uint32_t u) const {
+        std::set<uint32_t> r;
+        for (uint32_t c : corners_of_[u]) {
+            const uint32_t f = c / 3;
+            for (unsigned k = 0; k < 3; k++)
+                if (level_[3 * f + k] != u) r.insert(level_[3 * f + k]);
+        }
+        return r;
+    }
+
+    Split split(size_t s) {
+        const uint32_t v = pm_.split_vertex[s], p = pm_.parent[v], size = pm_.size[v];
+        if (slot_[p] != v)
+            throw std::runtime_error("--stream-splits packed: split " + std::to_string(s) +
+                                     " does not bring back its parent's next child in depth-first order");
+        slot_[p] += size;
+        Split x{p, size, pm_.split_faces[s], {}, {}};
+        const std::set<uint32_t> rp = ring(p);
+        if (face_first_.size() != s) throw std::logic_error("SplitPacker: splits out of order");
+        face_first_.push_back(faces_);
+        const size_t f0 = faces_;
+        third_.resize(f0 + x.faces, 0);
+        for (unsigned j = 0; j < x.faces; j++) {
+            const auto &fc = pm_.faces[f0 + j];
+            std::array<uint32_t, 3> a;
+            for (unsigned c = 0; c < 3; c++) a[c] = fc[c] >= v && fc[c] - v < size ? v : at(fc[c], s);
+            const bool p_first = a[0] == p;
+            if (!((a[0] == v && a[1] == p) || (p_first && a[1] == v)) || a[2] == v || a[2] == p || !rp.count(a[2]))
+                throw std::runtime_error("--stream-splits packed: split " + std::to_string(s) +
+                                         ": a new face is not its vertex, its parent and a neighbour of the parent");
+            third_[f0 + j] = a[2];
+            x.face_bits.push_back({p_first ? 1u : 0u, static_cast<uint32_t>(std::distance(rp.begin(), rp.find(a[2]))),
+                                   static_cast<uint32_t>(rp.size())});
+        }
+        // the split: the parent's corners whose full-mesh vertex lies in v's subtree go to v
+        for (auto it = corners_of_[p].begin(); it != corners_of_[p].end();) {
+            const uint32_t c = *it, full = pm_.faces[c / 3][c % 3];
+            if (full >= v && full - v < size) {
+                level_[c] = v;
+                corners_of_[v].insert(c);
+                it = corners_of_[p].erase(it);
+            } else {
+                ++it;
+            }
+        }
+        for (unsigned j = 0; j < x.faces; j++) add_face(f0 + j, s + 1);
+        // the position: its difference to the rounded mean of v's neighbours after the split
+        const std::set<uint32_t> rv = ring(v);
+        for (unsigned k = 0; k < 3; k++) {
+            uint64_t sum = 0;
+            for (uint32_t u : rv) sum += pm_.positions[u][k];
+            const uint32_t n = static_cast<uint32_t>(rv.size()), mean = static_cast<uint32_t>((sum + n / 2) / n);
+            x.residual[k] = zigzag(static_cast<int32_t>(pm_.positions[v][k]) - static_cast<int32_t>(mean));
+        }
+        return x;
+    }
+};
+
 // Splits per record: the batches double the vertex count until they hold 4096 splits, so that the
 // first pictures come soon and a receiver still checks a bounded record at a time.
 constexpr size_t kFirstBatch = 64, kLargestBatch = 4096;
@@ -53,7 +237,7 @@ struct MeshRecord {
     std::string payload;
     size_t level;   // the mesh level drawable once it is in (0: the adjacency)
 };
-std::vector<MeshRecord> mesh_records(const PMesh &pm) {
+std::vector<MeshRecord> mesh_records(const PMesh &pm, bool packed) {
     const uint32_t V = static_cast<uint32_t>(pm.vertices()), V0 = pm.base_vertices;
     const uint32_t F = static_cast<uint32_t>(pm.faces.size()), F0 = pm.base_faces;
     const uint32_t E = static_cast<uint32_t>(pm.edge_order.size());
@@ -83,11 +267,19 @@ std::vector<MeshRecord> mesh_records(const PMesh &pm) {
     out.push_back({kKindBase, b, V0});
     size_t face = F0;
     const size_t S = pm.split_vertex.size();
+    std::unique_ptr<SplitPacker> packer;
+    if (packed) packer = std::make_unique<SplitPacker>(pm);
     for (size_t first = 0; first < S;) {
         const size_t k = std::min(S - first, std::clamp<size_t>(V0 + first, kFirstBatch, kLargestBatch));
         std::string p;
         put32(p, static_cast<uint32_t>(first));
         put32(p, static_cast<uint32_t>(k));
+        if (packer) {
+            p += packer->pack(first, k);
+            first += k;
+            out.push_back({kKindPacked, p, V0 + first});
+            continue;
+        }
         for (size_t i = first; i < first + k; i++) {
             const uint32_t v = pm.split_vertex[i];
             put_n(p, v, ib);
@@ -120,7 +312,7 @@ void record(std::string &s, int kind, int level, const std::string &payload) {
 
 }  // namespace
 
-Stream bake_stream(const Octree &t, const PMesh *pm) {
+Stream bake_stream(const Octree &t, const PMesh *pm, bool packed) {
     Stream out;
     std::string &s = out.bytes;
     const bool mono = t.palette.size() == 1;
@@ -137,11 +329,11 @@ Stream bake_stream(const Octree &t, const PMesh *pm) {
         total += kRecordBytes + p.size();
         levels.push_back(std::move(p));
     }
-    const std::vector<MeshRecord> mesh = pm ? mesh_records(*pm) : std::vector<MeshRecord>{};
+    const std::vector<MeshRecord> mesh = pm ? mesh_records(*pm, packed) : std::vector<MeshRecord>{};
     for (const auto &r : mesh) total += kRecordBytes + r.payload.size();
     if (total > 0xFFFFFFFFu) throw std::runtime_error("--emit stream: the stream would exceed 4 GiB");
     s.append("mcs\x1A", 4);
-    put16(s, pm ? 2 : 1);                                 // version: 2 with a mesh part
+    put16(s, pm ? (packed ? 3 : 2) : 1);                  // version: 2 with a mesh part, 3 with packed splits
     s.push_back(static_cast<char>(t.depth));
     s.push_back(pm ? 1 : 0);                              // flags: a mesh part follows
     put16(s, static_cast<uint32_t>(t.palette.size()));
@@ -159,9 +351,10 @@ Stream bake_stream(const Octree &t, const PMesh *pm) {
         else if (r.level) out.mesh_levels.push_back({s.size(), r.level});
     };
     size_t m = 0, octree_bytes = 0, mesh_bytes = 0;
-    for (; m < mesh.size() && mesh[m].kind != kKindSplits && mesh[m].kind != kKindAdjacency; m++) put_mesh(mesh[m]);
+    auto splits = [&](size_t i) { return i < mesh.size() && (mesh[i].kind == kKindSplits || mesh[i].kind == kKindPacked); };
+    for (; m < mesh.size() && !splits(m) && mesh[m].kind != kKindAdjacency; m++) put_mesh(mesh[m]);
     for (int l = 0; l <= t.depth; l++) {
-        for (; m < mesh.size() && mesh[m].kind == kKindSplits && mesh_bytes < octree_bytes; m++) {
+        for (; splits(m) && mesh_bytes < octree_bytes; m++) {
             mesh_bytes += mesh[m].payload.size();
             put_mesh(mesh[m]);
         }
@@ -173,7 +366,8 @@ Stream bake_stream(const Octree &t, const PMesh *pm) {
     record(s, kKindEnd, 0, "");
     out.buffer = s.size();
     if (pm) {   // MC_STREAM_MESH_BYTES after the stream, from a multiple of 4
-        const uint64_t b = (s.size() + 3) / 4 * 4 + pm_draw_bytes(pm->vertices(), pm->base_vertices, pm->faces.size());
+        const uint64_t b = (s.size() + 3) / 4 * 4 + pm_draw_bytes(pm->vertices(), pm->base_vertices, pm->faces.size()) +
+                           (packed ? 24 * pm->faces.size() + 12 * pm->vertices() + 4 : 0);   // MC_STREAM_PACKED_BYTES
         if (b > 0xFFFFFFFFu) throw std::runtime_error("--emit stream: the stream and its mesh would exceed 4 GiB");
         out.buffer = b;
     }

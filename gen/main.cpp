@@ -53,7 +53,7 @@ int main(int argc, char **argv) {
     mc::EmitOptions emit;
     int palette = 256;
     bool quiet = false, fit = false;
-    std::string up = "y", emit_kind = "app", flash_budget, ram_budget, stack_budget;
+    std::string up = "y", emit_kind = "app", stream_splits = "plain", flash_budget, ram_budget, stack_budget;
     int min_palette = 16;
     std::string views = "all";
     std::string dump_reference;  // hidden: tests and benchmarks only
@@ -94,6 +94,11 @@ int main(int argc, char **argv) {
                    "bake as one binary stream, coarse first: the octree's levels, then with --as both the mesh's "
                    "base and splits (runtime/include/modelc/stream.h)")
         ->check(CLI::IsMember({"app", "lib", "stream"}))->capture_default_str();
+    app.add_option("--stream-splits", stream_splits, "with --emit stream and --as both, how the mesh's splits travel: "
+                   "plain (fixed-width records, stream version 2) or packed (bit-coded, what the reader can infer "
+                   "left out: about a third of the bytes, stream version 3; the reader then needs MC_STREAM_PACKED_BYTES "
+                   "more RAM to decode them)")
+        ->check(CLI::IsMember({"plain", "packed"}))->capture_default_str();
     app.add_option("--flash-budget", flash_budget, "fail (exit 1, no output) unless data, descriptors and the "
                    "runtime's code fit SIZE bytes (e.g. 262144, 256K, 1M)");
     app.add_option("--ram-budget", ram_budget, "fail unless the frame buffers for --screen and the runtime's static "
@@ -178,6 +183,9 @@ int main(int argc, char **argv) {
     }
     emit.lib = emit_kind == "lib";
     emit.stream = emit_kind == "stream";
+    emit.stream_packed = stream_splits == "packed";
+    if (emit.stream_packed && (!emit.stream || as != "both"))
+        return fail("--stream-splits packed: only a stream with a mesh part has splits (--emit stream --as both)", 2);
     emit.up = up == "z" ? mc::UpAxis::z : mc::UpAxis::y;
     if (name.empty()) name = name_from_path(input);
     if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")))

@@ -125,14 +125,14 @@ static int header(mc_stream *s)
     if (version < 1 || version > MC_STREAM_VERSION) return mc_stream_fail(s, MC_STREAM_ERR_VERSION, 4);
     const unsigned depth = h[6], palette = le16(h + 8);
     const uint32_t total = le32(h + 12);
-    if (depth < 1 || depth > MC_MAX_DEPTH || h[7] != (version == 2 ? 1 : 0) || palette < 1 || palette > 256 ||
+    if (depth < 1 || depth > MC_MAX_DEPTH || h[7] != (version >= 2 ? 1 : 0) || palette < 1 || palette > 256 ||
         le16(h + 10) != 0 ||
         total < MC_STREAM_HEADER_BYTES + 2 * MC_STREAM_RECORD_BYTES)
         return mc_stream_fail(s, MC_STREAM_ERR_HEADER, 6);
     if (total > s->cap) return mc_stream_fail(s, MC_STREAM_ERR_SIZE, 12);
     s->depth = (uint8_t)depth;
     s->version = (uint8_t)version;
-    s->has_mesh = version == 2;
+    s->has_mesh = version >= 2;
     s->palette_size = (uint16_t)palette;
     s->total = total;
     s->at = MC_STREAM_HEADER_BYTES;
@@ -161,7 +161,7 @@ static int next_record(mc_stream *s)
     } else if (kind == KIND_END && level == 0 && n == 0 && s->levels_read == s->depth + 1u &&
                (!s->has_mesh || s->mesh_state == 3) && r + MC_STREAM_RECORD_BYTES == s->total) {
         s->ended = 1;
-    } else if (kind >= MC_STREAM_KIND_MESH && kind <= MC_STREAM_KIND_ADJACENCY && level == 0) {
+    } else if (kind >= MC_STREAM_KIND_MESH && kind <= MC_STREAM_KIND_PACKED && level == 0) {
         if (mc_stream_mesh_record(s, kind, r + 8, n, r)) return 1;
     } else {
         return mc_stream_fail(s, MC_STREAM_ERR_RECORD, r), 1;

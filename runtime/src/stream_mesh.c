@@ -1,4 +1,4 @@
-/* A version-2 stream's mesh records (modelc/stream.h): the progressive mesh, base first, then its
+/* A version-2 or -3 stream's mesh records (modelc/stream.h): the progressive mesh, base first, then its
  * splits, then its adjacency, placed into pmesh.h's arrays in the caller's buffer. */
 #include "stream_mesh.h"
 
@@ -37,7 +37,8 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
         hb != (4u * F + 3u < 65535u ? 2u : 4u) || closed > 1 || p[23] != 0 || palette < 1 || palette > 256)
         return mc_stream_fail(s, MC_STREAM_ERR_MESH, at_record + 8);
     const uint64_t need = (uint64_t)((s->total + 3u) & ~3u) + 6u * (uint64_t)V + 2u * ib * (uint64_t)V +
-                          (ib + 1u) * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F;
+                          (ib + 1u) * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F +
+                          (s->version == 3 ? 24u * (uint64_t)F + 12u * (uint64_t)V + 4u : 0u);
     if (need > s->cap) return mc_stream_fail(s, MC_STREAM_ERR_SIZE, at_record + 8);
     pm->vertices = V, pm->base_vertices = V0, pm->faces = F, pm->base_faces = F0, pm->edges = E;
     pm->index_bytes = (uint8_t)ib, pm->half_bytes = (uint8_t)hb, pm->record_shift = SHIFT;
@@ -56,6 +57,7 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
     }
     /* absent vertices have subtree size 0: what the base and the splits check against */
     for (uint8_t *z = area(s); z < a; z++) *z = 0;
+    if (s->version == 3) mc_stream_packed_start(s, a);
     pm->positions = s->mesh_chunks[0], pm->tree = s->mesh_chunks[1], pm->splits = s->mesh_chunks[2];
     pm->corners = s->mesh_chunks[3], pm->opposite = 0, pm->edge_order = 0;
     s->mesh_state = 1;
@@ -78,6 +80,7 @@ static int base(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
     const unsigned ib = pm->index_bytes, per = 2u * ib + 6u;
     if ((uint64_t)pm->base_vertices * per + 3u * ib * (uint64_t)pm->base_faces != n)
         return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at - 8);
+    const uint8_t *roots = p;
     uint32_t next = 0;   /* the roots' subtrees tile 0 .. V-1 in order */
     for (uint32_t i = 0; i < pm->base_vertices; i++, p += per, at += per) {
         const uint32_t v = le(p, ib), size = le(p + ib + 6, ib);
@@ -91,6 +94,7 @@ static int base(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
     for (uint32_t f = 0; f < pm->base_faces; f++, p += 3u * ib, at += 3u * ib)
         if (corners(s, p, f, at)) return s->error;
     s->faces_read = pm->base_faces;
+    if (s->version == 3) mc_stream_packed_base(s, roots, per);
     s->mesh_state = 2;
     return MC_STREAM_OK;
 }
@@ -173,7 +177,9 @@ int mc_stream_mesh_record(mc_stream *s, unsigned kind, uint32_t at, uint32_t n, 
     const int in_order = s->has_mesh && s->palette_at != 0;   /* the order among themselves: below */
     if (in_order && kind == MC_STREAM_KIND_MESH && s->mesh_state == 0) return mesh_header(s, p, n, at_record);
     if (in_order && kind == MC_STREAM_KIND_BASE && s->mesh_state == 1) return base(s, p, n, at);
-    if (in_order && kind == MC_STREAM_KIND_SPLITS && s->mesh_state == 2) return splits(s, p, n, at);
+    if (in_order && kind == MC_STREAM_KIND_SPLITS && s->mesh_state == 2 && s->version == 2) return splits(s, p, n, at);
+    if (in_order && kind == MC_STREAM_KIND_PACKED && s->mesh_state == 2 && s->version == 3)
+        return mc_stream_packed_splits(s, p, n, at);
     if (in_order && kind == MC_STREAM_KIND_ADJACENCY && s->mesh_state == 2) return adjacency(s, p, n, at);
     return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at_record);
 }

@@ -1,5 +1,6 @@
-/* Between the stream reader's two files (not part of the runtime's interface): stream.c frames the
- * records and reads the octree's, and hands a version-2 stream's mesh records to stream_mesh.c. */
+/* Between the stream reader's files (not part of the runtime's interface): stream.c frames the
+ * records and reads the octree's, and hands a version-2 or -3 stream's mesh records to
+ * stream_mesh.c, which hands version 3's packed splits to stream_packed.c. */
 #ifndef MODELC_STREAM_MESH_H
 #define MODELC_STREAM_MESH_H
 
@@ -12,6 +13,7 @@
 #define MC_STREAM_KIND_BASE 5
 #define MC_STREAM_KIND_SPLITS 6
 #define MC_STREAM_KIND_ADJACENCY 7
+#define MC_STREAM_KIND_PACKED 8
 
 /* Records the first error (and where it was found); returns the stream's error. Inline here, so
  * that stream_mesh.c needs nothing of stream.c: the calls go one way, stream.c to stream_mesh.c. */
@@ -27,5 +29,14 @@ static inline int mc_stream_fail(mc_stream *s, int error, uint32_t at)
 /* A checked record of a mesh kind (payload of n bytes at offset at in buf; the record at at_record):
  * MC_STREAM_OK, or the error, recorded. */
 int mc_stream_mesh_record(mc_stream *s, unsigned kind, uint32_t at, uint32_t n, uint32_t at_record);
+
+/* Version 3's packed splits (stream_packed.c). start: the decoder's state at area (the buffer after
+ * the mesh arrays, MC_STREAM_PACKED_BYTES of it), once the mesh header is read; returns its bytes.
+ * base: the base faces' corners placed at their roots (roots: the base record's vertex entries,
+ * per bytes apart). splits: a kind-8 payload of n bytes at p (at: its offset in the buffer),
+ * decoded into the mesh arrays: MC_STREAM_OK, or the error, recorded. */
+uint32_t mc_stream_packed_start(mc_stream *s, uint8_t *area);
+void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per);
+int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at);
 
 #endif

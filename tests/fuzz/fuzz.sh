@@ -74,11 +74,14 @@ printf '0.02,0.1,0.5,2.1,1.1,-0.4' >"$ts/pose.txt"
 # rewritten (the target's first byte)
 ss=$seeds/stream
 mkdir -p "$ss"
-for spec in "bunny00 --depth 5" "kitten --depth 4 --palette 1" "bunny00 --depth 3 --as both --max-faces 300"; do
+for spec in "bunny00 --depth 5" "kitten --depth 4 --palette 1" "bunny00 --depth 3 --as both --max-faces 300" \
+    "bunny00 --depth 3 --as both --max-faces 300 --stream-splits packed"; do
     read -r m args <<<"$spec"
+    seed=$m${args//[^0-9]/}
+    [[ $args == *packed ]] && seed=${seed}packed
     # shellcheck disable=SC2086
     build/bin/modelc "$(model_file "$m")" -o "$dir/stream-seeds" --name "s_$m" --emit stream -q $args &&
-        for b in 0 3; do { printf "\\x0$b"; cat "$dir/stream-seeds/s_$m/s_$m.mcs"; } >"$ss/$m${args//[^0-9]/}-$b.in"; done
+        for b in 0 3; do { printf "\\x0$b"; cat "$dir/stream-seeds/s_$m/s_$m.mcs"; } >"$ss/$seed-$b.in"; done
 done
 
 # signature FILE TARGET: what a finding's report says, without addresses or sizes, and the first

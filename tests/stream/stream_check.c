@@ -14,10 +14,13 @@
  *       again (what CRCs cannot catch): each is refused by a check of what the renderer relies on, or
  *       taken and drawn at every depth it offers without a fault (ASan + UBSan); prints how many each
  *       check refused
- *   stream_check mesh FILE.mcs N SEED       (a version-2 stream, bake --as both) N random cuts in its
+ *   stream_check mesh FILE.mcs N SEED       (a version-2 or -3 stream, bake --as both) N random cuts in its
  *       mesh part, and every mesh record's end and a byte either side: the prefix draws exactly the
  *       mesh level the bytes allow, and its frames equal the baked mesh's at that level (--lod):
  *       shaded at two views, and once the adjacency is in, lines at one
+ *   stream_check arrays FILE.mcs            (a version-2 or -3 stream) the whole stream read: the mesh
+ *       arrays it fills (positions, tree, splits, corners, adjacency) equal the bake's byte for byte;
+ *       prints the base's and splits' bytes per split
  *   stream_check first FILE.mcs             prints the bytes before the first drawable level and each
  *       further level, as shares of the stream (and the mesh's first level and lines, if any)
  * With a mesh part, the corrupt and forged modes check the mesh level as the octree's depth: never
@@ -49,6 +52,7 @@ static int views_all = 1;
 /* the mesh part's records that raise its drawable level: where each ends, and the level */
 static uint32_t mesh_end[256], mesh_level_at[256], lines_end;
 static unsigned mesh_records;
+static uint64_t level_bytes;   /* the mesh's base and split records: what its levels of detail take */
 static void *anc_stream, *anc_bake;   /* ancestor maps of the stream's mesh and the bake's */
 static uint8_t *facing_stream, *facing_bake;   /* check_drawn: all four views, or one at random (the corrupt mode's many cases) */
 
@@ -74,10 +78,11 @@ static int index_file(void)
         if (at > file_len) break;
         if (kind == 2 && level <= MC_MAX_DEPTH) level_end[level] = at;
         if (kind == 4) base = le32(p + 4);
-        if ((kind == 5 || kind == 6) && mesh_records < 256) {
+        if ((kind == 5 || kind == 6 || kind == 8) && mesh_records < 256) {
             mesh_end[mesh_records] = at;
-            mesh_level_at[mesh_records++] = base + (kind == 6 ? le32(p) + le32(p + 4) : 0);
+            mesh_level_at[mesh_records++] = base + (kind != 5 ? le32(p) + le32(p + 4) : 0);
         }
+        if (kind == 5 || kind == 6 || kind == 8) level_bytes += 12u + le32(p - 4);   /* the record, framing and all */
         if (kind == 7) lines_end = at;
     }
     return at == file_len ? 0 : -1;
@@ -394,6 +399,37 @@ static int forged(int n)
     return 0;
 }
 
+/* The whole stream fed at once: the mesh arrays the reader fills equal the bake's byte for byte. */
+static int arrays(void)
+{
+    const mc_pmesh *bake = mc_app_model.model->pmesh;
+    mc_stream s;
+    mc_stream_init(&s, buf, mc_app_model.stream_cap);
+    if (!bake || mc_stream_feed(&s, file, file_len) != MC_STREAM_OK || mc_stream_end(&s) != MC_STREAM_OK || !mc_stream_pmesh(&s)) {
+        printf("FAIL arrays: the stream (%s at byte %u) or the bake has no complete mesh part\n", mc_stream_error_name(s.error), s.error_at);
+        return -1;
+    }
+    const mc_pmesh *pm = mc_stream_pmesh(&s);
+    const unsigned ib = bake->index_bytes, hb = bake->half_bytes;
+    const uint32_t V = bake->vertices, F = bake->faces, S = V - bake->base_vertices;
+    struct { const char *name; const mc_chunk *a, *b; uint32_t n, size; } list[] = {
+        {"positions", pm->positions, bake->positions, V, 6},     {"tree", pm->tree, bake->tree, V, 2 * ib},
+        {"splits", pm->splits, bake->splits, S, ib + 1},         {"corners", pm->corners, bake->corners, F, 3 * ib},
+        {"opposite", pm->opposite, bake->opposite, F, 3 * hb},   {"edge order", pm->edge_order, bake->edge_order, bake->edges, hb}};
+    uint64_t bytes = 0;
+    for (unsigned k = 0; k < sizeof list / sizeof list[0]; k++)
+        for (uint32_t i = 0; i < list[k].n; i++, bytes += list[k].size)
+            if (memcmp(mc_chunk_record(list[k].a, pm->record_shift, list[k].size, i),
+                       mc_chunk_record(list[k].b, bake->record_shift, list[k].size, i), list[k].size)) {
+                printf("FAIL arrays: %s record %u differs from the bake's\n", list[k].name, i);
+                return -1;
+            }
+    printf("ok arrays: version %u, the reader's mesh arrays (positions, tree, splits, corners, opposites, edge order: "
+           "%llu bytes) equal the bake's; base and splits %.2f bytes per split in the stream (%llu bytes, %u splits)\n",
+           file[4], (unsigned long long)bytes, S ? (double)level_bytes / S : 0.0, (unsigned long long)level_bytes, S);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -425,6 +461,7 @@ int main(int argc, char **argv)
     if (!strcmp(argv[1], "corrupt")) return corrupt(n) ? 1 : 0;
     if (!strcmp(argv[1], "forged")) return forged(n) ? 1 : 0;
     if (!strcmp(argv[1], "mesh")) return mesh_prefixes(n) ? 1 : 0;
+    if (!strcmp(argv[1], "arrays")) return arrays() ? 1 : 0;
     if (!strcmp(argv[1], "first")) {
         printf("bytes %u", file_len);
         for (unsigned l = 1; l <= depth_max; l++) printf(" depth%u %u %.2f%%", l, level_end[l], 100.0 * level_end[l] / file_len);

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Streamed bakes (modelc --emit stream, runtime/src/stream.c, stream_mesh.c): bunny00 at depth 8 (cones,
-# 218 colours), kitten at depth 6 with one palette entry (a point set: no cones, no colours), and
-# bunny00 --as both (version 2: the progressive mesh too, 6,000 faces; every mesh prefix draws its
-# level as the bake's --lod, shaded, and lines once the adjacency is in). budget.json's
+# Streamed bakes (modelc --emit stream, runtime/src/stream.c, stream_mesh.c, stream_packed.c): bunny00
+# at depth 8 (cones, 218 colours), kitten at depth 6 with one palette entry (a point set: no cones, no
+# colours), and bunny00 --as both (version 2: the progressive mesh too, 6,000 faces; every mesh prefix
+# draws its level as the bake's --lod, shaded, and lines once the adjacency is in), the same with
+# --stream-splits packed (version 3), and fandisk packed at its full 12,946 faces; the mesh arrays a
+# whole stream fills equal the bake's byte for byte. budget.json's
 # stream figures against the file; every prefix draws its deepest complete level exactly as the bake
 # does; damaged streams (10^4 of kitten's, 2,000 of bunny00's) refused without a fault; forged streams (valid CRCs) refused by the
 # reader's checks or drawn without a fault; the first picture's share of the bytes; the fuzzer's
@@ -42,7 +44,9 @@ bake() {   # NAME MODEL ARGS...
 }
 
 for spec in "bunny00 $(model_file bunny00) --depth 8" "kitten $(model_file kitten) --depth 6 --palette 1" \
-    "bunnymesh $(model_file bunny00) --depth 6 --as both --max-faces 6000"; do
+    "bunnymesh $(model_file bunny00) --depth 6 --as both --max-faces 6000" \
+    "bunnypacked $(model_file bunny00) --depth 6 --as both --max-faces 6000 --stream-splits packed" \
+    "fandiskpacked $(model_file fandisk) --depth 6 --as both --stream-splits packed"; do
     read -r name model args <<<"$spec"
     # shellcheck disable=SC2086
     bake "$name" "$model" $args || continue
@@ -68,6 +72,8 @@ if 'pmesh' in bud:   # the buffer: the stream, then the mesh arrays (stream.h MC
     m = bud['pmesh']
     V, V0, F, ib = m['vertices'], m['base_vertices'], m['faces'], m['index_bytes']
     want = (size + 3) // 4 * 4 + 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F
+    if open(sys.argv[2], 'rb').read(6)[4] == 3:   # packed splits: the decoder's state (MC_STREAM_PACKED_BYTES)
+        want += 24 * F + 12 * V + 4
     first = [k for k in ends if k.startswith('mesh')]
     if b['buffer'] != want: p.append('buffer %d, the stream and its mesh arrays need %d' % (b['buffer'], want))
     if not first or b['mesh_levels'][0] != {'at': ends[first[0]], 'level': V0} or b['mesh_levels'][-1]['level'] != V:
@@ -87,7 +93,7 @@ print(f[4], "depth %d after %s of the bytes" % (d - 2, f[3 * (d - 2) + 1]) if d 
     python3 -c "import sys; sys.exit(0 if float('${share%\%}') <= 10 else 1)" &&
         ok "$name: the first picture (depth 1) after $share of the stream's bytes (at most 10 %); $deep" ||
         notok "$name: the first picture after at most 10 % of the bytes" "$first"
-    if [ "$name" = bunnymesh ]; then
+    case $name in *mesh | *packed)
         read -r mshare lshare < <(echo "$first" | python3 -c '
 import sys
 f = sys.stdin.read().split()
@@ -96,10 +102,13 @@ print(f[m + 2], f[m + 5])')
         python3 -c "import sys; sys.exit(0 if float('${mshare%\%}') <= 10 else 1)" &&
             ok "$name: the mesh's first picture (its base) after $mshare of the stream's bytes (at most 10 %); its line styles after $lshare" ||
             notok "$name: the mesh's first picture after at most 10 % of the bytes" "$first"
-    fi
+        ;;
+    esac
     runs="prefixes 60|corrupt 2000|forged 500"
     [ "$name" = kitten ] && runs="prefixes 100|corrupt 10000|forged 1000"
-    [ "$name" = bunnymesh ] && runs="mesh 40|prefixes 20|corrupt 2000|forged 500"
+    [ "$name" = bunnymesh ] && runs="arrays 0|mesh 40|prefixes 20|corrupt 2000|forged 500"
+    [ "$name" = bunnypacked ] && runs="arrays 0|mesh 40|prefixes 20|corrupt 1000|forged 1000"
+    [ "$name" = fandiskpacked ] && runs="arrays 0|mesh 20|corrupt 300|forged 500"
     IFS='|' read -r -a modes <<<"$runs"
     for mode in "${modes[@]}"; do
         read -r m n <<<"$mode"
@@ -116,6 +125,18 @@ else
         ok "--as edges --emit stream: one modelc: line, no output" || notok "--as edges --emit stream: one modelc: line, no output" "$(oneline <"$dir/edges.log")"
 fi
 
+# packed splits need a stream with a mesh part
+for args in "--as both --stream-splits packed" "--emit stream --stream-splits packed"; do
+    rm -rf "$dir/nosplits"
+    # shellcheck disable=SC2086
+    if "$MODELC" "$(model_file bunny00)" -o "$dir" --name nosplits --depth 3 $args -q >"$dir/nosplits.log" 2>&1; then
+        notok "$args is refused" "exit 0"
+    else
+        [ "$(wc -l <"$dir/nosplits.log")" = 1 ] && grep -q '^modelc: --stream-splits' "$dir/nosplits.log" && [ ! -e "$dir/nosplits" ] &&
+            ok "$args: one modelc: line, no output" || notok "$args: one modelc: line, no output" "$(oneline <"$dir/nosplits.log")"
+    fi
+done
+
 # the stream fuzzer's findings (make fuzz FUZZ_TARGETS=stream), replayed under the sanitizers
 # shellcheck disable=SC2086
 if cc $SAN -DMC_FUZZ_STREAM_MAIN -o "$dir/replay" tests/fuzz/fuzz_stream.c runtime/front/common/mesh_frame.c "${rt[@]}" 2>"$dir/cc-replay.log"; then
@@ -123,8 +144,9 @@ if cc $SAN -DMC_FUZZ_STREAM_MAIN -o "$dir/replay" tests/fuzz/fuzz_stream.c runti
     [ -e "${files[0]}" ] || files=()
     { printf '\0'; cat "$dir/bunny00/bunny00.mcs"; } >"$dir/whole.in"
     { printf '\0'; cat "$dir/bunnymesh/bunnymesh.mcs"; } >"$dir/whole-mesh.in"
-    if out=$("$dir/replay" "${files[@]}" "$dir/whole.in" "$dir/whole-mesh.in" 2>&1); then
-        ok "the fuzz target's check replays ${#files[@]} finding(s) and two whole streams (points; points and mesh) without a fault"
+    { printf '\0'; cat "$dir/bunnypacked/bunnypacked.mcs"; } >"$dir/whole-packed.in"
+    if out=$("$dir/replay" "${files[@]}" "$dir/whole.in" "$dir/whole-mesh.in" "$dir/whole-packed.in" 2>&1); then
+        ok "the fuzz target's check replays ${#files[@]} finding(s) and three whole streams (points; points and mesh; mesh splits packed) without a fault"
     else
         notok "fuzz findings replayed" "$(echo "$out" | head -c 300 | oneline)"
     fi

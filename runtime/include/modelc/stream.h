@@ -23,9 +23,13 @@
  * mesh its arrays, MC_STREAM_MESH_BYTES, after it) and the mc_stream. Freestanding; work
  * proportional to the bytes fed.
  *
- * The format, versions 1 and 2 (all integers little-endian):
- *   header, 20 bytes:  "mcs" 0x1A | u16 version (1 or 2) | u8 depth D (1..MC_MAX_DEPTH) |
- *                      u8 flags (version 1: 0; version 2: 1, a mesh part follows the octree) |
+ * A version-3 stream is a version-2 stream whose splits come packed (kind 8 instead of 6, about a
+ * third of the bytes): the reader decodes them into the same arrays, keeping the level's mesh in the
+ * buffer while it does (MC_STREAM_PACKED_BYTES more), so every level is the same as from version 2.
+ *
+ * The format, versions 1, 2 and 3 (all integers little-endian):
+ *   header, 20 bytes:  "mcs" 0x1A | u16 version (1, 2 or 3) | u8 depth D (1..MC_MAX_DEPTH) |
+ *                      u8 flags (version 1: 0; versions 2 and 3: 1, a mesh part follows the octree) |
  *                      u16 palette entries P (1..256) | u16 0 | u32 total bytes of the stream |
  *                      u32 CRC-32 of the 16 bytes before it
  *   then records:      u8 kind | u8 level | u16 0 | u32 payload bytes n | n bytes | u32 CRC-32 of the
@@ -48,6 +52,23 @@
  *                      u[ib] parent | u[ib] subtree size | its faces' 3 u[ib] corners each;
  *                      until all V - V0 splits and F faces have come
  *     kind 7, adjacency: F records of 3 u[hb] opposites, then E u[hb] half-edges: the edge order
+ *   version 3 only, kind 8 in place of kind 6:
+ *     kind 8, packed splits: u32 first split | u32 count k >= 1 | u8 order g (0..16) | bits, most
+ *                      significant first in each byte, the last byte's unused bits zero. Per split,
+ *                      with the level before it (the base and the splits before it) known:
+ *                      parent p: width(V) bits (a vertex present at the level); the split vertex is
+ *                      then p's next child in depth-first order, p + 1 plus the subtree sizes of p's
+ *                      children split before; subtree size: Exp-Golomb order 0 of size - 1; faces it
+ *                      adds: 1 bit (0: one, 1: two); per face: 1 bit (0: its corners at the split's
+ *                      level are v, p, x; 1: p, v, x), x's rank among p's neighbours at the level
+ *                      before (the distinct vertices sharing a face with p, in index order):
+ *                      width(their number) bits, then each corner's full-mesh vertex as its offset in
+ *                      the subtree of its vertex at the split's level: width(that size) bits; the
+ *                      position, each axis: Exp-Golomb order g of the zigzag (0, -1, 1, -2: 0, 1, 2,
+ *                      3) of its difference to the rounded mean (sum + n / 2) / n of the split
+ *                      vertex's n neighbours after the split. width(n): the bits of an offset below
+ *                      n, 0 for n <= 1. Exp-Golomb order g of u: u + 2^g has b + 1 bits; b - g zeros,
+ *                      then those b + 1 bits.
  *   kind 3, end:       no payload; last, and the stream's total is where it ends
  * The mesh records hold pmesh.h's arrays in split order: the base and each batch of splits bring
  * their vertices' position and tree records (placed at their indices in the buffer's mesh arrays)
@@ -66,7 +87,7 @@
 #include "octree.h"
 #include "pmesh.h"
 
-#define MC_STREAM_VERSION 2   /* the newest this reader takes (it takes 1 too) */
+#define MC_STREAM_VERSION 3   /* the newest this reader takes (it takes 1 and 2 too) */
 #define MC_STREAM_HEADER_BYTES 20
 #define MC_STREAM_RECORD_BYTES 12   /* a record's own bytes around its payload */
 
@@ -76,6 +97,12 @@
 #define MC_STREAM_MESH_BYTES(V, V0, F, ib) \
     (6u * (uint32_t)(V) + 2u * (ib) * (uint32_t)(V) + ((ib) + 1u) * ((uint32_t)(V) - (uint32_t)(V0)) + \
      3u * (ib) * (uint32_t)(F))
+
+/* What a version-3 stream's reader needs in the buffer after the mesh arrays to decode packed
+ * splits: per corner of the F faces its vertex at the decoded level and the next corner of that
+ * vertex; per vertex of V its first corner, its next child's index and a mark (4 bytes each, from a
+ * multiple of 4). */
+#define MC_STREAM_PACKED_BYTES(V, F) (24u * (uint32_t)(F) + 12u * (uint32_t)(V) + 4u)
 
 enum {
     MC_STREAM_OK = 0,
@@ -119,6 +146,11 @@ typedef struct mc_stream {
     uint32_t splits_read, faces_read;
     mc_pmesh pmesh;
     mc_chunk mesh_chunks[6][2];    /* positions, tree, splits, corners, opposite, edge order */
+    /* a version-3 stream's decoder (stream_packed.c), in the buffer after the mesh arrays: per
+     * corner its vertex at the decoded level and the next corner of that vertex; per vertex its
+     * first corner, its next child, a mark; the last mark given */
+    uint32_t *pk_level, *pk_next, *pk_head, *pk_slot, *pk_stamp;
+    uint32_t pk_now;
 } mc_stream;
 
 /* Starts reading a stream into buf (cap bytes). */

@@ -1,0 +1,224 @@
+/* A version-3 stream's packed splits (modelc/stream.h, kind 8), decoded into the same mesh arrays a
+ * version-2 stream's plain splits fill.
+ *
+ * The decoder keeps the mesh of the level it has reached, in the buffer after those arrays: each
+ * face corner's vertex at the level, and per vertex the list of its corners. That is what lets the
+ * stream leave out what it implies: the split vertex (its parent's next child in depth-first order),
+ * a new face's third corner (a rank among the parent's neighbours) and most of each position's bits
+ * (a difference to the mean of the new vertex's neighbours). Work per split: the parent's and the
+ * new vertex's corners, times the rank plus one for the third corner of each new face. */
+#include <stdint.h>
+#include "stream_mesh.h"
+
+#define NONE 0xFFFFFFFFu
+
+static uint32_t le(const uint8_t *p, unsigned bytes) { return mc_le_index(p, bytes); }
+
+static void put(uint8_t *p, uint32_t v, unsigned bytes)
+{
+    for (unsigned i = 0; i < bytes; i++) p[i] = (uint8_t)(v >> (8 * i));
+}
+
+/* Bits of an offset below n (0 for n <= 1). */
+static unsigned width(uint32_t n)
+{
+    unsigned b = 0;
+    while (b < 32 && ((uint64_t)1 << b) < n) b++;
+    return b;
+}
+
+/* Bits, most significant first within each byte; reading past the end marks the reader bad. */
+typedef struct {
+    const uint8_t *p;
+    uint32_t bits, at;   /* bits in p, the next one */
+    int bad;
+} bit_reader;
+
+static uint32_t get(bit_reader *b, unsigned n)
+{
+    if (n > b->bits - b->at) {
+        b->bad = 1;
+        return 0;
+    }
+    uint32_t v = 0;
+    while (n--) {
+        v = v << 1 | (uint32_t)(b->p[b->at >> 3] >> (7u - (b->at & 7u)) & 1u);
+        b->at++;
+    }
+    return v;
+}
+
+/* Exp-Golomb of order k: z zeros, a one, then z + k bits; the value is what they spell less 2^k. */
+static uint32_t exp_golomb(bit_reader *b, unsigned k)
+{
+    unsigned z = 0;
+    while (!get(b, 1)) {
+        if (b->bad || ++z + k > 31) {
+            b->bad = 1;
+            return 0;
+        }
+    }
+    const unsigned n = z + k;
+    return (((uint32_t)1 << n) | get(b, n)) - ((uint32_t)1 << k);
+}
+
+/* The mesh arrays' fields (stream_mesh.c lays them out). */
+static uint8_t *positions(mc_stream *s) { return (uint8_t *)s->mesh_chunks[0][0].data; }
+static uint8_t *tree_at(mc_stream *s, uint32_t v)
+{
+    return (uint8_t *)s->mesh_chunks[1][0].data + v * 2u * s->pmesh.index_bytes;
+}
+static uint32_t size_of(mc_stream *s, uint32_t v) { return le(tree_at(s, v) + s->pmesh.index_bytes, s->pmesh.index_bytes); }
+static uint8_t *corner_at(mc_stream *s, uint32_t c)
+{
+    return (uint8_t *)s->mesh_chunks[3][0].data + c * s->pmesh.index_bytes;   /* c = 3 f + k */
+}
+
+static void push(mc_stream *s, uint32_t u, uint32_t c)
+{
+    s->pk_level[c] = u;
+    s->pk_next[c] = s->pk_head[u];
+    s->pk_head[u] = c;
+}
+
+uint32_t mc_stream_packed_start(mc_stream *s, uint8_t *area)
+{
+    const uint32_t V = s->pmesh.vertices, F = s->pmesh.faces;
+    uint32_t *w = (uint32_t *)(void *)(area + ((4u - ((uintptr_t)area & 3u)) & 3u));
+    s->pk_level = w, w += 3u * F;
+    s->pk_next = w, w += 3u * F;
+    s->pk_head = w, w += V;
+    s->pk_slot = w, w += V;
+    s->pk_stamp = w;
+    for (uint32_t v = 0; v < V; v++) s->pk_head[v] = NONE, s->pk_slot[v] = v + 1u, s->pk_stamp[v] = 0;
+    s->pk_now = 0;
+    return MC_STREAM_PACKED_BYTES(V, F);
+}
+
+void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per)
+{
+    const mc_pmesh *pm = &s->pmesh;
+    const unsigned ib = pm->index_bytes;
+    for (uint32_t c = 0; c < 3u * pm->base_faces; c++) {
+        const uint32_t full = le(corner_at(s, c), ib);
+        uint32_t lo = 0, hi = pm->base_vertices;   /* the last root at or before full */
+        while (hi - lo > 1) {
+            const uint32_t mid = lo + (hi - lo) / 2;
+            if (le(roots + mid * per, ib) <= full) lo = mid;
+            else hi = mid;
+        }
+        push(s, le(roots + lo * per, ib), c);
+    }
+}
+
+/* The distinct vertices that share a face with u at the level: with sum, their positions' sums. */
+static uint32_t ring(mc_stream *s, uint32_t u, uint64_t sum[3])
+{
+    const uint32_t now = ++s->pk_now;
+    uint32_t n = 0;
+    if (sum) sum[0] = sum[1] = sum[2] = 0;
+    for (uint32_t c = s->pk_head[u]; c != NONE; c = s->pk_next[c]) {
+        const uint32_t f = c / 3u * 3u;
+        for (uint32_t k = f; k < f + 3u; k++) {
+            const uint32_t w = s->pk_level[k];
+            if (w == u || s->pk_stamp[w] == now) continue;
+            s->pk_stamp[w] = now;
+            n++;
+            if (sum)
+                for (unsigned a = 0; a < 3; a++) sum[a] += mc_le16(positions(s) + 6u * w + 2u * a);
+        }
+    }
+    return n;
+}
+
+/* u's neighbour of the given rank in index order (rank < the ring's size): rank + 1 passes, each
+ * taking the least neighbour above the last. */
+static uint32_t neighbour(const mc_stream *s, uint32_t u, uint32_t rank)
+{
+    uint32_t last = 0, x = 0;
+    for (uint32_t r = 0; r <= rank; r++) {
+        x = NONE;
+        for (uint32_t c = s->pk_head[u]; c != NONE; c = s->pk_next[c]) {
+            const uint32_t f = c / 3u * 3u;
+            for (uint32_t k = f; k < f + 3u; k++) {
+                const uint32_t w = s->pk_level[k];
+                if (w != u && (r == 0 || w > last) && (x == NONE || w < x)) x = w;
+            }
+        }
+        last = x;
+    }
+    return x;
+}
+
+int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
+{
+    const mc_pmesh *pm = &s->pmesh;
+    const unsigned ib = pm->index_bytes, wv = width(pm->vertices);
+    const uint32_t S = pm->vertices - pm->base_vertices;
+    if (n < 9) return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at - 8);
+    const uint32_t first = le(p, 4), k = le(p + 4, 4);
+    const unsigned order = p[8];
+    if (first != s->splits_read || k < 1 || k > S - first || order > 16) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
+    bit_reader b = {p + 9, 8u * (n - 9u), 0, 0};
+    uint32_t faces = s->faces_read;
+#define FAIL_AT() mc_stream_fail(s, b.bad ? MC_STREAM_ERR_RECORD : MC_STREAM_ERR_MESH, at + 9u + b.at / 8u)
+    for (uint32_t i = 0; i < k; i++) {
+        /* the parent, present; the vertex its next child; the vertex's subtree inside the parent's */
+        const uint32_t parent = get(&b, wv);
+        if (b.bad || parent >= pm->vertices) return FAIL_AT();
+        const uint32_t psize = size_of(s, parent), v = s->pk_slot[parent];
+        if (psize == 0 || v - parent >= psize) return FAIL_AT();
+        const uint32_t size = exp_golomb(&b, 0) + 1u, nf = get(&b, 1) + 1u;
+        if (b.bad || size == 0 || size > psize - (v - parent) || nf > pm->faces - faces || size_of(s, v) != 0)
+            return FAIL_AT();
+        const uint32_t around = ring(s, parent, 0);
+        put(tree_at(s, v), parent, ib);
+        put(tree_at(s, v) + ib, size, ib);
+        /* the new faces: v, the parent and a neighbour of the parent at the split's level, each corner
+         * then the full mesh's vertex at that offset in its subtree */
+        uint32_t at_level[2][3];
+        for (uint32_t j = 0; j < nf; j++) {
+            const uint32_t parent_first = get(&b, 1), rank = get(&b, width(around));
+            if (b.bad || rank >= around) return FAIL_AT();
+            uint32_t *a = at_level[j];
+            a[0] = parent_first ? parent : v, a[1] = parent_first ? v : parent, a[2] = neighbour(s, parent, rank);
+            for (unsigned c = 0; c < 3; c++) {
+                const uint32_t sz = size_of(s, a[c]), off = get(&b, width(sz));
+                if (b.bad || off >= sz) return FAIL_AT();
+                put(corner_at(s, 3u * (faces + j) + c), a[c] + off, ib);
+            }
+        }
+        /* the split: the parent's corners whose full-mesh vertex is in v's subtree go to v */
+        for (uint32_t *link = &s->pk_head[parent]; *link != NONE;) {
+            const uint32_t c = *link;
+            if (le(corner_at(s, c), ib) - v < size) {
+                *link = s->pk_next[c];
+                push(s, v, c);
+            } else {
+                link = &s->pk_next[c];
+            }
+        }
+        for (uint32_t j = 0; j < nf; j++, faces++)
+            for (unsigned c = 0; c < 3; c++) push(s, at_level[j][c], 3u * faces + c);
+        /* the position: the rounded mean of v's neighbours after the split, plus the difference */
+        uint64_t sum[3];
+        const uint32_t m = ring(s, v, sum);
+        if (m == 0) return FAIL_AT();   /* never: the new faces give v two neighbours */
+        for (unsigned a = 0; a < 3; a++) {
+            const uint32_t u = exp_golomb(&b, order);
+            const int64_t q = (int64_t)((sum[a] + m / 2u) / m) + ((u & 1u) ? -(int64_t)(u >> 1) - 1 : (int64_t)(u >> 1));
+            if (b.bad || q < 0 || q > 65535) return FAIL_AT();
+            put(positions(s) + 6u * v + 2u * a, (uint32_t)q, 2);
+        }
+        s->pk_slot[parent] = v + size;
+        uint8_t *split = (uint8_t *)s->mesh_chunks[2][0].data + (first + i) * (ib + 1u);
+        put(split, v, ib);
+        split[ib] = (uint8_t)nf;
+    }
+    /* the record ends within a byte of the last split, its padding zero */
+    if (b.bits - b.at >= 8u || (b.at < b.bits && get(&b, b.bits - b.at) != 0)) return FAIL_AT();
+#undef FAIL_AT
+    s->splits_read += k;
+    s->faces_read = faces;
+    return MC_STREAM_OK;
+}
