@@ -41,9 +41,10 @@ static uint32_t get(bit_reader *b, unsigned n)
         return 0;
     }
     uint32_t v = 0;
-    while (n--) {
-        v = v << 1 | (uint32_t)(b->p[b->at >> 3] >> (7u - (b->at & 7u)) & 1u);
-        b->at++;
+    while (n) {   /* a byte's worth at a time */
+        const unsigned left = 8u - (b->at & 7u), take = n < left ? n : left;
+        v = (uint32_t)((uint64_t)v << take) | (uint32_t)(b->p[b->at >> 3] >> (left - take) & ((1u << take) - 1u));
+        b->at += take, n -= take;
     }
     return v;
 }
@@ -111,8 +112,10 @@ void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per)
     }
 }
 
-/* The distinct vertices that share a face with u at the level: with sum, their positions' sums. */
-static uint32_t ring(mc_stream *s, uint32_t u, uint64_t sum[3])
+/* The distinct vertices that share a face with u at the level: with sum, their positions' sums; with
+ * list, all of them in index order when there are at most RING_LIST. */
+#define RING_LIST 32
+static uint32_t ring(mc_stream *s, uint32_t u, uint64_t sum[3], uint32_t list[RING_LIST])
 {
     const uint32_t now = ++s->pk_now;
     uint32_t n = 0;
@@ -123,6 +126,11 @@ static uint32_t ring(mc_stream *s, uint32_t u, uint64_t sum[3])
             const uint32_t w = s->pk_level[k];
             if (w == u || s->pk_stamp[w] == now) continue;
             s->pk_stamp[w] = now;
+            if (list && n < RING_LIST) {   /* insertion, while the list has room */
+                uint32_t i = n;
+                for (; i > 0 && list[i - 1] > w; i--) list[i] = list[i - 1];
+                list[i] = w;
+            }
             n++;
             if (sum)
                 for (unsigned a = 0; a < 3; a++) sum[a] += mc_le16(positions(s) + 6u * w + 2u * a);
@@ -131,8 +139,8 @@ static uint32_t ring(mc_stream *s, uint32_t u, uint64_t sum[3])
     return n;
 }
 
-/* u's neighbour of the given rank in index order (rank < the ring's size): rank + 1 passes, each
- * taking the least neighbour above the last. */
+/* u's neighbour of the given rank in index order (rank < the ring's size), for rings longer than
+ * RING_LIST: rank + 1 passes, each taking the least neighbour above the last. */
 static uint32_t neighbour(const mc_stream *s, uint32_t u, uint32_t rank)
 {
     uint32_t last = 0, x = 0;
@@ -171,7 +179,8 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
         const uint32_t size = exp_golomb(&b, 0) + 1u, nf = get(&b, 1) + 1u;
         if (b.bad || size == 0 || size > psize - (v - parent) || nf > pm->faces - faces || size_of(s, v) != 0)
             return FAIL_AT();
-        const uint32_t around = ring(s, parent, 0);
+        uint32_t list[RING_LIST];
+        const uint32_t around = ring(s, parent, 0, list);
         put(tree_at(s, v), parent, ib);
         put(tree_at(s, v) + ib, size, ib);
         /* the new faces: v, the parent and a neighbour of the parent at the split's level, each corner
@@ -181,7 +190,7 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             const uint32_t parent_first = get(&b, 1), rank = get(&b, width(around));
             if (b.bad || rank >= around) return FAIL_AT();
             uint32_t *a = at_level[j];
-            a[0] = parent_first ? parent : v, a[1] = parent_first ? v : parent, a[2] = neighbour(s, parent, rank);
+            a[0] = parent_first ? parent : v, a[1] = parent_first ? v : parent, a[2] = around <= RING_LIST ? list[rank] : neighbour(s, parent, rank);
             for (unsigned c = 0; c < 3; c++) {
                 const uint32_t sz = size_of(s, a[c]), off = get(&b, width(sz));
                 if (b.bad || off >= sz) return FAIL_AT();
@@ -202,7 +211,7 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             for (unsigned c = 0; c < 3; c++) push(s, at_level[j][c], 3u * faces + c);
         /* the position: the rounded mean of v's neighbours after the split, plus the difference */
         uint64_t sum[3];
-        const uint32_t m = ring(s, v, sum);
+        const uint32_t m = ring(s, v, sum, 0);
         if (m == 0) return FAIL_AT();   /* never: the new faces give v two neighbours */
         for (unsigned a = 0; a < 3; a++) {
             const uint32_t u = exp_golomb(&b, order);

@@ -6,7 +6,11 @@
 # OpenMesh's vertex_split / collapse on its half-edge mesh as its ProgViewer does
 # (tests/bench/openmesh_pm.cpp): ns per level change, median over rounds, and the ratio in each
 # round; callgrind instructions per level change for modelc; flash bytes per split against the .pm
-# file's. Appends (replacing an earlier copy) a marked section to RESULTS.md.
+# file's. Then the same mesh as a stream (--emit stream, depth 1 so that the octree is negligible),
+# plain and with --stream-splits packed, each read whole by mc_stream_feed (tests/bench/stream_decode.c,
+# alternately, per round) and the levels of the arrays it filled swept as the bake's: bytes per split,
+# read time per split, callgrind instructions per split of the packed decoder. Writes (in place) a
+# marked section of RESULTS.md.
 #   tests/bench/pmesh.sh [RESULTS.md]        (make bench runs it; make bench-pmesh alone)
 #   PMESH_MODELS ("bunny00 fandisk"), PMESH_ROUNDS (7)
 set -euo pipefail
@@ -39,13 +43,37 @@ for m in $models; do
     echo "$m" >>"$out/rows.txt"
 done
 cmds+=("$out/NAME-lod 1; $out/openmesh_pm --read $out/NAME.pm 1   # per round, $rounds rounds")
-# what the same records would take coded by variable-length fields read in split order
-for m in $models; do run python3 tests/bench/pmesh_bits.py "$out" "$m" >"$out/$m.bits.txt"; done
+# the streams: plain and packed splits, read whole
+run gcc -O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Iruntime/include -o "$out/stream_decode" \
+    tests/bench/stream_decode.c runtime/src/*.c
+cap() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['stream']['buffer'])" "$1"; }
+for m in $models; do
+    for mode in plain packed; do
+        run build/bin/modelc "build/models/$m.off" -o "$out" --name "${m}_$mode" --depth 1 --as both --emit stream \
+            --stream-splits "$mode" -q
+    done
+    run valgrind --tool=callgrind --toggle-collect=mc_stream_packed_splits --callgrind-out-file="$out/$m.packed.cg" \
+        "$out/stream_decode" "$out/${m}_packed/${m}_packed.mcs" "$(cap "$out/${m}_packed/budget.json")" --feeds 1 \
+        >"$out/$m.packed.cg.txt" 2>"$out/$m.packed.cg.log"
+    for mode in plain packed; do
+        "$out/stream_decode" "$out/${m}_$mode/${m}_$mode.mcs" "$(cap "$out/${m}_$mode/budget.json")" 0 >"$out/$m.$mode.txt"
+    done
+    : >"$out/$m.stream.times"
+    for r in $(seq 1 "$rounds"); do
+        line=""
+        for mode in plain packed; do
+            line+=" $("$out/stream_decode" "$out/${m}_$mode/${m}_$mode.mcs" "$(cap "$out/${m}_$mode/budget.json")" 1 |
+                sed -n 's/^ns per [a-z ]* //p' | tr '\n' ' ')"
+        done
+        echo "$line" >>"$out/$m.stream.times"
+    done
+done
+cmds+=("$out/stream_decode $out/NAME_MODE/NAME_MODE.mcs BUFFER 1   # per round, plain then packed, $rounds rounds")
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$out" "$rounds" "$load" >"$out/section.md" <<'PY'
 import json, re, statistics, sys
 out, rounds, load = sys.argv[1:4]
-print("## Progressive mesh: level changes and flash per split\n")
+print("## Progressive mesh: level changes, flash and stream bytes per split\n")
 print("`tests/bench/pmesh.sh` (`make bench`, `make bench-pmesh`): each mesh decimated to the end by modelc `--as both` "
       "and by OpenMesh's own ModProgMeshT with the same modules (quadric error, normal-flip guard); per round, a full "
       "refinement from the base mesh and a full coarsening back: modelc's `mc_pmesh_lod_set` on the baked arrays "
@@ -74,18 +102,38 @@ for m in open(f"{out}/rows.txt").read().split():
 print()
 print("Per round (modelc / OpenMesh ns): " + "; ".join(per_round) + ".")
 print()
-print("The flash per split against a sequential coding: `tests/bench/pmesh_bits.py` reads each bake's arrays back and "
-      "counts what its records would take as variable-length fields decoded in split order (a measure, not a format: "
-      "such a stream could not be read at random, so the faces and positions of the level drawn would have to be "
-      "decoded into RAM). Corners: at its split's level each corner of a new face is the split vertex, its parent or a "
-      "third vertex x, and the full mesh's corner an offset in that vertex's subtree; parent and subtree size Elias "
-      "gamma; positions the Elias-gamma difference to the parent's. Below that, a decoder that also keeps the level's "
-      "mesh, each vertex's faces, as it goes (a half-edge mesh in RAM, as OpenMesh's): x as a rank among the parent's "
-      "neighbours, the position from the mean of the new vertex's neighbours.\n")
-print("```")
+print("The same mesh as a stream (`--emit stream --as both --depth 1`), its splits plain (version 2: the records "
+      "above, 25 bytes a split) and packed (`--stream-splits packed`, version 3, runtime/include/modelc/stream.h: "
+      "the split vertex implied by the depth-first order, each new face's third corner a rank among the parent's "
+      "neighbours, each corner an offset in its vertex's subtree, positions Exp-Golomb coded as differences to the "
+      "mean of the new vertex's neighbours). The reader decodes the packed splits into the same arrays as the plain "
+      "ones (tests/stream/suite.sh checks them byte for byte against the bake), keeping the level's mesh in the "
+      "receive buffer while it does (`MC_STREAM_PACKED_BYTES`: 24 B a face and 12 B a vertex more). Bytes per split: "
+      "the base and split records, framing included, over the splits. Read: `mc_stream_feed` of the whole file in "
+      "one piece, every record checked (CRC-32 included), over the splits (tests/bench/stream_decode.c; per round "
+      "plain then packed, median over rounds). Level change: `mc_pmesh_lod_set` from the base to the full level "
+      "and back on the arrays the stream filled. Ir: callgrind, `mc_stream_packed_splits` only, per split.\n")
+print("| mesh | plain B per split | packed B per split | .pm B per split | plain read ns per split | packed read ns per split "
+      "| packed splits per s | packed decoder Ir per split | level change ns (packed stream's arrays) | buffer plain | buffer packed |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+per_round = []
 for m in open(f"{out}/rows.txt").read().split():
-    print(open(f"{out}/{m}.bits.txt").read().rstrip())
-print("```")
+    head = {}
+    for mode in ("plain", "packed"):
+        f = open(f"{out}/{m}.{mode}.txt").read().split()
+        head[mode] = (int(f[3]), int(f[6]))   # splits, mesh bytes
+    rows = [list(map(float, l.split())) for l in open(f"{out}/{m}.stream.times")]
+    med = [statistics.median(r[k] for r in rows) for k in range(4)]
+    refs = int(re.search(r"refs:\s+([\d,]+)", open(f"{out}/{m}.packed.cg.log").read()).group(1).replace(",", ""))
+    pm = int(re.search(r"pm bytes (\d+)", open(f"{out}/{m}.om.txt").read()).group(1))
+    S = head["packed"][0]
+    buf = {mode: json.load(open(f"{out}/{m}_{mode}/budget.json"))["stream"]["buffer"] for mode in ("plain", "packed")}
+    print(f"| {m} | {head['plain'][1] / S:.2f} | {head['packed'][1] / S:.2f} | {pm / S:.2f} | {med[0]:.0f} | {med[2]:.0f} | "
+          f"{1e9 / med[2] / 1e6:.2f} M | {refs / S:.0f} | {med[3]:.2f} | {buf['plain']:,} B | {buf['packed']:,} B |")
+    per_round.append(f"{m}: " + ", ".join(f"{r[0]:.0f} / {r[2]:.0f}" for r in rows))
+print()
+print("Per round (plain / packed read ns per split): " + "; ".join(per_round) + ".")
+print()
 print(f"Load average at the end: {load}.")
 PY
 write_section "$results" pmesh "$out/section.md" "${cmds[@]}"
