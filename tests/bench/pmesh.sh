@@ -12,12 +12,12 @@
 # read time per split, callgrind instructions per split of the packed decoder. Writes (in place) a
 # marked section of RESULTS.md.
 #   tests/bench/pmesh.sh [RESULTS.md]        (make bench runs it; make bench-pmesh alone)
-#   PMESH_MODELS ("bunny00 fandisk"), PMESH_ROUNDS (7)
+#   PMESH_MODELS ("bunny00 fandisk lion_head"), PMESH_ROUNDS (7)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
-models=${PMESH_MODELS:-bunny00 fandisk} rounds=${PMESH_ROUNDS:-7}
+models=${PMESH_MODELS:-bunny00 fandisk lion_head} rounds=${PMESH_ROUNDS:-7}
 out=build/bench/pmesh
 mkdir -p "$out"
 cmds=()
