@@ -142,6 +142,7 @@ MODEL_FILES := $(foreach m,$(CATALOGUE),$(BUILD)/models/$(notdir $($(m).src)))
 models: $(MODEL_FILES)
 $(BUILD)/models/%:
 	@test -f $(CGAL_DATA) || { echo "modelc: $(CGAL_DATA) missing: run make deps (package libcgal-demo)" >&2; exit 1; }
+	@test -n "$(filter %/$*,$(foreach m,$(CATALOGUE),$($(m).src)))" || { echo "modelc: $@: no catalogue model has this file (models/catalogue.mk)" >&2; exit 1; }
 	@mkdir -p $(@D)
 	@tar -xzf $(CGAL_DATA) -O $(filter %/$*,$(foreach m,$(CATALOGUE),$($(m).src))) > $@.tmp && mv $@.tmp $@
 

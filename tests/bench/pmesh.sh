@@ -16,6 +16,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/bench/section.sh
+. tests/lib.sh   # model_file
 results=${1:-tests/bench/RESULTS.md}
 models=${PMESH_MODELS:-bunny00 fandisk lion_head} rounds=${PMESH_ROUNDS:-7}
 out=build/bench/pmesh
@@ -25,8 +26,7 @@ run() { cmds+=("$*"); "$@"; }
 run g++ -O2 -std=c++17 -o "$out/openmesh_pm" tests/bench/openmesh_pm.cpp -lOpenMeshTools -lOpenMeshCore
 : >"$out/rows.txt"
 for m in $models; do
-    src=build/models/$m.off
-    [ -f "$src" ] || make -s "$src"
+    src=$(model_file "$m") || { echo "pmesh.sh: $m: no such catalogue model, or it cannot be extracted" >&2; exit 1; }
     run build/bin/modelc "$src" -o "$out" --name "$m" --depth 5 --as both -q
     run gcc -O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Iruntime/include "-DPM=mc_pmesh_$m" \
         -include "$out/$m/$m.h" -o "$out/$m-lod" tests/bench/pmesh_lod.c runtime/src/pmesh.c "$out/$m"/*.c
@@ -49,7 +49,7 @@ run gcc -O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Iruntime/includ
 cap() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['stream']['buffer'])" "$1"; }
 for m in $models; do
     for mode in plain packed; do
-        run build/bin/modelc "build/models/$m.off" -o "$out" --name "${m}_$mode" --depth 1 --as both --emit stream \
+        run build/bin/modelc "$(model_file "$m")" -o "$out" --name "${m}_$mode" --depth 1 --as both --emit stream \
             --stream-splits "$mode" -q
     done
     run valgrind --tool=callgrind --toggle-collect=mc_stream_packed_splits --callgrind-out-file="$out/$m.packed.cg" \
