@@ -13,7 +13,7 @@
 #     level before, its checksums equal the host's; a stream larger than the buffer (lm3s6965evb:
 #     mps2-an386's real depth-7 stream; mps2-an386: a header claiming one byte more than its
 #     buffer): "size at byte 12"; on lm3s6965evb (the reader's checks, the same code on both) a
-#     flipped byte: "crc" at that record, the level before kept; version 3 with a valid header CRC:
+#     flipped byte: "crc" at that record, the level before kept; version 4 with a valid header CRC:
 #     "version at byte 4"; random bytes: "magic"; each without a fault ("done", exit status 1) and
 #     as the host viewer's --stream reports it
 #   - lm3s6965evb: nothing arrives: "truncated at byte 0" after wait=500 ms; QEMU stopped (SIGSTOP)
@@ -49,7 +49,7 @@ def reheader(d):   # a valid header CRC, so that only the field itself is wrong
     d[16:20] = struct.pack("<I", zlib.crc32(bytes(d[:16])))
 if kind == "cut": d = d[:arg]
 elif kind == "flip": d[arg] ^= 0x40
-elif kind == "version": d[4:6] = struct.pack("<H", 3); reheader(d)
+elif kind == "version": d[4:6] = struct.pack("<H", 4); reheader(d)
 elif kind == "claim": d[12:16] = struct.pack("<I", arg); reheader(d)
 open(dst, "wb").write(d)
 EOF
@@ -138,7 +138,7 @@ print(d, s["bytes"], a[d - 3], a[d - 2])' "$bake/budget.json")
         forge "$mcs" "$out/$b.version.mcs" version
         run $b version "$out/$b.version.mcs"
         expect $b version "^stream error version at byte 4 after 20 bytes; keeping depth 0 \(nothing drawable\)$" \
-            "version 3 (header CRC valid)"
+            "version 4 (header CRC valid)"
         python3 -c 'import random, sys; random.seed(12); sys.stdout.buffer.write(bytes(random.randrange(256) for _ in range(3000)))' \
             >"$out/$b.garbage.mcs"
         run $b garbage "$out/$b.garbage.mcs"

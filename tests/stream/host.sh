@@ -7,7 +7,8 @@
 # nothing was drawable; a flipped byte and a wrong version: the error and its byte, the last good
 # level drawn; --stream refused by a bake without a stream buffer. And a version-2 stream (bunny00
 # --as both at depth 4): its mesh drawn shaded and in lines as the compiled-in mesh at the level
-# that came (--lod), whole and cut after mesh records; a mesh larger than the viewer's buffers.
+# that came (--lod), whole and cut after mesh records; a mesh larger than the viewer's buffers; and
+# with --stream-splits packed (version 3), through a viewer whose buffer holds the decoder's state.
 set -u
 cd "$(dirname "$0")/../.."
 TAP_PREFIX="stream: host: "
@@ -116,7 +117,7 @@ flip[at] ^= 0x40
 open(sys.argv[2] + '/flip.mcs', 'wb').write(flip)
 open(sys.argv[2] + '/flip.at', 'w').write('%d %d\n' % (at, ends[3]))
 ver = bytearray(data)
-ver[4:6] = struct.pack('<H', 3)
+ver[4:6] = struct.pack('<H', 4)
 ver[16:20] = struct.pack('<I', zlib.crc32(bytes(ver[:16])))
 open(sys.argv[2] + '/version.mcs', 'wb').write(ver)
 EOF
@@ -129,8 +130,8 @@ rm -f "$dir/version.ppm"
 "$view" --stream - --ppm "$dir/version.ppm" <"$dir/version.mcs" >/dev/null 2>"$dir/version.err"
 rc=$?
 [ $rc -eq 1 ] && grep -q "^bunny-view: stream: version at byte 4; nothing was drawable" "$dir/version.err" && [ ! -e "$dir/version.ppm" ] ||
-    problems+="version 3: exit $rc, $(oneline <"$dir/version.err"); "
-check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 3: 'version at byte 4', no file; exit 1 both" "$problems"
+    problems+="version 4: exit $rc, $(oneline <"$dir/version.err"); "
+check_problems "a flipped byte in level 5: 'crc at byte N', depth 4's frame kept; version 4: 'version at byte 4', no file; exit 1 both" "$problems"
 
 # interactive FILE CUT STATUS FIRST REST VIEWER ARGS...: the viewer in a tmux pane reading a FIFO; FILE's
 # first CUT bytes sent, the status line (the last line matching STATUS) must match FIRST within 20 s;
@@ -252,6 +253,36 @@ if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit st
         problems+="tmux missing (make deps installs it); "
     fi
     check_problems "mesh, --lod auto with --stream: one frame of a cut stream is the compiled-in mesh's at the level that came; interactive (tmux): at --target-ms 10000 the level that has come ($level, then $full), at 0.01 the base" "$problems"
+    # packed splits (version 3): the same mesh through a viewer whose buffer holds the decoder's state
+    problems=""
+    if build/bin/modelc "$model" -o "$dir" --name packed --depth 4 --as both --emit stream --stream-splits packed -q \
+        >"$dir/packed-bake.log" 2>&1 && link packed; then
+        pview=$dir/packed/packed-view
+        pmcs=$dir/packed/packed.mcs
+        mapfile -t plevels < <(python3 -c "import json,sys; [print(m['at'], m['level']) for m in json.load(open(sys.argv[1]))['stream']['mesh_levels']]" "$dir/packed/budget.json")
+        for m in shaded lines; do
+            "$pview" --mode $m --yaw 30 --pitch 20 --ppm "$dir/pref-$m.ppm" >/dev/null
+            for src in "$pmcs" "$mmcs"; do   # its own stream, and the plain one of the same mesh
+                "$pview" --stream "$src" --mode $m --yaw 30 --pitch 20 --ppm "$dir/pwhole.ppm" >"$dir/pwhole.out" 2>&1
+                rc=$?
+                [ $rc -eq 0 ] && cmp -s "$dir/pwhole.ppm" "$dir/pref-$m.ppm" && grep -q "^stream: mesh level $full of $full after" "$dir/pwhole.out" ||
+                    problems+="whole $(basename "$src"), $m: exit $rc, $(oneline <"$dir/pwhole.out"); "
+            done
+        done
+        read -r at level <<<"${plevels[$((${#plevels[@]} / 2))]}"
+        head -c "$at" "$pmcs" >"$dir/pcut.mcs"
+        "$pview" --mode shaded --lod "$level" --yaw 30 --pitch 20 --ppm "$dir/pref.ppm" >/dev/null
+        "$pview" --stream "$dir/pcut.mcs" --mode shaded --yaw 30 --pitch 20 --ppm "$dir/pcut.ppm" >/dev/null 2>"$dir/pcut.err"
+        rc=$?
+        [ $rc -eq 1 ] && cmp -s "$dir/pcut.ppm" "$dir/pref.ppm" && grep -q "truncated at byte $at; .*mesh level $level$" "$dir/pcut.err" ||
+            problems+="cut $at: exit $rc, $(oneline <"$dir/pcut.err"); "
+        "$mview" --stream "$pmcs" --mode shaded --ppm "$dir/prefused.ppm" >/dev/null 2>"$dir/prefused.err"
+        rc=$?
+        [ $rc -eq 1 ] && [ "$(wc -l <"$dir/prefused.err")" = 1 ] && grep -q "size" "$dir/prefused.err" || problems+="packed into a plain viewer: exit $rc, $(oneline <"$dir/prefused.err"); "
+    else
+        problems+="bake or link: $(oneline <"$dir/packed-bake.log"); "
+    fi
+    check_problems "mesh, packed splits (version 3): the whole stream, and the plain stream of the same mesh, equal to the compiled-in mesh shaded and in lines; cut at the middle batch, exit 1 and --lod's frame at its level; into the plain bake's viewer (its buffer has no room for the decoder): exit 1, one line" "$problems"
 else
     notok "mesh bakes with --as both --emit stream and their viewers" "$(cat "$dir/mesh-bake.log" "$dir"/*.link.log 2>/dev/null | tail -n 5 | oneline)"
 fi

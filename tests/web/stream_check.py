@@ -417,10 +417,10 @@ def main():
             data[at] ^= 0x55
             damaged('flip%d' % lv, bytes(data), 'crc', da[lv - 2], lv - 1,
                     'byte %d (level %d\'s record) flipped' % (at, lv))
-        forged = bytearray(stream)   # version 3 under a valid header CRC
-        forged[4:6] = struct.pack('<H', 3)
+        forged = bytearray(stream)   # version 4 under a valid header CRC
+        forged[4:6] = struct.pack('<H', 4)
         forged[16:20] = struct.pack('<I', zlib.crc32(bytes(forged[:16])))
-        damaged("version", bytes(forged), "version", 4, 0, "version 3 (header CRC valid)")
+        damaged("version", bytes(forged), "version", 4, 0, "version 4 (header CRC valid)")
         raw = bytearray(stream)
         raw[4] ^= 0x03
         damaged('versionbyte', bytes(raw), 'crc', 0, 0, 'the version byte changed alone')
