@@ -15,6 +15,8 @@
 #     classification of the level's faces gives it, and the lines drawn as those edges' lines (clipped
 #     at the near plane with the eye inside);
 #   - every eighth checked level: each face's neighbours equal a search of the level's faces;
+#   - for the made shapes, the stream with packed splits (--stream-splits packed): the arrays its reader
+#     decodes equal the bake's (tests/stream/stream_check.c arrays);
 #   - silhouettes (tests/gen/sil_check.c): the exact scan equals the line drawing's classification, the
 #     bounded search lists only silhouettes, each once, within its budget, the same on every run;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
@@ -249,6 +251,27 @@ v += [(2, 0, 0), (2.5, 0, 0), (3, 0, 0), (0, 0, 0)]       # collinear three, and
 f += [(n, n + 1, n + 2), (n, n + 2, n + 1), (0, 0, 5), (n + 3, 1, 11)]
 off("degenerate", v, f)
 PY
+# packed LABEL FILE: the shape as a stream with packed splits (stream.h version 3): the arrays the
+# reader decodes equal the bake's (tests/stream/stream_check.c arrays)
+packed() {
+    local label=$1 file=$2 name r
+    name=packed_$(echo "$label" | tr -c 'a-z0-9\n' '_')
+    rm -rf "${out:?}/$name"
+    if ! "$modelc" "$file" -o "$out" --name "$name" --depth 3 --as both --emit stream --stream-splits packed -q \
+        >"$tmp/$name.log" 2>&1; then
+        notok "$label: bakes --emit stream --stream-splits packed" "$(oneline <"$tmp/$name.log")"
+        return 1
+    fi
+    # shellcheck disable=SC2086
+    if ! gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include -o "$tmp/$name-check" tests/stream/stream_check.c \
+        runtime/front/common/mesh_frame.c "$out/$name"/*.c $rt -lm >"$tmp/$name.cc" 2>&1; then
+        notok "$label: stream_check builds with the packed bake" "$(head -n 3 "$tmp/$name.cc" | oneline)"
+        return 1
+    fi
+    r=$("$tmp/$name-check" arrays "$out/$name/$name.mcs" 2>&1)
+    if [[ $r == ok* ]]; then ok "$label: packed splits: ${r#ok }"; else notok "$label: packed splits" "$r"; fi
+}
+
 for s in open_grid thin_sheet components non_manifold degenerate; do
     bake_check "$s" "$tmp/$s.off" || continue
     budget_adds_up "$s"
@@ -256,6 +279,7 @@ for s in open_grid thin_sheet components non_manifold degenerate; do
     V0=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['base_vertices'])")
     for n in $(printf '%s\n' "$V0" $(((V0 + V) / 2)) "$V" | uniq); do same_as_openmesh "$s" "$tmp/$s.off" "$n"; done
     renders "$s" "$V"
+    packed "$s" "$tmp/$s.off"
 done
 # what the input had, as budget.json reports it
 inputs() { python3 -c "import json; i=json.load(open('$out/$1/budget.json'))['pmesh']['input']; print(i['$2'])"; }
