@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -18,7 +19,7 @@ namespace mc {
 namespace {
 
 constexpr int kKindPalette = 1, kKindLevel = 2, kKindEnd = 3, kKindMesh = 4, kKindBase = 5, kKindSplits = 6,
-              kKindAdjacency = 7, kKindPacked = 8;
+              kKindAdjacency = 7, kKindPacked = 8, kKindPackedAdjacency = 9;
 constexpr size_t kHeaderBytes = 20, kRecordBytes = 12;
 
 uint32_t crc32(const std::string &s, size_t from, size_t n) {
@@ -227,6 +228,22 @@ class SplitPacker {
     }
 };
 
+// A packed stream's reader finds each half-edge's opposite as the one half-edge that runs the other
+// way between the same two vertices of the full mesh (stream.h, kind 9); the part's own must be that.
+void check_opposites_derivable(const PMesh &pm) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> half;   // (from, to) -> half-edge
+    for (size_t f = 0; f < pm.faces.size(); f++)
+        for (unsigned k = 0; k < 3; k++)
+            if (!half.emplace(std::make_pair(pm.faces[f][k], pm.faces[f][(k + 1) % 3]), 4 * f + k).second)
+                throw std::runtime_error("--stream-splits packed: two faces run the same way along one edge");
+    for (size_t f = 0; f < pm.faces.size(); f++)
+        for (unsigned k = 0; k < 3; k++) {
+            const auto it = half.find({pm.faces[f][(k + 1) % 3], pm.faces[f][k]});
+            if ((it == half.end() ? kNoHalfEdge : it->second) != pm.opposite[f][k])
+                throw std::runtime_error("--stream-splits packed: an edge's opposite is not the half-edge back along it");
+        }
+}
+
 // Splits per record: the batches double the vertex count until they hold 4096 splits, so that the
 // first pictures come soon and a receiver still checks a bounded record at a time.
 constexpr size_t kFirstBatch = 64, kLargestBatch = 4096;
@@ -293,6 +310,13 @@ std::vector<MeshRecord> mesh_records(const PMesh &pm, bool packed) {
         out.push_back({kKindSplits, p, V0 + first});
     }
     std::string a;
+    if (packed) {   // the opposites are the reader's to find; the edge order, 3 f + k in width(3 F) bits
+        check_opposites_derivable(pm);
+        BitWriter w;
+        for (uint32_t h : pm.edge_order) w.bits(3 * (h >> 2) + (h & 3), width(3 * F));
+        out.push_back({kKindPackedAdjacency, w.bytes, 0});
+        return out;
+    }
     for (const auto &o : pm.opposite)
         for (uint32_t x : o) put_n(a, x, hb);
     for (uint32_t x : pm.edge_order) put_n(a, x, hb);
@@ -347,12 +371,13 @@ Stream bake_stream(const Octree &t, const PMesh *pm, bool packed) {
     // has had, then the adjacency (stream.h)
     auto put_mesh = [&](const MeshRecord &r) {
         record(s, r.kind, 0, r.payload);
-        if (r.kind == kKindAdjacency) out.lines_at = s.size();
+        if (r.kind == kKindAdjacency || r.kind == kKindPackedAdjacency) out.lines_at = s.size();
         else if (r.level) out.mesh_levels.push_back({s.size(), r.level});
     };
     size_t m = 0, octree_bytes = 0, mesh_bytes = 0;
     auto splits = [&](size_t i) { return i < mesh.size() && (mesh[i].kind == kKindSplits || mesh[i].kind == kKindPacked); };
-    for (; m < mesh.size() && !splits(m) && mesh[m].kind != kKindAdjacency; m++) put_mesh(mesh[m]);
+    auto adjacency = [&](size_t i) { return mesh[i].kind == kKindAdjacency || mesh[i].kind == kKindPackedAdjacency; };
+    for (; m < mesh.size() && !splits(m) && !adjacency(m); m++) put_mesh(mesh[m]);
     for (int l = 0; l <= t.depth; l++) {
         for (; splits(m) && mesh_bytes < octree_bytes; m++) {
             mesh_bytes += mesh[m].payload.size();

@@ -161,7 +161,7 @@ static int next_record(mc_stream *s)
     } else if (kind == KIND_END && level == 0 && n == 0 && s->levels_read == s->depth + 1u &&
                (!s->has_mesh || s->mesh_state == 3) && r + MC_STREAM_RECORD_BYTES == s->total) {
         s->ended = 1;
-    } else if (kind >= MC_STREAM_KIND_MESH && kind <= MC_STREAM_KIND_PACKED && level == 0) {
+    } else if (kind >= MC_STREAM_KIND_MESH && kind <= MC_STREAM_KIND_PACKED_ADJACENCY && level == 0) {
         if (mc_stream_mesh_record(s, kind, r + 8, n, r)) return 1;
     } else {
         return mc_stream_fail(s, MC_STREAM_ERR_RECORD, r), 1;

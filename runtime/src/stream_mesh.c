@@ -143,27 +143,33 @@ static int splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
  * one it was read for (or a border), every edge of the order a half-edge of the mesh. */
 static int adjacency(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
 {
-    mc_pmesh *pm = &s->pmesh;
+    const mc_pmesh *pm = &s->pmesh;
     const unsigned hb = pm->half_bytes;
-    const uint32_t none = hb == 2 ? 0xFFFFu : MC_NO_HALF_EDGE;
     if (s->splits_read != pm->vertices - pm->base_vertices || s->faces_read != pm->faces ||
         (uint64_t)pm->faces * 3u * hb + (uint64_t)pm->edges * hb != n)
         return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at - 8);
+    return mc_stream_adjacency(s, p, p + 3u * hb * pm->faces, at, 1);
+}
+
+int mc_stream_adjacency(mc_stream *s, const uint8_t *opposite, const uint8_t *order, uint32_t at, int in_place)
+{
+    mc_pmesh *pm = &s->pmesh;
+    const unsigned hb = pm->half_bytes;
+    const uint32_t none = hb == 2 ? 0xFFFFu : MC_NO_HALF_EDGE;
     for (uint32_t f = 0; f < pm->faces; f++)
         for (uint32_t k = 0; k < 3; k++) {
-            const uint32_t i = 3u * f + k, o = le(p + i * hb, hb);
+            const uint32_t i = 3u * f + k, o = le(opposite + i * hb, hb);
             if (o == none) continue;
             const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
-            if (g >= pm->faces || j > 2 || le(p + (3u * g + j) * hb, hb) != MC_HALF_EDGE(f, k))
-                return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + i * hb);
+            if (g >= pm->faces || j > 2 || le(opposite + (3u * g + j) * hb, hb) != MC_HALF_EDGE(f, k))
+                return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + (in_place ? i * hb : 0u));
         }
-    const uint8_t *order = p + 3u * hb * pm->faces;
     for (uint32_t e = 0; e < pm->edges; e++) {
         const uint32_t h = le(order + e * hb, hb);
         if (h == none || MC_HALF_FACE(h) >= pm->faces || MC_HALF_EDGE_INDEX(h) > 2)
-            return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + (uint32_t)(order - p) + e * hb);
+            return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + (in_place ? 3u * hb * pm->faces + e * hb : 0u));
     }
-    s->mesh_chunks[4][0].data = p, s->mesh_chunks[4][0].size = 3u * hb * pm->faces;
+    s->mesh_chunks[4][0].data = opposite, s->mesh_chunks[4][0].size = 3u * hb * pm->faces;
     s->mesh_chunks[5][0].data = order, s->mesh_chunks[5][0].size = hb * pm->edges;
     pm->opposite = s->mesh_chunks[4];
     pm->edge_order = s->mesh_chunks[5];
@@ -180,7 +186,9 @@ int mc_stream_mesh_record(mc_stream *s, unsigned kind, uint32_t at, uint32_t n, 
     if (in_order && kind == MC_STREAM_KIND_SPLITS && s->mesh_state == 2 && s->version == 2) return splits(s, p, n, at);
     if (in_order && kind == MC_STREAM_KIND_PACKED && s->mesh_state == 2 && s->version == 3)
         return mc_stream_packed_splits(s, p, n, at);
-    if (in_order && kind == MC_STREAM_KIND_ADJACENCY && s->mesh_state == 2) return adjacency(s, p, n, at);
+    if (in_order && kind == MC_STREAM_KIND_ADJACENCY && s->mesh_state == 2 && s->version == 2) return adjacency(s, p, n, at);
+    if (in_order && kind == MC_STREAM_KIND_PACKED_ADJACENCY && s->mesh_state == 2 && s->version == 3)
+        return mc_stream_packed_adjacency(s, p, n, at);
     return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at_record);
 }
 

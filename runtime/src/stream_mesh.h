@@ -14,6 +14,7 @@
 #define MC_STREAM_KIND_SPLITS 6
 #define MC_STREAM_KIND_ADJACENCY 7
 #define MC_STREAM_KIND_PACKED 8
+#define MC_STREAM_KIND_PACKED_ADJACENCY 9
 
 /* Records the first error (and where it was found); returns the stream's error. Inline here, so
  * that stream_mesh.c needs nothing of stream.c: the calls go one way, stream.c to stream_mesh.c. */
@@ -30,6 +31,11 @@ static inline int mc_stream_fail(mc_stream *s, int error, uint32_t at)
  * MC_STREAM_OK, or the error, recorded. */
 int mc_stream_mesh_record(mc_stream *s, unsigned kind, uint32_t at, uint32_t n, uint32_t at_record);
 
+/* The adjacency checked and taken: opposite (3 F half-edges) and order (E), hb bytes each, where
+ * they lie in the buffer; an error is recorded at at, plus the entry's offset when in_place (the
+ * arrays are the record's payload at at, one after the other). MC_STREAM_OK, or the error. */
+int mc_stream_adjacency(mc_stream *s, const uint8_t *opposite, const uint8_t *order, uint32_t at, int in_place);
+
 /* Version 3's packed splits (stream_packed.c). start: the decoder's state at area (the buffer after
  * the mesh arrays, MC_STREAM_PACKED_BYTES of it), once the mesh header is read; returns its bytes.
  * base: the base faces' corners placed at their roots (roots: the base record's vertex entries,
@@ -38,5 +44,8 @@ int mc_stream_mesh_record(mc_stream *s, unsigned kind, uint32_t at, uint32_t n, 
 uint32_t mc_stream_packed_start(mc_stream *s, uint8_t *area);
 void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per);
 int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at);
+/* Version 3's adjacency (kind 9): the opposites found from the full mesh the splits built, the edge
+ * order decoded; both into the decoder's state, which the full mesh no longer needs. */
+int mc_stream_packed_adjacency(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at);
 
 #endif

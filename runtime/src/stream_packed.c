@@ -231,3 +231,39 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
     s->faces_read = faces;
     return MC_STREAM_OK;
 }
+
+int mc_stream_packed_adjacency(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
+{
+    const mc_pmesh *pm = &s->pmesh;
+    const unsigned ib = pm->index_bytes, hb = pm->half_bytes;
+    const uint32_t F = pm->faces, E = pm->edges, w = width(3u * F);
+    if (s->splits_read != pm->vertices - pm->base_vertices || s->faces_read != F || n != ((uint64_t)E * w + 7u) / 8u)
+        return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at - 8);
+    if (E > 3u * F) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at - 8);
+    /* the opposites: the half-edge back along each edge, found among the corners at its end; written
+     * over the corners' levels, which the full mesh no longer needs (3 F entries of 4 bytes) */
+    uint8_t *opposite = (uint8_t *)s->pk_level;
+    for (uint32_t c = 0; c < 3u * F; c++) {
+        const uint32_t f = c / 3u, k = c - 3u * f;
+        const uint32_t a = le(corner_at(s, c), ib), b = le(corner_at(s, 3u * f + (k == 2u ? 0u : k + 1u)), ib);
+        uint32_t o = hb == 2 ? 0xFFFFu : MC_NO_HALF_EDGE;
+        for (uint32_t d = s->pk_head[b]; d != NONE; d = s->pk_next[d]) {   /* d: corner j of face g, at b */
+            const uint32_t g = d / 3u, j = d - 3u * g;
+            if (le(corner_at(s, 3u * g + (j == 2u ? 0u : j + 1u)), ib) == a) {
+                o = MC_HALF_EDGE(g, j);
+                break;
+            }
+        }
+        put(opposite + c * hb, o, hb);
+    }
+    /* the edge order, over the corners' lists (E <= 3 F entries of 4 bytes) */
+    uint8_t *order = (uint8_t *)s->pk_next;
+    bit_reader b = {p, 8u * n, 0, 0};
+    for (uint32_t e = 0; e < E; e++) {
+        const uint32_t x = get(&b, w);
+        if (x >= 3u * F) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + e * w / 8u);
+        put(order + e * hb, MC_HALF_EDGE(x / 3u, x % 3u), hb);
+    }
+    if (b.at < b.bits && get(&b, b.bits - b.at) != 0) return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at + n - 1u);
+    return mc_stream_adjacency(s, opposite, order, at, 0);
+}

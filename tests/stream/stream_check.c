@@ -83,7 +83,7 @@ static int index_file(void)
             mesh_level_at[mesh_records++] = base + (kind != 5 ? le32(p) + le32(p + 4) : 0);
         }
         if (kind == 5 || kind == 6 || kind == 8) level_bytes += 12u + le32(p - 4);   /* the record, framing and all */
-        if (kind == 7) lines_end = at;
+        if (kind == 7 || kind == 9) lines_end = at;
     }
     return at == file_len ? 0 : -1;
 }

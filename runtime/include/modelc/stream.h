@@ -24,8 +24,10 @@
  * proportional to the bytes fed.
  *
  * A version-3 stream is a version-2 stream whose splits come packed (kind 8 instead of 6, about a
- * third of the bytes): the reader decodes them into the same arrays, keeping the level's mesh in the
- * buffer while it does (MC_STREAM_PACKED_BYTES more), so every level is the same as from version 2.
+ * third of the bytes) and whose adjacency is the edge order alone (kind 9 instead of 7): the reader
+ * decodes the splits into the same arrays, keeping the level's mesh in the buffer while it does
+ * (MC_STREAM_PACKED_BYTES more), finds the opposites from the full mesh it built and writes them
+ * and the edge order over that state; every level, and the adjacency, are the same as version 2's.
  *
  * The format, versions 1, 2 and 3 (all integers little-endian):
  *   header, 20 bytes:  "mcs" 0x1A | u16 version (1, 2 or 3) | u8 depth D (1..MC_MAX_DEPTH) |
@@ -52,7 +54,7 @@
  *                      u[ib] parent | u[ib] subtree size | its faces' 3 u[ib] corners each;
  *                      until all V - V0 splits and F faces have come
  *     kind 7, adjacency: F records of 3 u[hb] opposites, then E u[hb] half-edges: the edge order
- *   version 3 only, kind 8 in place of kind 6:
+ *   version 3 only, kinds 8 and 9 in place of kinds 6 and 7:
  *     kind 8, packed splits: u32 first split | u32 count k >= 1 | u8 order g (0..16) | bits, most
  *                      significant first in each byte, the last byte's unused bits zero. Per split,
  *                      with the level before it (the base and the splits before it) known:
@@ -69,6 +71,11 @@
  *                      vertex's n neighbours after the split. width(n): the bits of an offset below
  *                      n, 0 for n <= 1. Exp-Golomb order g of u: u + 2^g has b + 1 bits; b - g zeros,
  *                      then those b + 1 bits.
+ *     kind 9, packed adjacency (in place of kind 7, after the last split): the edge order, each
+ *                      half-edge 4 f + k as 3 f + k in width(3 F) bits, most significant first, the
+ *                      last byte's unused bits zero. The opposites are not sent: each half-edge's is
+ *                      the half-edge of the full mesh that runs back between the same two vertices
+ *                      (none: a border), which the generator checks holds before it packs.
  *   kind 3, end:       no payload; last, and the stream's total is where it ends
  * The mesh records hold pmesh.h's arrays in split order: the base and each batch of splits bring
  * their vertices' position and tree records (placed at their indices in the buffer's mesh arrays)
@@ -101,7 +108,7 @@
 /* What a version-3 stream's reader needs in the buffer after the mesh arrays to decode packed
  * splits: per corner of the F faces its vertex at the decoded level and the next corner of that
  * vertex; per vertex of V its first corner, its next child's index and a mark (4 bytes each, from a
- * multiple of 4). */
+ * multiple of 4). The opposites and the edge order are then written over the first two. */
 #define MC_STREAM_PACKED_BYTES(V, F) (24u * (uint32_t)(F) + 12u * (uint32_t)(V) + 4u)
 
 enum {
