@@ -106,29 +106,32 @@ print("The same mesh as a stream (`--emit stream --as both --depth 1`), its spli
       "above, 25 bytes a split) and packed (`--stream-splits packed`, version 3, runtime/include/modelc/stream.h: "
       "the split vertex implied by the depth-first order, each new face's third corner a rank among the parent's "
       "neighbours, each corner an offset in its vertex's subtree, positions Exp-Golomb coded as differences to the "
-      "mean of the new vertex's neighbours). The reader decodes the packed splits into the same arrays as the plain "
+      "mean of the new vertex's neighbours; the adjacency the edge order alone, the opposites found by the reader). "
+      "The reader decodes the packed splits into the same arrays as the plain "
       "ones (tests/stream/suite.sh checks them byte for byte against the bake), keeping the level's mesh in the "
       "receive buffer while it does (`MC_STREAM_PACKED_BYTES`: 24 B a face and 12 B a vertex more). Bytes per split: "
-      "the base and split records, framing included, over the splits. Read: `mc_stream_feed` of the whole file in "
+      "the base and split records, framing included, over the splits; the adjacency's record likewise. Read: `mc_stream_feed` of the whole file in "
       "one piece, every record checked (CRC-32 included), over the splits (tests/bench/stream_decode.c; per round "
       "plain then packed, median over rounds). Level change: `mc_pmesh_lod_set` from the base to the full level "
       "and back on the arrays the stream filled. Ir: callgrind, `mc_stream_packed_splits` only, per split.\n")
-print("| mesh | plain B per split | packed B per split | .pm B per split | plain read ns per split | packed read ns per split "
-      "| packed splits per s | packed decoder Ir per split | level change ns (packed stream's arrays) | buffer plain | buffer packed |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+print("| mesh | plain B per split | packed B per split | .pm B per split | adjacency B per split, plain / packed | "
+      "plain read ns per split | packed read ns per split | packed splits per s | packed decoder Ir per split | "
+      "level change ns (packed stream's arrays) | buffer plain | buffer packed |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 per_round = []
 for m in open(f"{out}/rows.txt").read().split():
     head = {}
     for mode in ("plain", "packed"):
         f = open(f"{out}/{m}.{mode}.txt").read().split()
-        head[mode] = (int(f[3]), int(f[6]))   # splits, mesh bytes
+        head[mode] = (int(f[3]), int(f[6]), int(f[9]))   # splits, mesh bytes, adjacency bytes
     rows = [list(map(float, l.split())) for l in open(f"{out}/{m}.stream.times")]
     med = [statistics.median(r[k] for r in rows) for k in range(4)]
     refs = int(re.search(r"refs:\s+([\d,]+)", open(f"{out}/{m}.packed.cg.log").read()).group(1).replace(",", ""))
     pm = int(re.search(r"pm bytes (\d+)", open(f"{out}/{m}.om.txt").read()).group(1))
     S = head["packed"][0]
     buf = {mode: json.load(open(f"{out}/{m}_{mode}/budget.json"))["stream"]["buffer"] for mode in ("plain", "packed")}
-    print(f"| {m} | {head['plain'][1] / S:.2f} | {head['packed'][1] / S:.2f} | {pm / S:.2f} | {med[0]:.0f} | {med[2]:.0f} | "
+    print(f"| {m} | {head['plain'][1] / S:.2f} | {head['packed'][1] / S:.2f} | {pm / S:.2f} | "
+          f"{head['plain'][2] / S:.2f} / {head['packed'][2] / S:.2f} | {med[0]:.0f} | {med[2]:.0f} | "
           f"{1e9 / med[2] / 1e6:.2f} M | {refs / S:.0f} | {med[3]:.2f} | {buf['plain']:,} B | {buf['packed']:,} B |")
     per_round.append(f"{m}: " + ", ".join(f"{r[0]:.0f} / {r[2]:.0f}" for r in rows))
 print()

@@ -56,13 +56,16 @@ int main(int argc, char **argv)
         printf("splits %u\n", mc_stream_pmesh(&s)->vertices - mc_stream_pmesh(&s)->base_vertices);
         return 0;
     }
-    uint64_t mesh_bytes = 0;   /* the base's and the splits' records */
-    for (uint32_t at = MC_STREAM_HEADER_BYTES; at + 8 <= n; at += MC_STREAM_RECORD_BYTES + le32(file + at + 4))
+    uint64_t mesh_bytes = 0, adjacency_bytes = 0;   /* the base's and the splits' records; the adjacency's */
+    for (uint32_t at = MC_STREAM_HEADER_BYTES; at + 8 <= n; at += MC_STREAM_RECORD_BYTES + le32(file + at + 4)) {
         if (file[at] == 5 || file[at] == 6 || file[at] == 8) mesh_bytes += MC_STREAM_RECORD_BYTES + le32(file + at + 4);
+        if (file[at] == 7 || file[at] == 9) adjacency_bytes += MC_STREAM_RECORD_BYTES + le32(file + at + 4);
+    }
     if (feed(&s, buf, cap, file, n)) return 1;
     const mc_pmesh *pm = mc_stream_pmesh(&s);
     const uint32_t splits = pm->vertices - pm->base_vertices;
-    printf("version %u splits %u mesh bytes %llu\n", file[4], splits, (unsigned long long)mesh_bytes);
+    printf("version %u splits %u mesh bytes %llu adjacency bytes %llu\n", file[4], splits, (unsigned long long)mesh_bytes,
+           (unsigned long long)adjacency_bytes);
     uint32_t *anc = malloc(MC_PMESH_LOD_BYTES(pm->vertices, 4));
     if (!anc) return 2;
     for (int r = atoi(argv[3]); r > 0; r--) {
