@@ -37,11 +37,11 @@ int mc_stream_mesh_record(mc_stream *s, unsigned kind, uint32_t at, uint32_t n, 
 int mc_stream_adjacency(mc_stream *s, const uint8_t *opposite, const uint8_t *order, uint32_t at, int in_place);
 
 /* Version 3's packed splits (stream_packed.c). start: the decoder's state at area (the buffer after
- * the mesh arrays, MC_STREAM_PACKED_BYTES of it), once the mesh header is read; returns its bytes.
+ * the mesh arrays, MC_STREAM_PACKED_BYTES of it), once the mesh header is read.
  * base: the base faces' corners placed at their roots (roots: the base record's vertex entries,
  * per bytes apart). splits: a kind-8 payload of n bytes at p (at: its offset in the buffer),
  * decoded into the mesh arrays: MC_STREAM_OK, or the error, recorded. */
-uint32_t mc_stream_packed_start(mc_stream *s, uint8_t *area);
+void mc_stream_packed_start(mc_stream *s, uint8_t *area);
 void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per);
 int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at);
 /* Version 3's adjacency (kind 9): the opposites found from the full mesh the splits built, the edge

@@ -82,7 +82,7 @@ static void push(mc_stream *s, uint32_t u, uint32_t c)
     s->pk_head[u] = c;
 }
 
-uint32_t mc_stream_packed_start(mc_stream *s, uint8_t *area)
+void mc_stream_packed_start(mc_stream *s, uint8_t *area)
 {
     const uint32_t V = s->pmesh.vertices, F = s->pmesh.faces;
     uint32_t *w = (uint32_t *)(void *)(area + ((4u - ((uintptr_t)area & 3u)) & 3u));
@@ -93,7 +93,6 @@ uint32_t mc_stream_packed_start(mc_stream *s, uint8_t *area)
     s->pk_stamp = w;
     for (uint32_t v = 0; v < V; v++) s->pk_head[v] = NONE, s->pk_slot[v] = v + 1u, s->pk_stamp[v] = 0;
     s->pk_now = 0;
-    return MC_STREAM_PACKED_BYTES(V, F);
 }
 
 void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per)
