@@ -15,8 +15,8 @@
 #     classification of the level's faces gives it, and the lines drawn as those edges' lines (clipped
 #     at the near plane with the eye inside);
 #   - every eighth checked level: each face's neighbours equal a search of the level's faces;
-#   - for the made shapes, the stream with packed splits (--stream-splits packed): the arrays its reader
-#     decodes equal the bake's (tests/stream/stream_check.c arrays);
+#   - for the made shapes, and a grid of 67,600 vertices (4-byte indices), the stream with packed splits
+#     (--stream-splits packed): the arrays its reader decodes equal the bake's (stream_check.c arrays);
 #   - silhouettes (tests/gen/sil_check.c): the exact scan equals the line drawing's classification, the
 #     bounded search lists only silhouettes, each once, within its budget, the same on every run;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
@@ -250,6 +250,8 @@ n = len(v)
 v += [(2, 0, 0), (2.5, 0, 0), (3, 0, 0), (0, 0, 0)]       # collinear three, and a copy of vertex 0
 f += [(n, n + 1, n + 2), (n, n + 2, n + 1), (0, 0, 5), (n + 3, 1, 11)]
 off("degenerate", v, f)
+# more vertices than 16-bit indices hold (index_bytes 4): a 259 x 259 grid, 67,600 vertices
+off("big_grid", *grid(259))
 PY
 # packed LABEL FILE: the shape as a stream with packed splits (stream.h version 3): the arrays the
 # reader decodes equal the bake's (tests/stream/stream_check.c arrays)
@@ -281,6 +283,10 @@ for s in open_grid thin_sheet components non_manifold degenerate; do
     renders "$s" "$V"
     packed "$s" "$tmp/$s.off"
 done
+# the packed stream's 4-byte indices
+packed big_grid "$tmp/big_grid.off" &&
+    check_problems "big_grid: 67,600 vertices, so 4-byte indices in the packed stream's decoder" \
+        "$(python3 -c "import json; p=json.load(open('$out/packed_big_grid/budget.json'))['pmesh']; print('' if (p['vertices'], p['index_bytes']) == (67600, 4) else p)")"
 # what the input had, as budget.json reports it
 inputs() { python3 -c "import json; i=json.load(open('$out/$1/budget.json'))['pmesh']['input']; print(i['$2'])"; }
 r=$(python3 -c "import json; print(json.load(open('$out/degenerate/budget.json'))['pmesh']['faces'])" 2>&1)
