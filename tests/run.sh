@@ -25,30 +25,30 @@ fi
 # longest first (CPU seconds in tests/README.md), so that the two job slots finish together
 suites=(
     tests/unit/suite.sh       # fixed point, sine table, ... under ASan + UBSan; freestanding builds
-    tests/gen/suite.sh        # determinism, chunks, budget
-    tests/stress/suite.sh     # 2x10^4 random views: guard zones, error bound, ASan + UBSan run
-    tests/sanitize/suite.sh   # the render tests and a viewer again under ASan + UBSan
-    tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
-    tests/gen/pmesh.sh        # the progressive mesh: every level valid, levels equal OpenMesh's decimation
-    tests/gen/qi.sh           # hidden lines by quantitative invisibility: exact in integers, a double reference
-    tests/gen/clip.sh         # near-plane and guard-band clipping in whole frames: eye inside, magnified, random views
-    tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
-    tests/render/suite.sh     # renders against the double-precision reference
-    tests/points/suite.sh     # sparse point sets filled at bake time: closed surfaces, under 2 % background or far side
-    tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
-    tests/web/suite.sh        # the web viewer in headless Chromium: frames equal the native viewer's
-    tests/stream/suite.sh     # streamed bakes: every prefix draws its level exactly, damaged streams refused
-    tests/stream/host.sh      # the host viewer's --stream from a pipe, a FIFO, TCP: cuts and damage keep the last good level
-    tests/web/stream.sh       # the web page over a streaming fetch in headless Chromium: cuts, damage, progressive frames
-    tests/gen/gltf.sh         # glTF input: meshes as .gltf/.glb read and bake as their OFF twins, Debian's samples, malformed files
-    tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
-    tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
     tests/fw/suite.sh         # firmware: Cortex-M3/M4 under QEMU, checksums equal the host's, budgets
+    tests/gen/pmesh.sh        # the progressive mesh: every level valid, levels equal OpenMesh's decimation
     tests/fw/stream.sh        # the stream receiver firmware over the UART under QEMU: levels' checksums equal the host's
+    tests/points/suite.sh     # sparse point sets filled at bake time: closed surfaces, under 2 % background or far side
+    tests/stress/suite.sh     # 2x10^4 random views: guard zones, error bound, ASan + UBSan run
+    tests/gen/gltf.sh         # glTF input: meshes as .gltf/.glb read and bake as their OFF twins, Debian's samples, malformed files
+    tests/stream/suite.sh     # streamed bakes: every prefix draws its level exactly, damaged streams refused
+    tests/gen/budget.sh       # budgets, --fit, --emit lib, monochrome, palettes, runtime cost tables
+    tests/render/suite.sh     # renders against the double-precision reference
+    tests/gen/qi.sh           # hidden lines by quantitative invisibility: exact in integers, a double reference
+    tests/gen/suite.sh        # determinism, chunks, budget
+    tests/host/suite.sh       # viewer binaries: no heap, options, interactive mode
+    tests/stream/host.sh      # the host viewer's --stream from a pipe, a FIFO, TCP: cuts and damage keep the last good level
+    tests/web/suite.sh        # the web viewer in headless Chromium: frames equal the native viewer's
+    tests/sanitize/suite.sh   # the render tests and a viewer again under ASan + UBSan
+    tests/gen/views.sh        # --views: hidden-cell removal, frontal image unchanged
+    tests/track/suite.sh      # edge-model bakes against the source, the tracker on synthetic and real sequences
+    tests/web/stream.sh       # the web page over a streaming fetch in headless Chromium: cuts, damage, progressive frames
+    tests/gen/clip.sh         # near-plane and guard-band clipping in whole frames: eye inside, magnified, random views
+    tests/finish/suite.sh     # hole types 1-5 on synthetic images, fills and splats against a reference
     tests/fw/track.sh         # the tracker firmware under QEMU: ViSP's cube, poses equal the host tracker's
-    tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/accuracy/suite.sh   # the mesh reference renderer: synthetic meshes, bunny00 against its octree
     tests/gen/errors.sh       # malformed input: one error line, no output
+    tests/gen/readers.sh      # valid files with comments, CRLF, odd headers read right; absurd headers bounded
     tests/fuzz/suite.sh       # the fuzzers' findings (tests/fuzz/regress/) replayed through modelc
 )
 
