@@ -36,6 +36,7 @@
 #include <modelc/modelc.h>
 #include <modelc/stream.h>
 #include "forge.h"
+#include "mesh_arrays.h"
 #include "../../runtime/front/common/mesh_frame.h"
 
 #define W 160
@@ -410,20 +411,19 @@ static int arrays(void)
         return -1;
     }
     const mc_pmesh *pm = mc_stream_pmesh(&s);
-    const unsigned ib = bake->index_bytes, hb = bake->half_bytes;
-    const uint32_t V = bake->vertices, F = bake->faces, S = V - bake->base_vertices;
-    struct { const char *name; const mc_chunk *a, *b; uint32_t n, size; } list[] = {
-        {"positions", pm->positions, bake->positions, V, 6},     {"tree", pm->tree, bake->tree, V, 2 * ib},
-        {"splits", pm->splits, bake->splits, S, ib + 1},         {"corners", pm->corners, bake->corners, F, 3 * ib},
-        {"opposite", pm->opposite, bake->opposite, F, 3 * hb},   {"edge order", pm->edge_order, bake->edge_order, bake->edges, hb}};
-    uint64_t bytes = 0;
-    for (unsigned k = 0; k < sizeof list / sizeof list[0]; k++)
-        for (uint32_t i = 0; i < list[k].n; i++, bytes += list[k].size)
-            if (memcmp(mc_chunk_record(list[k].a, pm->record_shift, list[k].size, i),
-                       mc_chunk_record(list[k].b, bake->record_shift, list[k].size, i), list[k].size)) {
-                printf("FAIL arrays: %s record %u differs from the bake's\n", list[k].name, i);
-                return -1;
-            }
+    const uint32_t S = bake->vertices - bake->base_vertices;
+    if (pm->vertices != bake->vertices || pm->base_vertices != bake->base_vertices || pm->faces != bake->faces ||
+        pm->edges != bake->edges || pm->index_bytes != bake->index_bytes || pm->half_bytes != bake->half_bytes) {
+        printf("FAIL arrays: the stream's mesh counts or widths are not the bake's\n");
+        return -1;
+    }
+    uint32_t record;
+    uint64_t bytes;
+    const char *differs = mesh_arrays_differ(pm, bake, &record, &bytes);
+    if (differs) {
+        printf("FAIL arrays: %s record %u differs from the bake's\n", differs, record);
+        return -1;
+    }
     printf("ok arrays: version %u, the reader's mesh arrays (positions, tree, splits, corners, opposites, edge order: "
            "%llu bytes) equal the bake's; base and splits %.2f bytes per split in the stream (%llu bytes, %u splits)\n",
            file[4], (unsigned long long)bytes, S ? (double)level_bytes / S : 0.0, (unsigned long long)level_bytes, S);

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include <modelc/stream.h>
+#include "mesh_arrays.h"
 
 static const mc_pmesh *read_whole(const char *path, mc_stream *s, uint32_t cap, unsigned *version)
 {
@@ -49,21 +50,14 @@ int main(int argc, char **argv)
         printf("FAIL the two meshes' counts or widths differ\n");
         return 1;
     }
-    const unsigned ib = a->index_bytes, hb = a->half_bytes;
-    const uint32_t V = a->vertices, F = a->faces, S = V - a->base_vertices;
-    struct { const char *name; const mc_chunk *a, *b; uint32_t n, size; } list[] = {
-        {"positions", a->positions, b->positions, V, 6},  {"tree", a->tree, b->tree, V, 2 * ib},
-        {"splits", a->splits, b->splits, S, ib + 1},      {"corners", a->corners, b->corners, F, 3 * ib},
-        {"opposite", a->opposite, b->opposite, F, 3 * hb}, {"edge order", a->edge_order, b->edge_order, a->edges, hb}};
-    uint64_t bytes = 0;
-    for (unsigned k = 0; k < sizeof list / sizeof list[0]; k++)
-        for (uint32_t i = 0; i < list[k].n; i++, bytes += list[k].size)
-            if (memcmp(mc_chunk_record(list[k].a, a->record_shift, list[k].size, i),
-                       mc_chunk_record(list[k].b, b->record_shift, list[k].size, i), list[k].size)) {
-                printf("FAIL %s record %u differs\n", list[k].name, i);
-                return 1;
-            }
+    uint32_t record;
+    uint64_t bytes;
+    const char *differs = mesh_arrays_differ(a, b, &record, &bytes);
+    if (differs) {
+        printf("FAIL %s record %u differs\n", differs, record);
+        return 1;
+    }
     printf("ok same: versions %u and %u, %u vertices (%u-byte indices), %u faces: %llu bytes of mesh arrays equal\n", va,
-           vb, V, ib, F, (unsigned long long)bytes);
+           vb, a->vertices, a->index_bytes, a->faces, (unsigned long long)bytes);
     return 0;
 }
