@@ -5,6 +5,7 @@
 #include "runtime_costs.hpp"
 #include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
 #include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
+#include "modelc/stream.h"  // MC_STREAM_PACKED_BYTES, which pm_packed_bytes restates in 64 bits
 
 #include <mstch/mstch.hpp>
 #include <nlohmann/json.hpp>
@@ -41,6 +42,9 @@ std::vector<size_t> split_chunks(size_t n, size_t limit, const std::vector<uint8
 PmWidths pm_widths(uint64_t vertices, uint64_t faces) {
     return {vertices <= 65535 ? 2u : 4u, 4 * faces + 3 < 65535 ? 2u : 4u};
 }
+
+static_assert(pm_packed_bytes(37706, 75408) == MC_STREAM_PACKED_BYTES(37706, 75408),
+              "pm_packed_bytes is stream.h's MC_STREAM_PACKED_BYTES");
 
 uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F) {
     const uint64_t ib = pm_widths(V, F).index_bytes;   // the record sizes of pmesh_arrays below

@@ -62,6 +62,9 @@ PmWidths pm_widths(uint64_t vertices, uint64_t faces);
 // V0 of them in the base, and F faces: what a stream's receive buffer holds after the stream
 // (stream.h MC_STREAM_MESH_BYTES).
 uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F);
+// What a packed stream's reader needs after them to decode (stream.h MC_STREAM_PACKED_BYTES, here in 64
+// bits so that the caller can see a buffer past 4 GiB).
+constexpr uint64_t pm_packed_bytes(uint64_t V, uint64_t F) { return 24 * F + 12 * V + 4; }
 
 // The budget of the bake emit_model would write (the arrays and chunk lists are sized here, where
 // they are laid out; the cost rules are budget.hpp's).

@@ -47,6 +47,13 @@ void put_position(std::string &s, const std::array<uint16_t, 3> &q) {
     for (uint16_t c : q) put16(s, c);
 }
 
+// The index of w's highest set bit (w >= 1).
+unsigned top_bit(uint64_t w) {
+    unsigned n = 0;
+    while (w >> (n + 1)) n++;
+    return n;
+}
+
 // Bits, most significant first within each byte (stream.h, kind 8).
 struct BitWriter {
     std::string bytes;
@@ -62,19 +69,13 @@ struct BitWriter {
     // Exp-Golomb of order k: u + 2^k has n + 1 bits; n - k zeros, then those n + 1 bits.
     void exp_golomb(uint32_t u, unsigned k) {
         const uint64_t w = static_cast<uint64_t>(u) + (uint64_t{1} << k);
-        unsigned n = 0;
-        while (w >> (n + 1)) n++;
+        const unsigned n = top_bit(w);
         for (unsigned i = k; i < n; i++) bit(0);
         for (unsigned i = n + 1; i-- > 0;) bit(static_cast<unsigned>(w >> i & 1u));
     }
 };
 
-unsigned exp_golomb_bits(uint32_t u, unsigned k) {
-    const uint64_t w = static_cast<uint64_t>(u) + (uint64_t{1} << k);
-    unsigned n = 0;
-    while (w >> (n + 1)) n++;
-    return 2 * n + 1 - k;
-}
+unsigned exp_golomb_bits(uint32_t u, unsigned k) { return 2 * top_bit(static_cast<uint64_t>(u) + (uint64_t{1} << k)) + 1 - k; }
 
 // Bits of an offset below n (0 for n <= 1): stream.h's width(n).
 unsigned width(uint32_t n) {
@@ -89,10 +90,15 @@ uint32_t zigzag(int32_t r) { return r >= 0 ? 2u * static_cast<uint32_t>(r) : 2u 
 // out. This coder keeps that mesh its own way (sets of corners per vertex, walked ancestors) and
 // shares nothing with the runtime's decoder but the format.
 class SplitPacker {
+    struct Face {
+        std::array<uint32_t, 3> at;   // its corners' vertices at the split's level: v, p, x or p, v, x
+        uint32_t rank, ring;          // x's rank among p's neighbours, and their number
+    };
     struct Split {
-        uint32_t p, size, faces;
-        std::vector<std::array<uint32_t, 3>> face_bits;   // per face: p first, x's rank, p's neighbours
-        std::array<uint32_t, 3> residual;                 // the position's, zigzagged
+        uint32_t p, size;
+        size_t first_face;
+        std::vector<Face> faces;
+        std::array<uint32_t, 3> residual;   // the position's, zigzagged
     };
 
   public:
@@ -103,6 +109,7 @@ class SplitPacker {
         for (size_t s = 0; s < S; s++) since_[pm.split_vertex[s]] = static_cast<uint32_t>(s + 1);
         for (uint32_t v = 0; v < V_; v++) slot_[v] = v + 1;
         for (size_t f = 0; f < pm.base_faces; f++) add_face(f, 0);
+        faces_ = pm.base_faces;
     }
 
     // Splits first .. first + k - 1 into one record's payload (after its first and count).
@@ -119,21 +126,17 @@ class SplitPacker {
             if (b < best_bits) best_bits = b, best = order;
         }
         BitWriter w;
-        size_t face = face_at(first);
-        for (size_t i = 0; i < out.size(); i++) {
-            const Split &x = out[i];
-            const uint32_t v = pm_.split_vertex[first + i];
+        for (const Split &x : out) {
             w.bits(x.p, width(V_));
             w.exp_golomb(x.size - 1, 0);
-            w.bit(x.faces - 1);
-            for (unsigned j = 0; j < x.faces; j++, face++) {
-                const auto &fb = x.face_bits[j];
-                w.bit(fb[0]);
-                w.bits(fb[1], width(fb[2]));
+            w.bit(static_cast<unsigned>(x.faces.size() - 1));
+            size_t face = x.first_face;
+            for (const Face &g : x.faces) {
+                w.bit(g.at[0] == x.p);
+                w.bits(g.rank, width(g.ring));
                 // each full-mesh corner as its offset in the subtree of the vertex it is at this level
-                const std::array<uint32_t, 3> at = {fb[0] ? x.p : v, fb[0] ? v : x.p, third_[face]};
-                for (unsigned c = 0; c < 3; c++)
-                    w.bits(pm_.faces[face][c] - at[c], width(pm_.size[at[c]]));
+                for (unsigned c = 0; c < 3; c++) w.bits(pm_.faces[face][c] - g.at[c], width(pm_.size[g.at[c]]));
+                face++;
             }
             for (uint32_t r : x.residual) w.exp_golomb(r, best);
         }
@@ -149,11 +152,7 @@ class SplitPacker {
     std::vector<uint32_t> since_, slot_;
     std::vector<std::set<uint32_t>> corners_of_;   // corner ids 3 f + c at each vertex, this level
     std::vector<uint32_t> level_;                  // each placed corner's vertex at this level
-    std::vector<uint32_t> third_;                  // per face: its third corner at its split's level
-    std::vector<size_t> face_first_;               // per split: its first face
-    size_t faces_ = 0;
-
-    size_t face_at(size_t s) const { return s < face_first_.size() ? face_first_[s] : faces_; }
+    size_t splits_ = 0, faces_ = 0;                // done, and the faces they and the base have
 
     // c's nearest ancestor present after `splits` splits
     uint32_t at(uint32_t c, size_t splits) const {
@@ -166,8 +165,6 @@ class SplitPacker {
             level_[3 * f + c] = a;
             corners_of_[a].insert(static_cast<uint32_t>(3 * f + c));
         }
-        faces_ = f + 1;
-        if (third_.size() <= f) third_.resize(f + 1, 0);
     }
     // the distinct vertices sharing a face with u at this level
     std::set<uint32_t> ring(uint32_t u) const {
@@ -186,23 +183,18 @@ class SplitPacker {
             throw std::runtime_error("--stream-splits packed: split " + std::to_string(s) +
                                      " does not bring back its parent's next child in depth-first order");
         slot_[p] += size;
-        Split x{p, size, pm_.split_faces[s], {}, {}};
+        if (s != splits_++) throw std::logic_error("SplitPacker: splits out of order");
+        Split x{p, size, faces_, {}, {}};
         const std::set<uint32_t> rp = ring(p);
-        if (face_first_.size() != s) throw std::logic_error("SplitPacker: splits out of order");
-        face_first_.push_back(faces_);
-        const size_t f0 = faces_;
-        third_.resize(f0 + x.faces, 0);
-        for (unsigned j = 0; j < x.faces; j++) {
-            const auto &fc = pm_.faces[f0 + j];
+        for (unsigned j = 0; j < pm_.split_faces[s]; j++) {
+            const auto &fc = pm_.faces[faces_ + j];
             std::array<uint32_t, 3> a;
             for (unsigned c = 0; c < 3; c++) a[c] = fc[c] >= v && fc[c] - v < size ? v : at(fc[c], s);
-            const bool p_first = a[0] == p;
-            if (!((a[0] == v && a[1] == p) || (p_first && a[1] == v)) || a[2] == v || a[2] == p || !rp.count(a[2]))
+            if (!((a[0] == v && a[1] == p) || (a[0] == p && a[1] == v)) || a[2] == v || a[2] == p || !rp.count(a[2]))
                 throw std::runtime_error("--stream-splits packed: split " + std::to_string(s) +
                                          ": a new face is not its vertex, its parent and a neighbour of the parent");
-            third_[f0 + j] = a[2];
-            x.face_bits.push_back({p_first ? 1u : 0u, static_cast<uint32_t>(std::distance(rp.begin(), rp.find(a[2]))),
-                                   static_cast<uint32_t>(rp.size())});
+            x.faces.push_back({a, static_cast<uint32_t>(std::distance(rp.begin(), rp.find(a[2]))),
+                               static_cast<uint32_t>(rp.size())});
         }
         // the split: the parent's corners whose full-mesh vertex lies in v's subtree go to v
         for (auto it = corners_of_[p].begin(); it != corners_of_[p].end();) {
@@ -215,7 +207,8 @@ class SplitPacker {
                 ++it;
             }
         }
-        for (unsigned j = 0; j < x.faces; j++) add_face(f0 + j, s + 1);
+        for (size_t f = faces_; f < faces_ + x.faces.size(); f++) add_face(f, s + 1);
+        faces_ += x.faces.size();
         // the position: its difference to the rounded mean of v's neighbours after the split
         const std::set<uint32_t> rv = ring(v);
         for (unsigned k = 0; k < 3; k++) {
@@ -309,7 +302,6 @@ std::vector<MeshRecord> mesh_records(const PMesh &pm, bool packed) {
         first += k;
         out.push_back({kKindSplits, p, V0 + first});
     }
-    std::string a;
     if (packed) {   // the opposites are the reader's to find; the edge order, 3 f + k in width(3 F) bits
         check_opposites_derivable(pm);
         BitWriter w;
@@ -317,6 +309,7 @@ std::vector<MeshRecord> mesh_records(const PMesh &pm, bool packed) {
         out.push_back({kKindPackedAdjacency, w.bytes, 0});
         return out;
     }
+    std::string a;
     for (const auto &o : pm.opposite)
         for (uint32_t x : o) put_n(a, x, hb);
     for (uint32_t x : pm.edge_order) put_n(a, x, hb);
@@ -392,7 +385,7 @@ Stream bake_stream(const Octree &t, const PMesh *pm, bool packed) {
     out.buffer = s.size();
     if (pm) {   // MC_STREAM_MESH_BYTES after the stream, from a multiple of 4
         const uint64_t b = (s.size() + 3) / 4 * 4 + pm_draw_bytes(pm->vertices(), pm->base_vertices, pm->faces.size()) +
-                           (packed ? 24 * pm->faces.size() + 12 * pm->vertices() + 4 : 0);   // MC_STREAM_PACKED_BYTES
+                           (packed ? pm_packed_bytes(pm->vertices(), pm->faces.size()) : 0);
         if (b > 0xFFFFFFFFu) throw std::runtime_error("--emit stream: the stream and its mesh would exceed 4 GiB");
         out.buffer = b;
     }

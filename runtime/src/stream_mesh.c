@@ -7,11 +7,6 @@
 
 static uint32_t le(const uint8_t *p, unsigned bytes) { return mc_le_index(p, bytes); }
 
-static void put(uint8_t *p, uint32_t v, unsigned bytes)
-{
-    for (unsigned i = 0; i < bytes; i++) p[i] = (uint8_t)(v >> (8 * i));
-}
-
 static void copy(uint8_t *to, const uint8_t *from, uint32_t n)
 {
     while (n--) *to++ = *from++;
@@ -20,10 +15,7 @@ static void copy(uint8_t *to, const uint8_t *from, uint32_t n)
 /* The mesh arrays in the buffer, after the stream's own bytes. */
 static uint8_t *area(const mc_stream *s) { return s->buf + ((s->total + 3u) & ~3u); }
 
-static uint8_t *array(mc_stream *s, unsigned k) { return (uint8_t *)s->mesh_chunks[k][0].data; }
 
-/* A vertex's tree record, in the buffer's tree array: its parent and subtree size (0 until it came). */
-static uint8_t *tree_at(mc_stream *s, uint32_t v) { return array(s, 1) + v * 2u * s->pmesh.index_bytes; }
 
 static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_record)
 {
@@ -38,7 +30,7 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
         return mc_stream_fail(s, MC_STREAM_ERR_MESH, at_record + 8);
     const uint64_t need = (uint64_t)((s->total + 3u) & ~3u) + 6u * (uint64_t)V + 2u * ib * (uint64_t)V +
                           (ib + 1u) * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F +
-                          (s->version == 3 ? 24u * (uint64_t)F + 12u * (uint64_t)V + 4u : 0u);
+                          (s->version == 3 ? 24u * (uint64_t)F + 12u * (uint64_t)V + 4u : 0u);   /* MC_STREAM_PACKED_BYTES */
     if (need > s->cap) return mc_stream_fail(s, MC_STREAM_ERR_SIZE, at_record + 8);
     pm->vertices = V, pm->base_vertices = V0, pm->faces = F, pm->base_faces = F0, pm->edges = E;
     pm->index_bytes = (uint8_t)ib, pm->half_bytes = (uint8_t)hb, pm->record_shift = SHIFT;
@@ -70,7 +62,7 @@ static int corners(mc_stream *s, const uint8_t *p, uint32_t f, uint32_t at)
     const unsigned ib = s->pmesh.index_bytes;
     for (unsigned k = 0; k < 3; k++)
         if (le(p + k * ib, ib) >= s->pmesh.vertices) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + k * ib);
-    copy(array(s, 3) + f * 3u * ib, p, 3u * ib);
+    copy(mc_stream_array(s, 3) + f * 3u * ib, p, 3u * ib);
     return MC_STREAM_OK;
 }
 
@@ -85,9 +77,9 @@ static int base(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
     for (uint32_t i = 0; i < pm->base_vertices; i++, p += per, at += per) {
         const uint32_t v = le(p, ib), size = le(p + ib + 6, ib);
         if (v != next || size < 1 || size > pm->vertices - v) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
-        copy(array(s, 0) + 6u * v, p + ib, 6);
-        put(tree_at(s, v), v, ib);
-        put(tree_at(s, v) + ib, size, ib);
+        copy(mc_stream_array(s, 0) + 6u * v, p + ib, 6);
+        mc_stream_put(mc_stream_tree(s, v), v, ib);
+        mc_stream_put(mc_stream_tree(s, v) + ib, size, ib);
         next = v + size;
     }
     if (next != pm->vertices) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at - per);
@@ -118,17 +110,17 @@ static int splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
         const uint32_t v = le(p, ib), nf = p[ib], parent = le(p + ib + 7, ib), size = le(p + 2u * ib + 7, ib);
         if (v >= pm->vertices || parent >= pm->vertices || nf < 1 || nf > 2 || nf > pm->faces - faces)
             return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
-        const uint32_t psize = le(tree_at(s, parent) + ib, ib);
-        if (le(tree_at(s, v) + ib, ib) != 0 || psize == 0 || v <= parent || v - parent >= psize || size < 1 ||
+        const uint32_t psize = le(mc_stream_tree(s, parent) + ib, ib);
+        if (le(mc_stream_tree(s, v) + ib, ib) != 0 || psize == 0 || v <= parent || v - parent >= psize || size < 1 ||
             size > psize - (v - parent))
             return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
         if ((uint32_t)(end - p) - per < 3u * ib * nf) return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at);
-        uint8_t *split = array(s, 2) + (first + i) * (ib + 1u);
-        put(split, v, ib);
+        uint8_t *split = mc_stream_array(s, 2) + (first + i) * (ib + 1u);
+        mc_stream_put(split, v, ib);
         split[ib] = (uint8_t)nf;
-        copy(array(s, 0) + 6u * v, p + ib + 1, 6);
-        put(tree_at(s, v), parent, ib);
-        put(tree_at(s, v) + ib, size, ib);
+        copy(mc_stream_array(s, 0) + 6u * v, p + ib + 1, 6);
+        mc_stream_put(mc_stream_tree(s, v), parent, ib);
+        mc_stream_put(mc_stream_tree(s, v) + ib, size, ib);
         p += per, at += per;
         for (uint32_t j = 0; j < nf; j++, faces++, p += 3u * ib, at += 3u * ib)
             if (corners(s, p, faces, at)) return s->error;

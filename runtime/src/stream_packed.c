@@ -14,11 +14,6 @@
 
 static uint32_t le(const uint8_t *p, unsigned bytes) { return mc_le_index(p, bytes); }
 
-static void put(uint8_t *p, uint32_t v, unsigned bytes)
-{
-    for (unsigned i = 0; i < bytes; i++) p[i] = (uint8_t)(v >> (8 * i));
-}
-
 /* Bits of an offset below n (0 for n <= 1). */
 static unsigned width(uint32_t n)
 {
@@ -63,16 +58,12 @@ static uint32_t exp_golomb(bit_reader *b, unsigned k)
     return (((uint32_t)1 << n) | get(b, n)) - ((uint32_t)1 << k);
 }
 
-/* The mesh arrays' fields (stream_mesh.c lays them out). */
-static uint8_t *positions(mc_stream *s) { return (uint8_t *)s->mesh_chunks[0][0].data; }
-static uint8_t *tree_at(mc_stream *s, uint32_t v)
-{
-    return (uint8_t *)s->mesh_chunks[1][0].data + v * 2u * s->pmesh.index_bytes;
-}
-static uint32_t size_of(mc_stream *s, uint32_t v) { return le(tree_at(s, v) + s->pmesh.index_bytes, s->pmesh.index_bytes); }
+/* The mesh arrays' fields (stream_mesh.h). */
+static uint8_t *positions(mc_stream *s) { return mc_stream_array(s, 0); }
+static uint32_t size_of(mc_stream *s, uint32_t v) { return le(mc_stream_tree(s, v) + s->pmesh.index_bytes, s->pmesh.index_bytes); }
 static uint8_t *corner_at(mc_stream *s, uint32_t c)
 {
-    return (uint8_t *)s->mesh_chunks[3][0].data + c * s->pmesh.index_bytes;   /* c = 3 f + k */
+    return mc_stream_array(s, 3) + c * s->pmesh.index_bytes;   /* c = 3 f + k */
 }
 
 static void push(mc_stream *s, uint32_t u, uint32_t c)
@@ -113,7 +104,10 @@ void mc_stream_packed_base(mc_stream *s, const uint8_t *roots, uint32_t per)
 
 /* The distinct vertices that share a face with u at the level: with sum, their positions' sums; with
  * list, all of them in index order when there are at most RING_LIST. */
-#define RING_LIST 32
+#ifndef MC_STREAM_RING_LIST   /* a test hook: small values send every rank through the passes */
+#define MC_STREAM_RING_LIST 32
+#endif
+#define RING_LIST MC_STREAM_RING_LIST
 static uint32_t ring(mc_stream *s, uint32_t u, uint64_t sum[3], uint32_t list[RING_LIST])
 {
     const uint32_t now = ++s->pk_now;
@@ -176,12 +170,12 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
         const uint32_t psize = size_of(s, parent), v = s->pk_slot[parent];
         if (psize == 0 || v - parent >= psize) return FAIL_AT();
         const uint32_t size = exp_golomb(&b, 0) + 1u, nf = get(&b, 1) + 1u;
-        if (b.bad || size == 0 || size > psize - (v - parent) || nf > pm->faces - faces || size_of(s, v) != 0)
+        if (b.bad || size > psize - (v - parent) || nf > pm->faces - faces || size_of(s, v) != 0)
             return FAIL_AT();
         uint32_t list[RING_LIST];
         const uint32_t around = ring(s, parent, 0, list);
-        put(tree_at(s, v), parent, ib);
-        put(tree_at(s, v) + ib, size, ib);
+        mc_stream_put(mc_stream_tree(s, v), parent, ib);
+        mc_stream_put(mc_stream_tree(s, v) + ib, size, ib);
         /* the new faces: v, the parent and a neighbour of the parent at the split's level, each corner
          * then the full mesh's vertex at that offset in its subtree */
         uint32_t at_level[2][3];
@@ -193,7 +187,7 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             for (unsigned c = 0; c < 3; c++) {
                 const uint32_t sz = size_of(s, a[c]), off = get(&b, width(sz));
                 if (b.bad || off >= sz) return FAIL_AT();
-                put(corner_at(s, 3u * (faces + j) + c), a[c] + off, ib);
+                mc_stream_put(corner_at(s, 3u * (faces + j) + c), a[c] + off, ib);
             }
         }
         /* the split: the parent's corners whose full-mesh vertex is in v's subtree go to v */
@@ -216,11 +210,11 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             const uint32_t u = exp_golomb(&b, order);
             const int64_t q = (int64_t)((sum[a] + m / 2u) / m) + ((u & 1u) ? -(int64_t)(u >> 1) - 1 : (int64_t)(u >> 1));
             if (b.bad || q < 0 || q > 65535) return FAIL_AT();
-            put(positions(s) + 6u * v + 2u * a, (uint32_t)q, 2);
+            mc_stream_put(positions(s) + 6u * v + 2u * a, (uint32_t)q, 2);
         }
         s->pk_slot[parent] = v + size;
-        uint8_t *split = (uint8_t *)s->mesh_chunks[2][0].data + (first + i) * (ib + 1u);
-        put(split, v, ib);
+        uint8_t *split = mc_stream_array(s, 2) + (first + i) * (ib + 1u);
+        mc_stream_put(split, v, ib);
         split[ib] = (uint8_t)nf;
     }
     /* the record ends within a byte of the last split, its padding zero */
@@ -253,7 +247,7 @@ int mc_stream_packed_adjacency(mc_stream *s, const uint8_t *p, uint32_t n, uint3
                 break;
             }
         }
-        put(opposite + c * hb, o, hb);
+        mc_stream_put(opposite + c * hb, o, hb);
     }
     /* the edge order, over the corners' lists (E <= 3 F entries of 4 bytes) */
     uint8_t *order = (uint8_t *)s->pk_next;
@@ -261,7 +255,7 @@ int mc_stream_packed_adjacency(mc_stream *s, const uint8_t *p, uint32_t n, uint3
     for (uint32_t e = 0; e < E; e++) {
         const uint32_t x = get(&b, w);
         if (x >= 3u * F) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + e * w / 8u);
-        put(order + e * hb, MC_HALF_EDGE(x / 3u, x % 3u), hb);
+        mc_stream_put(order + e * hb, MC_HALF_EDGE(x / 3u, x % 3u), hb);
     }
     if (b.at < b.bits && get(&b, b.bits - b.at) != 0) return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at + n - 1u);
     return mc_stream_adjacency(s, opposite, order, at, 0);

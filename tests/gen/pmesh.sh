@@ -17,7 +17,7 @@
 #   - every eighth checked level: each face's neighbours equal a search of the level's faces;
 #   - for the made shapes and a grid of 67,600 vertices (4-byte indices), the stream with packed splits
 #     (--stream-splits packed): the arrays its reader decodes equal its plain stream's
-#     (tests/stream/stream_same.c);
+#     (tests/stream/stream_same.c), also with every third corner found by the decoder's passes;
 #   - silhouettes (tests/gen/sil_check.c): the exact scan equals the line drawing's classification, the
 #     bounded search lists only silhouettes, each once, within its budget, the same on every run;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
@@ -257,9 +257,15 @@ PY
 # packed LABEL FILE: the shape as a stream with packed splits (stream.h version 3) and as a plain one
 # (version 2, whose reader copies the records; tests/stream/suite.sh checks those against the bake):
 # the arrays the reader fills from each are the same bytes (tests/stream/stream_same.c)
+# (and again with the decoder's short sorted ring list of one entry, MC_STREAM_RING_LIST=1, so that every
+# third corner goes through the passes it takes for rings longer than the list)
+rt_passes="$(tr ' ' '\n' <<<"$rt" | grep -v '/stream_packed\.o$' | tr '\n' ' ') $tmp/stream_packed_passes.o"
 # shellcheck disable=SC2086
-gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include -o "$tmp/stream_same" tests/stream/stream_same.c $rt \
-    >"$tmp/same.cc" 2>&1 || notok "tests/stream/stream_same.c builds" "$(oneline <"$tmp/same.cc")"
+{ gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include -o "$tmp/stream_same" tests/stream/stream_same.c $rt &&
+    gcc -std=c99 -O2 -ffreestanding -Wall -Wextra -Werror -Iruntime/include -DMC_STREAM_RING_LIST=1 -c \
+        -o "$tmp/stream_packed_passes.o" runtime/src/stream_packed.c &&
+    gcc -std=c99 -O2 -Wall -Wextra -Werror -Iruntime/include -o "$tmp/stream_same_passes" tests/stream/stream_same.c \
+        $rt_passes; } >"$tmp/same.cc" 2>&1 || notok "tests/stream/stream_same.c builds" "$(oneline <"$tmp/same.cc")"
 packed() {
     local label=$1 file=$2 name mode r cap
     name=$(echo "$label" | tr -c 'a-z0-9\n' '_')
@@ -273,8 +279,12 @@ packed() {
     done
     cap=$(python3 -c "import json, sys; print(max(json.load(open(f))['stream']['buffer'] for f in sys.argv[1:]))" \
         "$out/${name}_plain/budget.json" "$out/${name}_packed/budget.json")
-    r=$("$tmp/stream_same" "$out/${name}_plain/${name}_plain.mcs" "$out/${name}_packed/${name}_packed.mcs" "$cap" 2>&1)
-    if [[ $r == "ok same: versions 2 and 3,"* ]]; then ok "$label: packed splits: ${r#ok same: }"; else notok "$label: packed splits" "$r"; fi
+    local same
+    for same in stream_same stream_same_passes; do
+        r=$("$tmp/$same" "$out/${name}_plain/${name}_plain.mcs" "$out/${name}_packed/${name}_packed.mcs" "$cap" 2>&1)
+        if [[ $r == "ok same: versions 2 and 3,"* ]]; then ok "$label: packed splits ($same): ${r#ok same: }"
+        else notok "$label: packed splits ($same)" "$r"; fi
+    done
 }
 
 for s in open_grid thin_sheet components non_manifold degenerate; do

@@ -278,7 +278,7 @@ if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit st
             problems+="cut $at: exit $rc, $(oneline <"$dir/pcut.err"); "
         "$mview" --stream "$pmcs" --mode shaded --ppm "$dir/prefused.ppm" >/dev/null 2>"$dir/prefused.err"
         rc=$?
-        [ $rc -eq 1 ] && [ "$(wc -l <"$dir/prefused.err")" = 1 ] && grep -q "size" "$dir/prefused.err" || problems+="packed into a plain viewer: exit $rc, $(oneline <"$dir/prefused.err"); "
+        [ $rc -eq 1 ] && [ "$(wc -l <"$dir/prefused.err")" = 1 ] && grep -q "stream: size at byte [0-9]*; nothing was drawable" "$dir/prefused.err" || problems+="packed into a plain viewer: exit $rc, $(oneline <"$dir/prefused.err"); "
     else
         problems+="bake or link: $(oneline <"$dir/packed-bake.log"); "
     fi
