@@ -487,7 +487,7 @@ bench-firmware:
 	@tests/fw/bench.sh
 
 # ---- the model over the UART: a receiver firmware under QEMU ------------------------------------
-#   make firmware-stream BOARD=b                 bake the board's stream, build the receiver, check the ELF
+#   make firmware-stream BOARD=b [FW_MESH=1]     bake the board's stream, build the receiver, check the ELF
 #   make firmware-stream-run BOARD=b [STREAM=f]  run it under qemu-system-arm with UART0 fed from file f
 #                                                (default: the bake's NAME.mcs); compare with the host viewer
 # The receiver (runtime/front/fw/stream_main.c and the board's UART driver, uart_$(B.uart).c) links no
@@ -501,9 +501,14 @@ bench-firmware:
 # compares the firmware's lines with the host viewer linked with the same bake: each level's frames
 # with --checksums --depth D and with --stream on the bytes the firmware had when it drew them, the
 # final state (complete, or the reader's error, its byte and the depth kept) with --stream f's.
-FW_STREAM_DEPTH ?= $($(BOARD).stream_depth)
+# FW_MESH=1: the bake --as both, its mesh capped at the board's stream_mesh_faces, its splits
+# FW_STREAM_SPLITS (the board's stream_splits: plain or packed), the octree at stream_mesh_depth; the
+# receiver also draws the mesh frames once the mesh has come (stream_main.c). It lives in
+# build/fw/B-stream-mesh/.
+FW_STREAM_DEPTH ?= $(or $(if $(FW_MESH),$($(BOARD).stream_mesh_depth)),$($(BOARD).stream_depth))
 FW_STREAM_SCREEN ?= $($(BOARD).stream_screen)
-FW_STREAM_DIR := $(BUILD)/fw/$(BOARD)-stream
+FW_STREAM_SPLITS ?= $($(BOARD).stream_splits)
+FW_STREAM_DIR := $(BUILD)/fw/$(BOARD)-stream$(if $(FW_MESH),-mesh)
 FW_STREAM_BAKE := $(FW_STREAM_DIR)/$(FW_MODEL)
 FW_STREAM_ELF := $(FW_STREAM_DIR)/$(FW_MODEL)-stream.elf
 FW_STREAM_VIEW := $(FW_STREAM_BAKE)/$(FW_MODEL)-view
@@ -512,12 +517,17 @@ FW_STREAM_ARGS ?=
 FW_STREAM_SRC = runtime/front/fw/stream_main.c runtime/front/fw/uart_$($(BOARD).uart).c runtime/front/fw/cmdline.c \
   runtime/front/fw/stack.c
 FW_STREAM_BAKE_OPTS = $(strip $(shell echo ' $($(FW_MODEL).opts) ' | sed 's/ --depth [0-9]* / /') --depth $(FW_STREAM_DEPTH) \
-  --screen $(FW_STREAM_SCREEN) --emit stream)
+  --screen $(FW_STREAM_SCREEN) --emit stream \
+  $(if $(FW_MESH),--as both --max-faces $($(BOARD).stream_mesh_faces) --stream-splits $(FW_STREAM_SPLITS)))
 # the bake's NAME.h defines, by name: MC_<NAME>_STREAM_BYTES, _SCREEN_WIDTH, _SCREEN_HEIGHT, _DEPTH
+# (and the mesh part's _PMESH_VERTICES, _PMESH_LOD_BYTES, _PMESH_FACING_BYTES)
 fw_stream_def = MC_$(shell echo '$(FW_MODEL)' | tr a-z A-Z)_$(1)
 FW_STREAM_CFLAGS = -I$(FW_STREAM_BAKE) -DMC_FW_STREAM_HEADER='"$(FW_MODEL).h"' -DMC_FW_CLOCK_HZ=$($(BOARD).clock_hz)u \
   -DMC_FW_STREAM_BYTES=$(call fw_stream_def,STREAM_BYTES) -DMC_FW_STREAM_WIDTH=$(call fw_stream_def,SCREEN_WIDTH) \
-  -DMC_FW_STREAM_HEIGHT=$(call fw_stream_def,SCREEN_HEIGHT) -DMC_FW_STREAM_DEPTH=$(call fw_stream_def,DEPTH)
+  -DMC_FW_STREAM_HEIGHT=$(call fw_stream_def,SCREEN_HEIGHT) -DMC_FW_STREAM_DEPTH=$(call fw_stream_def,DEPTH) \
+  $(if $(FW_MESH),-DMC_FW_STREAM_MESH=1 -DMC_FW_STREAM_PMESH_VERTICES=$(call fw_stream_def,PMESH_VERTICES) \
+    -DMC_FW_STREAM_PMESH_LOD_BYTES=$(call fw_stream_def,PMESH_LOD_BYTES) \
+    -DMC_FW_STREAM_PMESH_FACING_BYTES=$(call fw_stream_def,PMESH_FACING_BYTES))
 FW_STREAM_LDFLAGS = $(subst $(FW_DIR)/$(FW_MODEL).map,$(FW_STREAM_DIR)/$(FW_MODEL)-stream.map,$(FW_LDFLAGS))
 comma := ,
 FW_STREAM_SERIAL ?= -serial stdio
@@ -550,8 +560,14 @@ $(FW_STREAM_FW_OBJ): $(FW_STREAM_DIR)/obj/fw_%.o: runtime/front/fw/%.c $(FW_STRE
 	@mkdir -p $(@D)
 	@echo "  ARM CC $<"
 	@$(ARM_CC) $(FW_CFLAGS) $(HOST_CFLAGS) $(FW_STREAM_CFLAGS) -c -o $@ $<
-$(FW_STREAM_ELF): $(FW_STREAM_RT_OBJ) $(FW_STREAM_FW_OBJ) runtime/front/fw/boards/$(BOARD).ld
-	$(ARM_CC) -o $@ $(FW_STREAM_RT_OBJ) $(FW_STREAM_FW_OBJ) $(FW_STREAM_LDFLAGS)
+# with a mesh, the mesh frames' sequence too (runtime/front/common/mesh_frame.c)
+FW_STREAM_MESH_OBJ = $(if $(FW_MESH),$(FW_STREAM_DIR)/obj/common_mesh_frame.o)
+$(FW_STREAM_DIR)/obj/common_mesh_frame.o: runtime/front/common/mesh_frame.c $(FW_STREAM_DEPS) $(FW_HDR)
+	@mkdir -p $(@D)
+	@echo "  ARM CC $<"
+	@$(ARM_CC) $(FW_CFLAGS) $(HOST_CFLAGS) -c -o $@ $<
+$(FW_STREAM_ELF): $(FW_STREAM_RT_OBJ) $(FW_STREAM_FW_OBJ) $(FW_STREAM_MESH_OBJ) runtime/front/fw/boards/$(BOARD).ld
+	$(ARM_CC) -o $@ $(FW_STREAM_RT_OBJ) $(FW_STREAM_FW_OBJ) $(FW_STREAM_MESH_OBJ) $(FW_STREAM_LDFLAGS)
 
 $(FW_STREAM_VIEW): $(FW_STREAM_BAKE)/budget.json $(RT_OBJ) $(HOST_OBJ)
 	$(CC) $(CFLAGS) $(RT_CFLAGS) -ffunction-sections -fdata-sections -o $@ $(FW_STREAM_BAKE)/*.c $(RT_OBJ) $(HOST_OBJ) $(VIEW_LDFLAGS)

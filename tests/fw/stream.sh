@@ -57,12 +57,13 @@ EOF
 
 # run B NAME STREAM [FW_STREAM_ARGS]: make firmware-stream-run; its output in $out/B.NAME.txt, the
 # firmware's lines in $out/B.NAME.run.txt; sets st (make's exit status)
+# (MESH=1 in the environment: the receiver built with a mesh, make firmware-stream FW_MESH=1)
 run() {
     local b=$1 name=$2 stream=$3 args=${4:-}
     make -s --no-print-directory firmware-stream-run MODEL=$model BOARD="$b" STREAM="$stream" \
-        FW_STREAM_ARGS="$args" FW_QEMU_TIMEOUT=60 >"$out/$b.$name.txt" 2>&1
+        FW_STREAM_ARGS="$args" FW_QEMU_TIMEOUT=60 ${MESH:+FW_MESH=1} >"$out/$b.$name.txt" 2>&1
     st=$?
-    cp "build/fw/$b-stream/run.txt" "$out/$b.$name.run.txt" 2>/dev/null || : >"$out/$b.$name.run.txt"
+    cp "build/fw/$b-stream${MESH:+-mesh}/run.txt" "$out/$b.$name.run.txt" 2>/dev/null || : >"$out/$b.$name.run.txt"
 }
 final() { grep -E '^stream (complete|error)' "$out/$1.$2.run.txt" | oneline; }
 # expect B NAME WANT(regex for the final line) LABEL: the run compared equal with the host and ended so
@@ -183,5 +184,54 @@ print(d, s["bytes"], a[d - 3], a[d - 2])' "$bake/budget.json")
     st=$?
     expect $b stall "^stream complete: depth $depth, $cap bytes$" \
         "QEMU stopped 2 s mid-stream, beyond its 1 s idle timeout ($(($(date +%s) - t0)) s): the stream still completes"
+done
+
+# ---- a mesh over the UART (make firmware-stream FW_MESH=1) ----------------------------------------------
+# lm3s6965evb: 600 faces, plain splits; mps2-an386: 4,000 faces, packed splits (boards/B.mk)
+export MESH=1
+for b in lm3s6965evb mps2-an386; do
+    dir=build/fw/$b-stream-mesh
+    make -s --no-print-directory -j2 firmware-stream MODEL=$model BOARD=$b FW_MESH=1 >"$out/$b.mesh-build.txt" 2>&1
+    bst=$?
+    grep -E '^(ok|not ok) - fw: ' "$out/$b.mesh-build.txt" | sed "s/^\(ok\|not ok\) - fw: /\1 - fw stream: $b mesh: /"
+    grep -q '^not ok' "$out/$b.mesh-build.txt" && status=1
+    if [ $bst -ne 0 ] || [ ! -f "$dir/$model-stream.elf" ]; then
+        notok "$b: make firmware-stream BOARD=$b FW_MESH=1" "exit $bst: $(grep -v '^ok' "$out/$b.mesh-build.txt" | tail -5 | oneline)"
+        continue
+    fi
+    bake=$dir/$model
+    mcs=$bake/$model.mcs
+    read -r depth cap faces lines_at < <(python3 -c '
+import json, sys
+b = json.load(open(sys.argv[1])); s = b["stream"]
+print(b["depth"], s["bytes"], b["pmesh"]["faces"], s["mesh_lines_at"])' "$bake/budget.json")
+    run $b mesh "$mcs"
+    expect $b mesh "^stream complete: depth $depth, $cap bytes$" \
+        "a $faces-face mesh stream ($cap bytes, $(grep -o 'stream-splits [a-z]*' "$dir/$model.opts")): the points' levels and the mesh frames equal the host's (--stream, --checksums)"
+    m=$(grep -c '^mesh frame .* rc 0 ' "$out/$b.mesh.run.txt")
+    check_problems "$b: \"mesh complete after $lines_at bytes\" (budget.json's mesh_lines_at), then $m mesh frames, every render MC_OK" \
+        "$(grep -qx "mesh complete after $lines_at bytes" "$out/$b.mesh.run.txt" && [ "$m" -eq "$("$bake/$model-view" --checksums | grep -c '^mesh frame ')" ] && [ "$m" -gt 0 ] ||
+            grep -E '^mesh|^stream' "$out/$b.mesh.run.txt" | head -3 | oneline)"
+    [ $b = lm3s6965evb ] || continue
+    # the comparison fails on one changed mesh checksum
+    sed '0,/^mesh frame .*fnv1a /s/fnv1a \(.\)/fnv1a X\1/' "$out/$b.mesh.run.txt" >"$out/$b.mesh-tampered.txt"
+    python3 runtime/front/fw/stream_check.py --run "$out/$b.mesh-tampered.txt" --status 0 --view "$bake/$model-view" \
+        --stream "$mcs" --work "$out/$b.mesh-tampered" >"$out/$b.mesh-tampered.out" 2>&1
+    check_problems "$b: stream_check.py fails on a run with one mesh checksum changed" \
+        "$([ $? -ne 0 ] && grep -q 'mesh frames differ' "$out/$b.mesh-tampered.out" || oneline <"$out/$b.mesh-tampered.out")"
+    # cut inside the adjacency, the mesh's last record: its levels came, its line styles did not
+    cut=$((lines_at - 10))
+    forge "$mcs" "$out/$b.mesh-cut.mcs" cut $cut
+    run $b mesh-cut "$out/$b.mesh-cut.mcs" idle=500
+    expect $b mesh-cut "^stream error truncated at byte $cut after $cut bytes \(no byte for 500 ms\); keeping depth $depth$" \
+        "cut at byte $cut inside the mesh's adjacency: no mesh frame, as the host's --stream --checksums"
+    # a mesh of more vertices than this receiver's memory, in a stream that fits its buffer
+    big=$out/$b.mesh-big
+    rm -rf "$big"
+    build/bin/modelc "$(model_file $model)" -o "$big" --name $model -q --depth 1 --screen 96x72 --as both --max-faces 620 \
+        --emit stream >"$out/$b.mesh-big.bake.txt" 2>&1
+    run $b mesh-big "$big/$model/$model.mcs"
+    expect $b mesh-big "^stream error mesh-size at byte [0-9]+ after [0-9]+ bytes; keeping depth 0 \(nothing drawable\)$" \
+        "a 620-face mesh ($(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["pmesh"]["vertices"])' "$big/$model/budget.json") vertices) against memory for $faces faces refused, as the host viewer refuses it"
 done
 exit ${status:-0}

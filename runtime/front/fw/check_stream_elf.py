@@ -7,7 +7,8 @@ failed. The checks:
   2. no model: no symbol of the bake (mc_model_NAME, mc_octree_NAME, mc_NAME_*, mc_app_model), so
      the model can only come over the wire;
   3. the receive buffer is budget.json's stream buffer (MC_NAME_STREAM_BYTES), the frame buffers its
-     ram.color_buffer and ram.depth_buffer;
+     ram.color_buffer and ram.depth_buffer; with a mesh part, the level-of-detail memory its
+     ram.pmesh_lod, pmesh_facing (each rounded up to whole words), pmesh_cache and pmesh_sdepth;
   4. fits the board: flash and static RAM plus the stack reservation within the .ld's sizes;
   5. the static stack bound (stack_bound.py, the renderer at the bake's depth) fits the reservation
      and the RAM above the static data.
@@ -54,6 +55,13 @@ def main():
     bad = [f"{k}: ELF {syms.get(k)} vs budget {v}" for k, v in want.items() if v is None or syms.get(k) != v]
     check(f"{elfname}: receive buffer of budget.json's stream buffer ({want['stream_buf']}) and frame buffers "
           f"of its sizes ({want['color_buf']} + {want['depth_buf']})", "; ".join(bad))
+    if "pmesh_lod" in ram:
+        words = lambda n: (n + 3) // 4 * 4
+        mesh = {"pmesh_anc": words(ram["pmesh_lod"]), "pmesh_facing": words(ram["pmesh_facing"]),
+                "pmesh_cache": ram.get("pmesh_cache"), "pmesh_sdepth": ram.get("pmesh_sdepth")}
+        bad = [f"{k}: ELF {syms.get(k)} vs budget {v}" for k, v in mesh.items() if v is None or syms.get(k) != v]
+        check(f"{elfname}: mesh memory of budget.json's sizes ({', '.join(f'{k} {v}' for k, v in mesh.items())})",
+              "; ".join(bad))
 
     ram0, rs, fs = board.get("__ram", 0x20000000), board.get("__ram_size"), board.get("__flash_size")
     flash, ram_static, stack_reserved = check_elf.section_totals(a.elf, ram0)

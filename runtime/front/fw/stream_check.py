@@ -14,7 +14,12 @@ what differs on stderr and exits 1:
     budget.json's stream.drawable_at for that level;
   - the final state is the host's --stream on the whole file: complete at the same depth and bytes
     (or, for bytes after the end record, which the firmware never reads, the host's "trailing" error
-    there), or the same error name, byte offset and depth kept (the last level the firmware drew).
+    there), or the same error name, byte offset and depth kept (the last level the firmware drew);
+    a mesh larger than the firmware's mesh memory ("mesh-size") is one the host refuses too;
+  - a receiver built with a mesh (make firmware-stream FW_MESH=1) prints "mesh complete after N
+    bytes" and the mesh frames exactly when the host's --stream --checksums on the whole file prints
+    mesh frames (the stream's mesh came whole), and its lines equal the host's --stream on the first N
+    bytes and, for the bake's own stream, --checksums (the baked arrays).
 Usage: stream_check.py --run RUN.txt --status QEMU_STATUS --view NAME-view --stream FILE --work DIR
 """
 import argparse
@@ -28,7 +33,9 @@ BANNER = re.compile(r"^modelc stream firmware: buffer (\d+) bytes .* frames (\d+
 LEVEL = re.compile(r"^level (\d+) drawable after (\d+) bytes$")
 FRAME = re.compile(r"^frame (\d+) .* depth (\d+) level ")
 COMPLETE = re.compile(r"^stream complete: depth (\d+), (\d+) bytes$")
-ERROR = re.compile(r"^stream error (\w+) at byte (\d+) after (\d+) bytes(?: \([^)]*\))?; keeping depth (\d+)")
+MESH = re.compile(r"^mesh complete after (\d+) bytes$")
+MESH_FRAME = re.compile(r"^mesh frame (\d+) ")
+ERROR = re.compile(r"^stream error ([\w-]+) at byte (\d+) after (\d+) bytes(?: \([^)]*\))?; keeping depth (\d+)")
 HOST_COMPLETE = re.compile(r"^stream: complete, depth (\d+), (\d+) bytes$")
 HOST_ERROR = re.compile(r"stream: (\w+) at byte (\d+); (?:drawing depth (\d+)|nothing was drawable)")
 
@@ -60,9 +67,21 @@ def main():
     banner = [m for m in map(BANNER.match, lines) if m]
     frames = int(banner[0].group(2)) if banner else 0
     levels = []   # (depth, bytes, [frame lines])
+    mesh = None   # (bytes, [mesh frame lines])
     final = None
     i = 0
     while i < len(lines):
+        m = MESH.match(lines[i])
+        if m:
+            block = []
+            while i + 1 < len(lines) and MESH_FRAME.match(lines[i + 1]):
+                block.append(lines[i + 1])
+                i += 1
+            if mesh or [int(MESH_FRAME.match(l).group(1)) for l in block] != list(range(len(block))):
+                why.append("the mesh frames: not one run numbered 0, 1, ... after one \"mesh complete\" line")
+            mesh = (int(m.group(1)), block)
+            i += 1
+            continue
         m = LEVEL.match(lines[i])
         if m:
             d, n = int(m.group(1)), int(m.group(2))
@@ -85,7 +104,7 @@ def main():
         why.append(f"no final line and \"done\" (QEMU status {a.status}): {' | '.join(lines[-3:])}")
         final = ""
     fc, fe = COMPLETE.match(final), ERROR.match(final)
-    rc_bad = any(" rc 0 " not in l for _, _, b in levels for l in b)
+    rc_bad = any(" rc 0 " not in l for _, _, b in levels + ([(0, 0, mesh[1])] if mesh else []) for l in b)
     want_status = 0 if fc and not rc_bad else 1
     if a.status != want_status:
         why.append(f"QEMU exit status {a.status}, expected {want_status} (124: the timeout)")
@@ -118,7 +137,10 @@ def main():
         f.write("\n".join(out) + "\n" + err)
     hc = [m for m in map(HOST_COMPLETE.match, out) if m]
     he = HOST_ERROR.search(err)
-    if fc and he and he.group(1) == "trailing" and he.group(2) == fc.group(2) and he.group(3) == fc.group(1):
+    if fe and fe.group(1) == "mesh-size":
+        if st == 0 or "larger than this viewer's mesh buffers" not in err:
+            why.append(f"firmware: {final}; host --stream: exit {st} {err.strip()[:200]}")
+    elif fc and he and he.group(1) == "trailing" and he.group(2) == fc.group(2) and he.group(3) == fc.group(1):
         pass   # bytes after the end record: the firmware stops reading there, the host reads on to the file's end
     elif fc:
         if st != 0 or not hc or hc[-1].groups() != fc.groups():
@@ -131,12 +153,37 @@ def main():
         if hf != levels[-1][2]:
             why.append(f"the last level's frames differ from --stream on the whole file's ({len(hf)} lines)")
 
+
+    # ---- the mesh frames against the host ----------------------------------------------------------------
+    host_mesh = [l for l in out if l.startswith("mesh frame ")]
+    if bool(mesh) != bool(host_mesh):
+        why.append(f"mesh frames: firmware {'drew' if mesh else 'did not draw'} them, the host's --stream on the "
+                   f"whole file {'draws' if host_mesh else 'does not'}")
+    if mesh:
+        n, block = mesh
+        if block != host_mesh:
+            why.append(f"the mesh frames differ from --stream on the whole file's ({len(block)} vs {len(host_mesh)} lines)")
+        st, out, err = host(a.view, ["--stream", "-", "--checksums"], data[:n])
+        if [l for l in out if l.startswith("mesh frame ")] != block:
+            why.append(f"the mesh frames differ from --stream on the first {n} bytes (exit {st}: {err.strip()[:200]})")
+        if own:
+            st, out, err = host(a.view, ["--checksums"])
+            hm = [l for l in out if l.startswith("mesh frame ")]
+            if hm != block:
+                diff = [f"fw: {x} | host: {y}" for x, y in zip(block, hm) if x != y][:2]
+                why.append(f"the mesh frames differ from --checksums (the baked mesh): {len(hm)} lines, {diff}")
+        with open(os.path.join(a.work, "mesh.txt"), "w") as f:
+            f.write("\n".join(block) + "\n")
+
     if why:
         for w in why:
             print(f"firmware-stream-run: {w}", file=sys.stderr)
         return 1
     drew = (f"levels 1..{kept}: {compared} frame checksums equal the host viewer's (--stream on each level's "
             f"bytes{', --checksums --depth D' if own else ''})" if levels else "no level drawable, as for the host")
+    if mesh:
+        drew += (f"; the mesh, whole after {mesh[0]} bytes: {len(mesh[1])} mesh frame checksums equal the host "
+                 f"viewer's (--stream{', --checksums' if own else ''})")
     print(f"firmware-stream-run: {drew}; final state as the host viewer's --stream: {final}")
     return 0
 

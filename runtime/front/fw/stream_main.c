@@ -17,6 +17,15 @@
  * stack high-water mark, "done". Exits (semihosting) 0 when the stream was complete and every
  * render MC_OK, else 1. Whatever the bytes, the reader refuses them before the renderer sees them:
  * no fault on a truncated, corrupted, foreign or oversized stream.
+ *
+ * Built with MC_FW_STREAM_MESH (make firmware-stream FW_MESH=1: a bake --as both), the receiver also
+ * keeps the level-of-detail memory of the bake's mesh part (MC_FW_STREAM_PMESH_*: its ancestor map,
+ * line memory, vertex cache and sparse depth bits, static). When the stream's mesh has come whole
+ * (every split and the adjacency), one line "mesh complete after N bytes" and the mesh frames of
+ * mesh_frames.h, one checksum line each, exactly as the host viewer's --checksums prints them for
+ * the bake: the arrays the reader filled are the bake's, byte for byte (stream.h). A stream whose
+ * mesh is larger than those buffers (not this bake's) is refused: "stream error mesh-size at byte B"
+ * (the byte where its mesh header ends), its points kept.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +36,9 @@
 
 #include MC_FW_STREAM_HEADER   /* the bake's NAME.h: its defines only */
 #include "../common/frames.h"
+#if MC_FW_STREAM_MESH
+#include "../common/mesh_frames.h"
+#endif
 #include "cmdline.h"
 #include "stack.h"
 #include "uart.h"
@@ -47,6 +59,38 @@ static uint8_t stream_buf[MC_FW_STREAM_BYTES];
 static uint8_t color_buf[SCREEN_W * SCREEN_H];
 static uint16_t depth_buf[SCREEN_W * SCREEN_H];
 static mc_stream reader;
+
+#if MC_FW_STREAM_MESH
+/* the bake's mesh part's memory, as its app binding declares it (the words keep it aligned) */
+static uint32_t pmesh_anc[(MC_FW_STREAM_PMESH_LOD_BYTES + 3u) / 4u];
+static uint32_t pmesh_facing[(MC_FW_STREAM_PMESH_FACING_BYTES + 3u) / 4u];
+static mc_xvertex pmesh_cache[MC_FW_STREAM_PMESH_VERTICES];
+static uint32_t pmesh_sdepth[MC_SDEPTH_WORDS(SCREEN_W, SCREEN_H)];
+
+/* Whether the stream's mesh fits the memory above (its header has come). */
+static int mesh_fits(const mc_pmesh *pm)
+{
+    return pm->vertices <= MC_FW_STREAM_PMESH_VERTICES &&
+           MC_PMESH_LOD_BYTES(pm->vertices, pm->index_bytes) <= MC_FW_STREAM_PMESH_LOD_BYTES &&
+           MC_MESH_LINES_BYTES(pm->faces) <= MC_FW_STREAM_PMESH_FACING_BYTES;
+}
+
+/* The mesh frames of the whole mesh; returns 1 if a frame failed. */
+static int draw_mesh(const mc_pmesh *pm, const mc_target *t)
+{
+    int status = 0;
+    mc_pmesh_lod lod;
+    mc_pmesh_lod_init(&lod, pm, pmesh_anc);
+    printf("mesh complete after %lu bytes\n", (unsigned long)reader.len);
+    for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
+        mc_front_mesh_result r =
+            mc_front_mesh_check(&lod, (uint8_t *)pmesh_facing, pmesh_cache, pmesh_sdepth, i, t);
+        printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
+        if (r.rc != MC_OK) status = 1;
+    }
+    return status;
+}
+#endif
 
 static uint32_t idle_ms = 2000, wait_ms = 10000;
 static unsigned frames = MC_FRONT_FRAME_COUNT;
@@ -118,7 +162,10 @@ int main(void)
            (unsigned long)sizeof stream_buf, (unsigned)MC_FW_STREAM_DEPTH, (unsigned)t.width, (unsigned)t.height,
            frames, mc_fw_uart_base(), (unsigned long)idle_ms);
 
-    int status = 0, timed_out = 0;
+    int status = 0, timed_out = 0, mesh_refused = 0;
+#if MC_FW_STREAM_MESH
+    int mesh_drawn = 0;
+#endif
     unsigned drawn = 0;
     uint32_t idle = 0;   /* ticks without a byte */
     for (;;) {
@@ -140,13 +187,30 @@ int main(void)
             if (draw_level(d, &t)) status = 1;
             drawn = d;
         }
+#if MC_FW_STREAM_MESH
+        const mc_pmesh *pm = mc_stream_pmesh(&reader);
+        if (pm && !mesh_drawn) {
+            if (!mesh_fits(pm)) {
+                mesh_refused = 1;
+                break;
+            }
+            if (pm->opposite && mc_stream_mesh_level(&reader) == pm->vertices) {
+                if (draw_mesh(pm, &t)) status = 1;
+                mesh_drawn = 1;
+            }
+        }
+#endif
         if (rc != MC_STREAM_OK || reader.ended) break;
         idle = 0;
         (void)tick();   /* a tick spent drawing is not idle */
     }
 
     const int rc = mc_stream_end(&reader);
-    if (rc == MC_STREAM_OK) {
+    if (mesh_refused) {
+        status = 1;
+        printf("stream error mesh-size at byte %lu after %lu bytes; keeping depth %u%s\n", (unsigned long)reader.len,
+               (unsigned long)reader.len, drawn, drawn ? "" : " (nothing drawable)");
+    } else if (rc == MC_STREAM_OK) {
         printf("stream complete: depth %u, %lu bytes\n", drawn, (unsigned long)reader.len);
     } else {
         status = 1;

@@ -43,7 +43,8 @@ static void usage(FILE *f)
             "  --checksums     render the firmware's fixed frame list (runtime/front/common/frames.h) at the\n"
             "                  baked screen size and the model's depth (unless --size, --depth) and\n"
             "                  print the firmware's checksum line per frame, then with a mesh part\n"
-            "                  (--as both) its mesh frames' (runtime/front/common/mesh_frames.h);\n"
+            "                  (--as both) its mesh frames' (runtime/front/common/mesh_frames.h; with\n"
+            "                  --stream, of the stream's mesh once all of it has come);\n"
             "                  --ppm/--png then write the frame the firmware writes out\n"
             "  --yaw DEG       rotation about the vertical axis (default 0)\n"
             "  --pitch DEG     rotation about the horizontal axis (default 0)\n"
@@ -136,9 +137,10 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
     return 0;
 }
 
-/* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c): the
- * point frames, then the mesh frames when the bake has a mesh part. */
-static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth, const char *png, const char *ppm)
+/* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c,
+ * stream_main.c): the point frames, then the mesh frames of pm (null: none). */
+static int checksums(const mc_octree *octree, const mc_pmesh *pm, const mc_target *t, unsigned depth, const char *png,
+                     const char *ppm)
 {
     int status = 0;
     for (unsigned i = 0; i < MC_FRONT_FRAME_COUNT; i++) {
@@ -151,7 +153,6 @@ static int checksums(const mc_octree *octree, const mc_target *t, unsigned depth
             if (ppm && mc_host_write_ppm(ppm, rgb_buffer, t->width, t->height)) return die(strerror(errno), ppm);
         }
     }
-    const mc_pmesh *pm = mc_app_model.model->pmesh;
     if (pm && mc_app_model.pmesh_anc && mc_app_model.pmesh_facing) {
         mc_pmesh_lod lod;
         mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
@@ -326,7 +327,13 @@ int main(int argc, char **argv)
     if (check) {
         if (frames) return die("--checksums and --bench exclude each other", NULL);
         if (mode != MC_HOST_POINTS) return die("--checksums draws points only", NULL);
-        int rc = checksums(octree, &t, depth, png, ppm);
+        /* a stream's mesh frames once its mesh has come whole, as the stream firmware draws them */
+        const mc_pmesh *pm = model->pmesh;
+        if (stream_src) {
+            pm = mc_host_stream_pmesh(&stream);
+            if (pm && (!stream.mesh_lines || stream.mesh_level != pm->vertices)) pm = NULL;
+        }
+        int rc = checksums(octree, pm, &t, depth, png, ppm);
         return rc ? rc : stream_failed;
     }
     mc_view v = mc_view_default();
