@@ -19,7 +19,7 @@ lm3s6965evb.uart := pl011
 lm3s6965evb.clock_hz := 12500000
 lm3s6965evb.stream_depth := 6
 lm3s6965evb.stream_screen := 96x72
-# The stream receiver with a mesh (make firmware-stream FW_MESH=1): bunny00 capped at 600 faces, plain
+# The stream receiver with a mesh (make firmware-stream FW_MESH=1): the model capped at 600 faces, plain
 # splits, the octree at depth 3: a 21.5 KB receive buffer (the stream and the mesh arrays the reader
 # fills), 7 KB of level-of-detail memory and the 20 KB of frame buffers leave some 10 KiB of the 64
 # beside the stack (1,000 faces would not fit).

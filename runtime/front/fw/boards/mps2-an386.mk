@@ -14,7 +14,7 @@ mps2-an386.uart := cmsdk
 mps2-an386.clock_hz := 25000000
 mps2-an386.stream_depth := 7
 mps2-an386.stream_screen := 160x120
-# The stream receiver with a mesh (make firmware-stream FW_MESH=1): bunny00 capped at 4,000 faces,
+# The stream receiver with a mesh (make firmware-stream FW_MESH=1): the model capped at 4,000 faces,
 # packed splits (stream version 3: the reader keeps the level's mesh while it decodes), the octree at
 # depth 3: a short stream for this slow UART.
 mps2-an386.stream_mesh_depth := 3
