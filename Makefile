@@ -179,7 +179,7 @@ view: $(MODELC) $(RT_OBJ) $(HOST_OBJ)
 # make web MODEL=file [NAME=n] [DEPTH=d] [WEB_SIZE=WxH] [WEB_STREAM=1]: bake, then build/NAME/web/
 # (index.html, viewer.js, NAME.wasm and its base64 twin for file://): runtime/front/web/build.sh;
 # WEB_STREAM=1 bakes with --emit stream, and build.sh adds stream.html, NAME-stream.wasm and NAME.mcs
-WEB_SRC := $(wildcard runtime/front/web/*) runtime/front/common/rgb.c $(RT_SRC) $(RT_HDR)
+WEB_SRC := $(wildcard runtime/front/web/*) runtime/front/common/rgb.c runtime/front/common/mesh_frame.c $(RT_SRC) $(RT_HDR)
 web: $(MODELC)
 	@test -n "$(MODEL)" || { echo "usage: make web MODEL=path/to/file [NAME=name] [DEPTH=d] [WEB_SIZE=WxH] [WEB_STREAM=1]" >&2; exit 2; }
 	$(MODELC) "$(MODEL)" -o $(BUILD) --name $(NAME) --depth $(DEPTH) $(BAKE_OPTS) $(if $(WEB_STREAM),--emit stream)

@@ -55,8 +55,9 @@ if [ -f "$bake/$name.mcs" ]; then
         -DMC_WEB_MAX_WIDTH="$sw" -DMC_WEB_MAX_HEIGHT="$sh" -DMC_WEB_STREAM_BYTES="$stream_bytes"
 fi
 compile "$root/runtime/front/web/web.c" "$tmp/.o/web.o" -DMC_WEB_MAX_PIXELS="($sw * $sh)"
-rt_objs=("$tmp/.o/rgb.o") bake_objs=()
+rt_objs=("$tmp/.o/rgb.o" "$tmp/.o/mesh_frame.o") bake_objs=()
 compile "$root/runtime/front/common/rgb.c" "$tmp/.o/rgb.o"
+compile "$root/runtime/front/common/mesh_frame.c" "$tmp/.o/mesh_frame.o"
 for c in "$root"/runtime/src/*.c; do
     rt_objs+=("$tmp/.o/rt/$(basename "$c" .c).o")
     compile "$c" "${rt_objs[-1]}"

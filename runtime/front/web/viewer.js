@@ -7,6 +7,12 @@
 // can ask the native viewer for exactly the same frame (tests/web). window.modelc exposes the state
 // for tests and for the curious.
 //
+// A bake with a mesh part (--as both) has the terminal viewer's mesh modes: m cycles points, shaded,
+// lines and shaded+lines, [ and ] halve or double the splits above the base mesh (the level of
+// detail, in vertices); ?mode=lines&lod=N in the address starts there. A mesh frame is drawn at the
+// chosen level whether the view moves or rests (web.c mcw_draw_mesh: the native viewer's
+// --mode STYLE --lod N).
+//
 // The stream page (stream.html: <body data-stream="NAME.mcs">, or ?stream=URL) loads NAME-stream.wasm,
 // which holds no model, and fetches the stream (modelc --emit stream) through response.body, feeding
 // each piece to the module as it arrives: the deepest complete level is drawn as soon as it is
@@ -26,11 +32,15 @@
   const name = document.body.dataset.model;
   const streaming = document.body.dataset.stream !== undefined;
   const streamUrl = streaming ? (new URLSearchParams(location.search).get('stream') || document.body.dataset.stream) : null;
+  const help = document.getElementById('help');
   const ctx = canvas.getContext('2d');
   const w = canvas.width, h = canvas.height;
   const image = ctx.createImageData(w, h);
 
-  const view = { yaw: 0, pitch: 0, zoom: ZOOM_ONE, error: LOD_PIXEL };
+  const MODES = ['points', 'shaded', 'lines', 'shaded+lines'];
+  const params = new URLSearchParams(location.search);
+  const view = { yaw: 0, pitch: 0, zoom: ZOOM_ONE, error: LOD_PIXEL, mode: 0, level: 0 };
+  let meshVertices = 0, meshBase = 0;   // the bake's mesh part (0: none)
   let ex = null, depth = 0, moving = false, dragging = null, pending = false, restTimer = 0;
   let frames = 0, last = null;
   const idleWaiters = [];
@@ -84,21 +94,31 @@
     }
     const error = moving ? 2 * view.error : view.error;
     const t0 = performance.now();
-    const rc = ex.mcw_draw(w, h, view.yaw, view.pitch, view.zoom, error);
+    const rc = view.mode ? ex.mcw_draw_mesh(w, h, view.yaw, view.pitch, view.zoom, view.mode, view.level)
+                         : ex.mcw_draw(w, h, view.yaw, view.pitch, view.zoom, error);
     const ms = performance.now() - t0;
     if (rc !== 0) {
-      frameLine = name + ': mcw_draw returned ' + rc;
+      frameLine = name + ': ' + (view.mode ? 'mcw_draw_mesh' : 'mcw_draw') + ' returned ' + rc;
       showStatus();
       return;
     }
     image.data.set(new Uint8ClampedArray(ex.memory.buffer, ex.mcw_rgba(), w * h * 4));
     ctx.putImageData(image, 0, 0);
     frames++;
-    last = { yaw: view.yaw, pitch: view.pitch, zoom: view.zoom, error: error, moving: moving,
-             depth: ex.mcw_drawn_depth(), points: ex.mcw_drawn(), ms: ms, model: depth };
-    frameLine = name + ' | depth ' + last.depth + '/' + depth + ' | ' +
-      last.points.toLocaleString('en') + ' points | ' + ms.toFixed(2) + ' ms | zoom ' +
-      (view.zoom / ZOOM_ONE).toFixed(2) + ' | ' + (moving ? 'coarse' : 'fine') + ' | ' + w + 'x' + h;
+    const tail = ms.toFixed(2) + ' ms | zoom ' + (view.zoom / ZOOM_ONE).toFixed(2) + ' | ';
+    if (view.mode) {
+      last = { yaw: view.yaw, pitch: view.pitch, zoom: view.zoom, moving: moving, mode: MODES[view.mode],
+               level: ex.mcw_mesh_level(), faces: ex.mcw_mesh_faces(), drawn: ex.mcw_mesh_drawn(),
+               linePixels: ex.mcw_mesh_line_pixels(), ms: ms };
+      frameLine = name + ' | ' + last.mode + ' | level ' + last.level + '/' + meshVertices + ', ' +
+        last.faces.toLocaleString('en') + ' faces | ' + (view.mode === 2 ? last.linePixels.toLocaleString('en') +
+        ' line pixels' : last.drawn.toLocaleString('en') + ' drawn') + ' | ' + tail + w + 'x' + h;
+    } else {
+      last = { yaw: view.yaw, pitch: view.pitch, zoom: view.zoom, error: error, moving: moving, mode: 'points',
+               depth: ex.mcw_drawn_depth(), points: ex.mcw_drawn(), ms: ms, model: depth };
+      frameLine = name + ' | depth ' + last.depth + '/' + depth + ' | ' +
+        last.points.toLocaleString('en') + ' points | ' + tail + (moving ? 'coarse' : 'fine') + ' | ' + w + 'x' + h;
+    }
     showStatus();
     if (!moving) while (idleWaiters.length) idleWaiters.shift()(last);
   }
@@ -151,6 +171,14 @@
       case '+': case '=': zoomBy(ZOOM_STEP); break;
       case '-': case '_': zoomBy(1 / ZOOM_STEP); break;
       case 'r': case 'R': view.yaw = 0; view.pitch = 0; view.zoom = ZOOM_ONE; break;
+      case 'm': case 'M': if (meshVertices) view.mode = (view.mode + 1) % MODES.length; break;
+      case '[': case ']': {   // half or twice the splits above the base mesh, as the terminal viewer
+        if (!meshVertices) return;
+        const splits = view.level - meshBase;
+        const want = e.key === '[' ? Math.floor(splits / 2) : splits ? splits * 2 : 1;
+        view.level = want > meshVertices - meshBase ? meshVertices : meshBase + want;
+        break;
+      }
       default: return;
     }
     e.preventDefault();
@@ -242,6 +270,14 @@
   const ready = instantiate().then((instance) => {
     ex = instance.exports;
     depth = ex.mcw_depth();
+    meshVertices = ex.mcw_mesh_vertices ? ex.mcw_mesh_vertices() : 0;
+    if (meshVertices) {
+      meshBase = ex.mcw_mesh_base_vertices();
+      const mode = MODES.indexOf(params.get('mode') || 'points'), lod = Number(params.get('lod'));
+      view.mode = mode > 0 ? mode : 0;
+      view.level = params.get('lod') && Number.isInteger(lod) ? Math.min(meshVertices, Math.max(meshBase, lod)) : meshVertices;
+      if (help) help.textContent += ' · m: points / shaded / lines / shaded+lines · [ ] level of detail';
+    }
     if (w > ex.mcw_max_width() || h > ex.mcw_max_height())
       throw new Error('the canvas is larger than the bake\'s screen ' + ex.mcw_max_width() + 'x' + ex.mcw_max_height());
     request();
@@ -256,7 +292,7 @@
 
   window.modelc = {
     ready: ready,
-    view: () => Object.assign({}, view),
+    view: () => Object.assign({}, view, { mode: MODES[view.mode] }),
     frames: () => frames,
     last: () => last,
     exports: () => ex,   // the module's own functions (web.c), for benchmarks

@@ -12,12 +12,20 @@
  * static: the bake's frame buffers (app.h) and one RGBA frame of MC_WEB_MAX_PIXELS pixels, which the
  * build sets to the bake's screen size.
  *
+ * A bake with a mesh part (--as both) is drawn as a mesh too: mcw_draw_mesh draws one frame of it in
+ * a style (shaded, lines, shaded + lines) at a level of detail through the same sequence as the
+ * native viewer's mesh modes (front/common/mesh_frame.h: mc_front_mesh_frame over the app binding's
+ * level-of-detail memory, the level set by mc_pmesh_lod_set), so for the same view, style, level
+ * and size, the same pixels as the native viewer's --mode STYLE --lod LEVEL. The level state is the
+ * module's: a level reached from any other is the same bytes (pmesh.h).
+ *
  * Built with MC_WEB_STREAM_BYTES (the stream page, build.sh), the module holds no bake: the model
  * arrives as a stream (modelc/stream.h) that viewer.js copies piece by piece into mcw_scratch() and
  * hands to mcw_feed, into a static receive buffer of MC_WEB_STREAM_BYTES (the bake's
  * MC_NAME_STREAM_BYTES); mcw_draw then draws the deepest complete level, exactly as the native
  * viewer draws the bake at that depth, and keeps drawing it after the stream fails. The frame
- * buffers are its own, MC_WEB_MAX_WIDTH x MC_WEB_MAX_HEIGHT.
+ * buffers are its own, MC_WEB_MAX_WIDTH x MC_WEB_MAX_HEIGHT. The stream page draws points only: it
+ * has no mesh memory (mcw_mesh_vertices is 0).
  */
 #include <stdint.h>
 #include <modelc/modelc.h>
@@ -26,6 +34,7 @@
 #include <modelc/stream.h>
 #else
 #include <modelc/app.h>
+#include "../common/mesh_frame.h"
 #endif
 
 /* MC_WEB_MAX_PIXELS: the RGBA frame's size in pixels; the build passes the bake's screen
@@ -128,3 +137,55 @@ int32_t mcw_draw(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoo
     mc_front_rgba(&t, octree->palette, 0, w * h, rgba);
     return MC_OK;
 }
+
+#ifndef MC_WEB_STREAM_BYTES
+/* ---- the mesh part ---- */
+static mc_pmesh_lod lod;
+static int lod_ready;
+static mc_front_mesh_stats mesh_last;
+
+/* the bake's mesh part with its level of detail set up (null: the bake has none) */
+static const mc_pmesh *mesh(void)
+{
+    const mc_pmesh *pm = mc_app_model.model->pmesh;
+    if (!pm || !mc_app_model.pmesh_anc || !mc_app_model.pmesh_facing) return 0;
+    if (!lod_ready) {   /* at the finest level, as the native viewer starts */
+        mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
+        mc_pmesh_lod_set(&lod, pm->vertices);
+        lod_ready = 1;
+    }
+    return pm;
+}
+
+/* the mesh's vertices, full and base (0: no mesh part), and the level drawn last: its vertices and
+ * faces; the last frame's faces that covered a pixel and line pixels before the depth test */
+EXPORT("mcw_mesh_vertices") uint32_t mcw_mesh_vertices(void) { return mesh() ? mesh()->vertices : 0; }
+EXPORT("mcw_mesh_base_vertices") uint32_t mcw_mesh_base_vertices(void) { return mesh() ? mesh()->base_vertices : 0; }
+EXPORT("mcw_mesh_level") uint32_t mcw_mesh_level(void) { return mesh() ? lod.level : 0; }
+EXPORT("mcw_mesh_faces") uint32_t mcw_mesh_faces(void) { return mesh() ? lod.faces : 0; }
+EXPORT("mcw_mesh_drawn") uint32_t mcw_mesh_drawn(void) { return mesh_last.faces.drawn; }
+EXPORT("mcw_mesh_line_pixels") uint32_t mcw_mesh_line_pixels(void) { return mesh_last.lines.pixels; }
+
+/* Draws a w x h frame of the mesh in style (1 shaded, 2 lines, 3 shaded + lines, mesh_frame.h) at
+ * `level` vertices (clamped to base .. full); returns MC_OK, a renderer's MC_ERR_*, or MC_ERR_ARG
+ * when the bake has no mesh part, the style is none of these or w x h exceeds the bake's screen. */
+EXPORT("mcw_draw_mesh")
+int32_t mcw_draw_mesh(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoom, uint32_t style, uint32_t level)
+{
+    const mc_pmesh *pm = mesh();
+    if (!pm || style < MC_FRONT_SHADED || style > MC_FRONT_SHADED_LINES || w < 1 || h < 1 || w > MAX_WIDTH ||
+        h > MAX_HEIGHT || (uint64_t)w * h > (MC_WEB_MAX_PIXELS))
+        return MC_ERR_ARG;
+    mc_target t = {FRAME_COLOR, FRAME_DEPTH, (uint16_t)w, (uint16_t)h};
+    mc_view v = mc_view_default();
+    v.yaw = yaw;
+    v.pitch = pitch;
+    v.zoom = zoom;
+    mc_pmesh_lod_set(&lod, level < pm->base_vertices ? pm->base_vertices : level > pm->vertices ? pm->vertices : level);
+    const int rc = mc_front_mesh_frame(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
+                                       mc_app_model.pmesh_sdepth, &v, (mc_front_style)style, &t, &mesh_last);
+    if (rc != MC_OK) return rc;
+    mc_front_rgba(&t, pm->palette, 0, w * h, rgba);
+    return MC_OK;
+}
+#endif
