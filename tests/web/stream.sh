@@ -11,6 +11,9 @@ set -u
 cd "$(dirname "$0")/../.."
 TAP_PREFIX="web: stream: "
 . tests/lib.sh
+# build.sh's compiles through the shared object cache (tests/cc_cached.sh): the runtime's wasm
+# objects are the same for every page the web suites build
+export WASM_CC="$PWD/tests/cc_cached.sh clang"
 
 dir=build/tests/web-stream
 fresh_dir "$dir"
@@ -76,4 +79,67 @@ if [ -s "$dir/check.err" ] || { [ $rc -ne 0 ] && ! grep -q '^not ok' "$dir/check
     notok "stream_check.py ran to its end" "exit $rc: $(tail -n 3 "$dir/check.err" | oneline)"
 fi
 [ $rc -eq 0 ] || status=1
+
+# ---- a mesh bake's stream page: the mesh drawn as it comes ----
+# fandisk --as both at depth 6 with packed splits, served by a plain static server with a copy cut
+# between two of the mesh's records (its adjacency not come): the whole stream in lines at 3,000
+# vertices, and the cut one in lines (drawn shaded, at the last level that came), each against the
+# native viewer of the same bake (--mode lines --lod 3000; --stream CUT --mode lines)
+mname=fmesh
+mbake=$dir/$mname
+# shellcheck disable=SC2086
+if build/bin/modelc "$(model_file fandisk)" -o "$dir" --name $mname --depth 6 --screen 320x240 --as both --emit stream \
+    --stream-splits packed -q >"$dir/mesh-bake.log" 2>&1 && runtime/front/web/build.sh "$dir" $mname >>"$dir/mesh-bake.log" 2>&1 &&
+    $view_cc -o "$mbake/$mname-view" "$mbake"/*.c $view_objs $view_ld >>"$dir/mesh-bake.log" 2>&1; then
+    ok "mesh: fandisk baked --as both --emit stream --stream-splits packed, its pages and native viewer built"
+else
+    notok "mesh: fandisk baked --as both --emit stream --stream-splits packed, its pages and native viewer built" \
+        "$(tail -n 5 "$dir/mesh-bake.log" | oneline)"
+    exit 1
+fi
+mweb=$mbake/web
+read -r cut cut_level < <(python3 -c '
+import json, sys
+m = json.load(open(sys.argv[1]))["stream"]["mesh_levels"]
+print(m[2]["at"] + 5, m[2]["level"])' "$mbake/budget.json")
+head -c "$cut" "$mbake/$mname.mcs" >"$mweb/cut.mcs"
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+python3 -m http.server "$port" --bind 127.0.0.1 --directory "$mweb" >"$dir/mesh-http.log" 2>&1 &
+server=$!
+trap 'kill $server 2>/dev/null' EXIT
+for _ in $(seq 50); do python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/stream.html')" 2>/dev/null && break; sleep 0.1; done
+# mesh_page TAG QUERY NATIVE-ARGS...: the page's frame at rest against the native viewer's PPM
+mesh_page() {
+    local tag=$1 query=$2
+    shift 2
+    timeout 120 python3 tests/web/cdp.py "http://127.0.0.1:$port/stream.html?$query" --eval-file tests/web/stream_mesh.js \
+        >"$dir/mesh-$tag.json" 2>"$dir/mesh-$tag.err"
+    python3 - "$dir/mesh-$tag.json" "$dir/mesh-$tag.canvas.ppm" <<'PY' >"$dir/mesh-$tag.txt" 2>&1
+import base64, json, sys
+try:
+    r = json.load(open(sys.argv[1]))
+except ValueError:
+    print('error no result from the page'); sys.exit(0)
+rgba = base64.b64decode(r['rgba'])
+open(sys.argv[2], 'wb').write(b'P6\n%d %d\n255\n' % (r['width'], r['height']) + bytes(b for i, b in enumerate(rgba) if i % 4 != 3))
+s, f = r['stream'], r['rest'] or {}
+print('state', int(s['ok']), s['meshLevel'], s['meshLines'], f.get('mode'), f.get('level'), int(bool(f.get('shadedOnly'))))
+print('status', r['status'].replace('\n', ' | '))
+PY
+    "$mbake/$mname-view" --size 320x240 "$@" --ppm "$dir/mesh-$tag.native.ppm" >"$dir/mesh-$tag.native.txt" 2>&1
+    read -r _ sok slevel slines fmode flevel fshaded < <(grep '^state' "$dir/mesh-$tag.txt")
+    same=$(cmp -s "$dir/mesh-$tag.canvas.ppm" "$dir/mesh-$tag.native.ppm" && echo same ||
+        python3 tests/bench/bench_tools.py image-cmp "$dir/mesh-$tag.native.ppm" "$dir/mesh-$tag.canvas.ppm" 2>&1 | oneline)
+}
+vertices=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["pmesh"]["vertices"])' "$mbake/budget.json")
+mesh_page whole "mode=lines&lod=3000" --mode lines --lod 3000
+check_problems "mesh: the whole stream (?mode=lines&lod=3000): complete, the mesh's $vertices levels and its adjacency came, lines drawn at 3,000 vertices, the canvas equal to the native viewer's --mode lines --lod 3000" \
+    "$([ "${sok:-} ${slevel:-} ${slines:-} ${fmode:-} ${flevel:-} ${fshaded:-}" = "1 $vertices 1 lines 3000 0" ] && [ "$same" = same ] ||
+        echo "$(oneline <"$dir/mesh-whole.txt") $(head -c 200 "$dir/mesh-whole.err" | oneline); image: $same")"
+mesh_page cut "stream=cut.mcs&mode=lines" --stream "$mweb/cut.mcs" --mode lines
+check_problems "mesh: cut at byte $cut, between mesh records (?stream=cut.mcs&mode=lines): truncated, level $cut_level the finest drawn, shaded (no adjacency), as the native viewer's --stream of the cut file in lines" \
+    "$([ "${sok:-} ${slevel:-} ${slines:-} ${fmode:-} ${flevel:-} ${fshaded:-}" = "0 $cut_level 0 lines $cut_level 1" ] && [ "$same" = same ] &&
+        grep -q "truncated at byte $cut" "$dir/mesh-cut.txt" ||
+        echo "$(oneline <"$dir/mesh-cut.txt") $(head -c 200 "$dir/mesh-cut.err" | oneline); image: $same")"
+kill $server 2>/dev/null
 exit $status

@@ -9,6 +9,9 @@ set -u
 cd "$(dirname "$0")/../.."
 TAP_PREFIX="web: "
 . tests/lib.sh
+# build.sh's compiles through the shared object cache (tests/cc_cached.sh): the runtime's wasm
+# objects are the same for every page the web suites build
+export WASM_CC="$PWD/tests/cc_cached.sh clang"
 
 dir=build/tests/web
 rm -rf "$dir" && mkdir -p "$dir"

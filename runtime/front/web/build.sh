@@ -10,6 +10,8 @@
 #   NAME-stream.wasm  the runtime, web.c and a receive buffer of MC_NAME_STREAM_BYTES; no bake
 #   NAME.mcs      the stream it fetches (stream.html?stream=URL fetches another)
 # The folder is replaced whole or not at all: everything is written beside it and renamed at the end.
+# WASM_CC: the compiler command (default clang; words split on spaces, e.g. a caching wrapper
+# before it, as the tests use tests/cc_cached.sh).
 set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: $0 BUILD NAME [WxH]" >&2; exit 2; }
 build=$1 name=$2 size=${3:-}
@@ -19,7 +21,8 @@ bake=$build/$name
 header=$bake/$name.h
 die() { echo "modelc web: $*" >&2; exit 1; }
 [ -f "$header" ] || die "$header: no bake named $name under $build (run modelc -o $build --name $name first)"
-command -v "${WASM_CC:-clang}" >/dev/null || die "${WASM_CC:-clang} not found (make deps installs clang and lld)"
+read -ra wasm_cc <<<"${WASM_CC:-clang}"
+command -v "${wasm_cc[0]}" >/dev/null || die "${wasm_cc[0]} not found (make deps installs clang and lld)"
 command -v wasm-ld >/dev/null || command -v wasm-ld-14 >/dev/null || die "wasm-ld not found (make deps installs lld)"
 
 up=$(echo "$name" | tr 'a-z' 'A-Z')
@@ -46,13 +49,21 @@ jobs_max=$(nproc 2>/dev/null || echo 2)
 mkdir -p "$tmp/.o/rt" "$tmp/.o/bake"
 compile() {   # SRC OBJ [FLAGS...], in the background; a failure leaves $tmp/.o/failed
     while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n || true; done
-    { "${WASM_CC:-clang}" "${cflags[@]}" "${@:3}" -c -o "$2" "$1" || touch "$tmp/.o/failed"; } &
+    { "${wasm_cc[@]}" "${cflags[@]}" "${@:3}" -c -o "$2" "$1" || touch "$tmp/.o/failed"; } &
 }
 stream_bytes=$(sed -n "s/^#define MC_${up}_STREAM_BYTES \([0-9]*\)$/\1/p" "$header")
 if [ -f "$bake/$name.mcs" ]; then
     [ -n "$stream_bytes" ] || die "$header: no MC_${up}_STREAM_BYTES beside $name.mcs (bake again with --emit stream)"
+    # a bake with a mesh part: the stream module keeps its level-of-detail memory too
+    mesh_defs=()
+    pv=$(sed -n "s/^#define MC_${up}_PMESH_VERTICES \([0-9]*\)$/\1/p" "$header")
+    if [ -n "$pv" ]; then
+        mesh_defs=(-DMC_WEB_PMESH_VERTICES="$pv"
+            -DMC_WEB_PMESH_LOD_BYTES="$(sed -n "s/^#define MC_${up}_PMESH_LOD_BYTES \([0-9]*\)$/\1/p" "$header")"
+            -DMC_WEB_PMESH_FACING_BYTES="$(sed -n "s/^#define MC_${up}_PMESH_FACING_BYTES \([0-9]*\)$/\1/p" "$header")")
+    fi
     compile "$root/runtime/front/web/web.c" "$tmp/.o/web-stream.o" -DMC_WEB_MAX_PIXELS="($sw * $sh)" \
-        -DMC_WEB_MAX_WIDTH="$sw" -DMC_WEB_MAX_HEIGHT="$sh" -DMC_WEB_STREAM_BYTES="$stream_bytes"
+        -DMC_WEB_MAX_WIDTH="$sw" -DMC_WEB_MAX_HEIGHT="$sh" -DMC_WEB_STREAM_BYTES="$stream_bytes" "${mesh_defs[@]}"
 fi
 compile "$root/runtime/front/web/web.c" "$tmp/.o/web.o" -DMC_WEB_MAX_PIXELS="($sw * $sh)"
 rt_objs=("$tmp/.o/rgb.o" "$tmp/.o/mesh_frame.o") bake_objs=()
@@ -68,11 +79,11 @@ for c in "$bake"/*.c; do
 done
 wait
 [ ! -e "$tmp/.o/failed" ] || die "compiling for wasm32 failed (above)"
-"${WASM_CC:-clang}" "${ldflags[@]}" -o "$tmp/$name.wasm" "$tmp/.o/web.o" "${rt_objs[@]}" "${bake_objs[@]}"
+"${wasm_cc[@]}" "${ldflags[@]}" -o "$tmp/$name.wasm" "$tmp/.o/web.o" "${rt_objs[@]}" "${bake_objs[@]}"
 if [ -f "$bake/$name.mcs" ]; then
     # the model comes through the stream, so none of the bake's objects: the module is the runtime
     # and its buffers, and the first picture needs only the stream's first levels
-    "${WASM_CC:-clang}" "${ldflags[@]}" -o "$tmp/$name-stream.wasm" "$tmp/.o/web-stream.o" "${rt_objs[@]}"
+    "${wasm_cc[@]}" "${ldflags[@]}" -o "$tmp/$name-stream.wasm" "$tmp/.o/web-stream.o" "${rt_objs[@]}"
     cp "$bake/$name.mcs" "$tmp/$name.mcs"
     sed -e "s|<body data-model=\"@NAME@\">|<body data-model=\"@NAME@\" data-stream=\"@NAME@.mcs\">|" \
         -e "s|<title>@NAME@ |<title>@NAME@ (stream) |" -e "s|loading @NAME@.wasm|loading @NAME@-stream.wasm|" \

@@ -11,7 +11,9 @@
 // lines and shaded+lines, [ and ] halve or double the splits above the base mesh (the level of
 // detail, in vertices); ?mode=lines&lod=N in the address starts there. A mesh frame is drawn at the
 // chosen level whether the view moves or rests (web.c mcw_draw_mesh: the native viewer's
-// --mode STYLE --lod N).
+// --mode STYLE --lod N). On the stream page the mesh's modes come with its base mesh, each level is
+// drawn as its splits come (the level asked for, clamped to those), and the line styles draw shaded
+// until the adjacency has come, as the native viewer's --stream.
 //
 // The stream page (stream.html: <body data-stream="NAME.mcs">, or ?stream=URL) loads NAME-stream.wasm,
 // which holds no model, and fetches the stream (modelc --emit stream) through response.body, feeding
@@ -40,14 +42,14 @@
   const MODES = ['points', 'shaded', 'lines', 'shaded+lines'];
   const params = new URLSearchParams(location.search);
   const view = { yaw: 0, pitch: 0, zoom: ZOOM_ONE, error: LOD_PIXEL, mode: 0, level: 0 };
-  let meshVertices = 0, meshBase = 0;   // the bake's mesh part (0: none)
+  let meshVertices = 0, meshBase = 0, meshCap = 0;   // the mesh part (0: none); the levels that have come
   let ex = null, depth = 0, moving = false, dragging = null, pending = false, restTimer = 0;
   let frames = 0, last = null;
   const idleWaiters = [];
   // the stream's state: bytes come from the network, total and levels (D) from its header, drawable
   // the bytes and time at which each depth became drawable, error the reader's or the network's
   const st = { url: streamUrl, bytes: 0, total: 0, levels: 0, depth: 0, done: false, ok: false,
-               error: null, drawable: [] };
+               error: null, drawable: [], meshLevel: 0, meshLines: 0 };
   let frameLine = '', streamLine = '';
 
   // file:// pages cannot fetch, so NAME.wasm.js carries the same bytes in base64 for them
@@ -88,7 +90,7 @@
   }
   function draw() {
     pending = false;
-    if (streaming && depth === 0) {   // nothing drawable (yet): no frame
+    if (streaming && (view.mode ? meshCap === 0 : depth === 0)) {   // nothing drawable (yet): no frame
       if (!moving) while (idleWaiters.length) idleWaiters.shift()(null);
       return;
     }
@@ -110,7 +112,9 @@
       last = { yaw: view.yaw, pitch: view.pitch, zoom: view.zoom, moving: moving, mode: MODES[view.mode],
                level: ex.mcw_mesh_level(), faces: ex.mcw_mesh_faces(), drawn: ex.mcw_mesh_drawn(),
                linePixels: ex.mcw_mesh_line_pixels(), ms: ms };
-      frameLine = name + ' | ' + last.mode + ' | level ' + last.level + '/' + meshVertices + ', ' +
+      last.shadedOnly = view.mode !== 1 && !ex.mcw_mesh_lines_ready();
+      frameLine = name + ' | ' + last.mode + (last.shadedOnly ? ' (shaded: no adjacency yet)' : '') +
+        ' | level ' + last.level + '/' + meshVertices + ', ' +
         last.faces.toLocaleString('en') + ' faces | ' + (view.mode === 2 ? last.linePixels.toLocaleString('en') +
         ' line pixels' : last.drawn.toLocaleString('en') + ' drawn') + ' | ' + tail + w + 'x' + h;
     } else {
@@ -121,6 +125,18 @@
     }
     showStatus();
     if (!moving) while (idleWaiters.length) idleWaiters.shift()(last);
+  }
+  // the mesh part once the module has one (a bake's at once, a stream's when its base has come): the
+  // mode and level the address asks for, the keys in the help line
+  function meshSetup() {
+    meshVertices = ex.mcw_mesh_vertices();
+    if (!meshVertices) return;
+    meshBase = ex.mcw_mesh_base_vertices();
+    meshCap = ex.mcw_mesh_cap();
+    const mode = MODES.indexOf(params.get('mode') || 'points'), lod = Number(params.get('lod'));
+    view.mode = mode > 0 ? mode : 0;
+    view.level = params.get('lod') && Number.isInteger(lod) ? Math.min(meshVertices, Math.max(meshBase, lod)) : meshVertices;
+    if (help) help.textContent += ' · m: points / shaded / lines / shaded+lines · [ ] level of detail';
   }
   function request() {
     if (pending || !ex) return;
@@ -174,7 +190,7 @@
       case 'm': case 'M': if (meshVertices) view.mode = (view.mode + 1) % MODES.length; break;
       case '[': case ']': {   // half or twice the splits above the base mesh, as the terminal viewer
         if (!meshVertices) return;
-        const splits = view.level - meshBase;
+        const splits = Math.min(view.level, meshCap) - meshBase;
         const want = e.key === '[' ? Math.floor(splits / 2) : splits ? splits * 2 : 1;
         view.level = want > meshVertices - meshBase ? meshVertices : meshBase + want;
         break;
@@ -197,6 +213,8 @@
     else
       streamLine = 'stream: depth ' + st.depth + ' of ' + (st.levels || '?') + ' after ' + st.bytes + ' of ' +
         (st.total || '?') + ' bytes';
+    if (meshVertices)
+      streamLine += ' | mesh level ' + meshCap + ' of ' + meshVertices + (ex.mcw_mesh_lines_ready() ? '' : ', no lines yet');
     showStatus();
   }
   function readerState() {
@@ -215,6 +233,13 @@
       depth = st.depth = d;
       st.drawable.push({ depth: d, bytes: st.bytes, ms: Math.round(performance.now()) });
       request();
+    }
+    if (!meshVertices) meshSetup();
+    const cap = meshVertices ? ex.mcw_mesh_cap() : 0, lines = meshVertices ? ex.mcw_mesh_lines_ready() : 0;
+    if (cap !== st.meshLevel || lines !== st.meshLines) {
+      meshCap = st.meshLevel = cap;
+      st.meshLines = lines;
+      if (view.mode) request();
     }
   }
   // a piece of the body into the module, a scratch area at a time; false once the reader stopped
@@ -270,14 +295,7 @@
   const ready = instantiate().then((instance) => {
     ex = instance.exports;
     depth = ex.mcw_depth();
-    meshVertices = ex.mcw_mesh_vertices ? ex.mcw_mesh_vertices() : 0;
-    if (meshVertices) {
-      meshBase = ex.mcw_mesh_base_vertices();
-      const mode = MODES.indexOf(params.get('mode') || 'points'), lod = Number(params.get('lod'));
-      view.mode = mode > 0 ? mode : 0;
-      view.level = params.get('lod') && Number.isInteger(lod) ? Math.min(meshVertices, Math.max(meshBase, lod)) : meshVertices;
-      if (help) help.textContent += ' · m: points / shaded / lines / shaded+lines · [ ] level of detail';
-    }
+    meshSetup();
     if (w > ex.mcw_max_width() || h > ex.mcw_max_height())
       throw new Error('the canvas is larger than the bake\'s screen ' + ex.mcw_max_width() + 'x' + ex.mcw_max_height());
     request();

@@ -24,8 +24,10 @@
  * hands to mcw_feed, into a static receive buffer of MC_WEB_STREAM_BYTES (the bake's
  * MC_NAME_STREAM_BYTES); mcw_draw then draws the deepest complete level, exactly as the native
  * viewer draws the bake at that depth, and keeps drawing it after the stream fails. The frame
- * buffers are its own, MC_WEB_MAX_WIDTH x MC_WEB_MAX_HEIGHT. The stream page draws points only: it
- * has no mesh memory (mcw_mesh_vertices is 0).
+ * buffers are its own, MC_WEB_MAX_WIDTH x MC_WEB_MAX_HEIGHT. For a bake with a mesh part build.sh
+ * also passes its level-of-detail sizes (MC_WEB_PMESH_*: NAME.h's), and the streamed mesh is drawn
+ * as it comes: mcw_draw_mesh clamps the level to the splits that have come (mcw_mesh_cap), and the
+ * line styles draw shaded until the adjacency has (as the native viewer's --stream).
  */
 #include <stdint.h>
 #include <modelc/modelc.h>
@@ -34,8 +36,8 @@
 #include <modelc/stream.h>
 #else
 #include <modelc/app.h>
-#include "../common/mesh_frame.h"
 #endif
+#include "../common/mesh_frame.h"
 
 /* MC_WEB_MAX_PIXELS: the RGBA frame's size in pixels; the build passes the bake's screen
  * (MC_NAME_SCREEN_WIDTH * MC_NAME_SCREEN_HEIGHT from NAME.h). */
@@ -138,37 +140,83 @@ int32_t mcw_draw(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoo
     return MC_OK;
 }
 
-#ifndef MC_WEB_STREAM_BYTES
 /* ---- the mesh part ---- */
-static mc_pmesh_lod lod;
-static int lod_ready;
-static mc_front_mesh_stats mesh_last;
-
-/* the bake's mesh part with its level of detail set up (null: the bake has none) */
-static const mc_pmesh *mesh(void)
+#ifdef MC_WEB_STREAM_BYTES
+#ifdef MC_WEB_PMESH_VERTICES
+/* the level-of-detail memory of the bake's mesh part (build.sh passes its sizes), as its app
+ * binding declares it; a streamed mesh larger than it is not drawn */
+static uint32_t pmesh_anc[(MC_WEB_PMESH_LOD_BYTES + 3u) / 4u];
+static uint32_t pmesh_facing[(MC_WEB_PMESH_FACING_BYTES + 3u) / 4u];
+static mc_xvertex pmesh_cache[MC_WEB_PMESH_VERTICES];
+static uint32_t pmesh_sdepth[MC_SDEPTH_WORDS(MC_WEB_MAX_WIDTH, MC_WEB_MAX_HEIGHT)];
+#define PMESH_ANC pmesh_anc
+#define PMESH_FACING ((uint8_t *)pmesh_facing)
+#define PMESH_CACHE pmesh_cache
+#define PMESH_SDEPTH pmesh_sdepth
+static const mc_pmesh *mesh_part(void)
+{
+    const mc_pmesh *pm = mc_stream_pmesh(stream());
+    return pm && pm->vertices <= MC_WEB_PMESH_VERTICES &&
+                   MC_PMESH_LOD_BYTES(pm->vertices, pm->index_bytes) <= MC_WEB_PMESH_LOD_BYTES &&
+                   MC_MESH_LINES_BYTES(pm->faces) <= MC_WEB_PMESH_FACING_BYTES
+               ? pm
+               : 0;
+}
+/* the levels that have come */
+static uint32_t mesh_cap(void) { return mc_stream_mesh_level(stream()); }
+#else
+#define PMESH_ANC 0
+#define PMESH_FACING 0
+#define PMESH_CACHE 0
+#define PMESH_SDEPTH 0
+static const mc_pmesh *mesh_part(void) { return 0; }   /* a points bake's stream page */
+static uint32_t mesh_cap(void) { return 0; }
+#endif
+#else
+#define PMESH_ANC mc_app_model.pmesh_anc
+#define PMESH_FACING mc_app_model.pmesh_facing
+#define PMESH_CACHE mc_app_model.pmesh_cache
+#define PMESH_SDEPTH mc_app_model.pmesh_sdepth
+static const mc_pmesh *mesh_part(void)
 {
     const mc_pmesh *pm = mc_app_model.model->pmesh;
-    if (!pm || !mc_app_model.pmesh_anc || !mc_app_model.pmesh_facing) return 0;
-    if (!lod_ready) {   /* at the finest level, as the native viewer starts */
-        mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
-        mc_pmesh_lod_set(&lod, pm->vertices);
-        lod_ready = 1;
+    return pm && mc_app_model.pmesh_anc && mc_app_model.pmesh_facing ? pm : 0;
+}
+static uint32_t mesh_cap(void) { return mc_app_model.model->pmesh ? mc_app_model.model->pmesh->vertices : 0; }
+#endif
+
+static mc_pmesh_lod lod;
+static mc_front_mesh_stats mesh_last;
+
+/* the mesh part with its level of detail set up (null: none, or a stream's not yet come) */
+static const mc_pmesh *mesh(void)
+{
+    const mc_pmesh *pm = mesh_part();
+    if (pm && lod.pm != pm) {   /* at the finest level that has come, as the native viewer starts */
+        mc_pmesh_lod_init(&lod, pm, PMESH_ANC);
+        mc_pmesh_lod_set(&lod, mesh_cap() < pm->vertices ? mesh_cap() : pm->vertices);
     }
     return pm;
 }
 
-/* the mesh's vertices, full and base (0: no mesh part), and the level drawn last: its vertices and
- * faces; the last frame's faces that covered a pixel and line pixels before the depth test */
+/* the mesh's vertices, full and base (0: no mesh part), the finest level that has come (a stream's;
+ * the full mesh for a bake), whether the line styles can draw (a stream's adjacency has come), and
+ * the level drawn last: its vertices and faces; the last frame's faces that covered a pixel and line
+ * pixels before the depth test */
 EXPORT("mcw_mesh_vertices") uint32_t mcw_mesh_vertices(void) { return mesh() ? mesh()->vertices : 0; }
 EXPORT("mcw_mesh_base_vertices") uint32_t mcw_mesh_base_vertices(void) { return mesh() ? mesh()->base_vertices : 0; }
+EXPORT("mcw_mesh_cap") uint32_t mcw_mesh_cap(void) { return mesh() ? mesh_cap() : 0; }
+EXPORT("mcw_mesh_lines_ready") uint32_t mcw_mesh_lines_ready(void) { return mesh() && mesh()->opposite; }
 EXPORT("mcw_mesh_level") uint32_t mcw_mesh_level(void) { return mesh() ? lod.level : 0; }
 EXPORT("mcw_mesh_faces") uint32_t mcw_mesh_faces(void) { return mesh() ? lod.faces : 0; }
 EXPORT("mcw_mesh_drawn") uint32_t mcw_mesh_drawn(void) { return mesh_last.faces.drawn; }
 EXPORT("mcw_mesh_line_pixels") uint32_t mcw_mesh_line_pixels(void) { return mesh_last.lines.pixels; }
 
 /* Draws a w x h frame of the mesh in style (1 shaded, 2 lines, 3 shaded + lines, mesh_frame.h) at
- * `level` vertices (clamped to base .. full); returns MC_OK, a renderer's MC_ERR_*, or MC_ERR_ARG
- * when the bake has no mesh part, the style is none of these or w x h exceeds the bake's screen. */
+ * `level` vertices, clamped to the base and to the finest level that has come; a line style draws
+ * shaded until a stream's adjacency has come (as the native viewer). Returns MC_OK, a renderer's
+ * MC_ERR_*, or MC_ERR_ARG when there is no mesh (yet), the style is none of these or w x h exceeds
+ * the screen. */
 EXPORT("mcw_draw_mesh")
 int32_t mcw_draw_mesh(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoom, uint32_t style, uint32_t level)
 {
@@ -181,11 +229,12 @@ int32_t mcw_draw_mesh(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_
     v.yaw = yaw;
     v.pitch = pitch;
     v.zoom = zoom;
-    mc_pmesh_lod_set(&lod, level < pm->base_vertices ? pm->base_vertices : level > pm->vertices ? pm->vertices : level);
-    const int rc = mc_front_mesh_frame(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
-                                       mc_app_model.pmesh_sdepth, &v, (mc_front_style)style, &t, &mesh_last);
+    const uint32_t cap = mesh_cap() < pm->vertices ? mesh_cap() : pm->vertices;
+    mc_pmesh_lod_set(&lod, level < pm->base_vertices ? pm->base_vertices : level > cap ? cap : level);
+    if (!pm->opposite) style = MC_FRONT_SHADED;
+    const int rc = mc_front_mesh_frame(&lod, PMESH_FACING, PMESH_CACHE, PMESH_SDEPTH, &v, (mc_front_style)style, &t,
+                                       &mesh_last);
     if (rc != MC_OK) return rc;
     mc_front_rgba(&t, pm->palette, 0, w * h, rgba);
     return MC_OK;
 }
-#endif
