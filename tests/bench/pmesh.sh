@@ -115,7 +115,7 @@ print("The same mesh as a stream (`--emit stream --as both --depth 1`), its spli
       "plain then packed, median over rounds). Level change: `mc_pmesh_lod_set` from the base to the full level "
       "and back on the arrays the stream filled. Ir: callgrind, `mc_stream_packed_splits` only, per split.\n")
 print("| mesh | plain B per split | packed B per split | .pm B per split | adjacency B per split, plain / packed | "
-      "plain read ns per split | packed read ns per split | packed splits per s | packed decoder Ir per split | "
+      "plain read ns per split | packed read ns per split | packed stream read, splits per s | packed decoder Ir per split | "
       "level change ns (packed stream's arrays) | buffer plain | buffer packed |")
 print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 per_round = []
