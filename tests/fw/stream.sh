@@ -213,10 +213,15 @@ print(b["depth"], s["bytes"], b["pmesh"]["faces"], s["mesh_lines_at"])' "$bake/b
     run $b mesh "$mcs"
     expect $b mesh "^stream complete: depth $depth, $cap bytes$" \
         "a $faces-face mesh stream ($cap bytes, $(grep -o 'stream-splits [a-z]*' "$dir/$model.opts")): the points' levels and the mesh frames equal the host's (--stream, --checksums)"
+    # the mesh drawn as it came: a block of the views' mesh frames at each level budget.json says a
+    # mesh record brings (mesh_levels: level and byte), then the whole mesh after its adjacency
     m=$(grep -c '^mesh frame .* rc 0 ' "$out/$b.mesh.run.txt")
-    check_problems "$b: \"mesh complete after $lines_at bytes\" (budget.json's mesh_lines_at), then $m mesh frames, every render MC_OK" \
-        "$(grep -qx "mesh complete after $lines_at bytes" "$out/$b.mesh.run.txt" && [ "$m" -eq "$("$bake/$model-view" --checksums | grep -c '^mesh frame ')" ] && [ "$m" -gt 0 ] ||
-            grep -E '^mesh|^stream' "$out/$b.mesh.run.txt" | head -3 | oneline)"
+    views=$("$bake/$model-view" --checksums | grep -c '^mesh frame ')
+    got=$(sed -n 's/^mesh level \([0-9]*\) of [0-9]* drawable after \([0-9]*\) bytes$/\1@\2/p' "$out/$b.mesh.run.txt" | oneline)
+    want=$(python3 -c 'import json, sys; print(" ".join("%d@%d" % (m["level"], m["at"]) for m in json.load(open(sys.argv[1]))["stream"]["mesh_levels"]))' "$bake/budget.json")
+    check_problems "$b: the mesh drawn at each level as it came ($got: level@byte, budget.json's mesh_levels), then \"mesh complete after $lines_at bytes\" (mesh_lines_at); $m mesh frames, $views a block, every render MC_OK" \
+        "$([ "$got" = "$want" ] && grep -qx "mesh complete after $lines_at bytes" "$out/$b.mesh.run.txt" && [ "$views" -gt 0 ] &&
+            [ "$m" -eq $((views * ($(wc -w <<<"$want") + 1))) ] || echo "levels $got, budget.json $want; $m mesh frames")"
     [ $b = lm3s6965evb ] || continue
     # the comparison fails on one changed mesh checksum
     sed '0,/^mesh frame .*fnv1a /s/fnv1a \(.\)/fnv1a X\1/' "$out/$b.mesh.run.txt" >"$out/$b.mesh-tampered.txt"
@@ -224,12 +229,13 @@ print(b["depth"], s["bytes"], b["pmesh"]["faces"], s["mesh_lines_at"])' "$bake/b
         --stream "$mcs" --work "$out/$b.mesh-tampered" >"$out/$b.mesh-tampered.out" 2>&1
     check_problems "$b: stream_check.py fails on a run with one mesh checksum changed" \
         "$([ $? -ne 0 ] && grep -q 'mesh frames differ' "$out/$b.mesh-tampered.out" || oneline <"$out/$b.mesh-tampered.out")"
-    # cut inside the adjacency, the mesh's last record: its levels came, its line styles did not
+    # cut inside the adjacency, the mesh's last record: its levels came (and were drawn), its line
+    # styles did not
     cut=$((lines_at - 10))
     forge "$mcs" "$out/$b.mesh-cut.mcs" cut $cut
     run $b mesh-cut "$out/$b.mesh-cut.mcs" idle=500
     expect $b mesh-cut "^stream error truncated at byte $cut after $cut bytes \(no byte for 500 ms\); keeping depth $depth$" \
-        "cut at byte $cut inside the mesh's adjacency: no mesh frame, as the host's --stream --checksums"
+        "cut at byte $cut inside the mesh's adjacency: the mesh's levels drawn shaded, never its lines, as the host's --stream --checksums"
     # a mesh of more vertices than this receiver's memory, in a stream that fits its buffer (the
     # octree at depth 1 leaves room for a few more faces)
     big=$out/$b.mesh-big

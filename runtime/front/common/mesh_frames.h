@@ -53,22 +53,33 @@ typedef struct mc_front_mesh_result {
     uint32_t hash;              /* FNV-1a of the colour and depth buffers, as frames.h */
 } mc_front_mesh_result;
 
-/* lod: initialized on the model's part (mc_pmesh_lod_init), at any level; facing, cache and sdepth: the
- * app binding's (app.h; cache and sdepth may be null). */
-static inline mc_front_mesh_result mc_front_mesh_check(mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache,
-                                                       uint32_t *sdepth, unsigned i, const mc_target *t)
+/* The check of a mesh part of which only the levels up to max_level have come (a stream's, stream.h),
+ * and whose line styles can draw only when lines is non-zero (its adjacency has come): the level
+ * fitted within max_level too (mc_pmesh_lod_fit_to), the line styles drawn shaded without lines.
+ * With max_level the full mesh and lines set, mc_front_mesh_check's frame. */
+static inline mc_front_mesh_result mc_front_mesh_check_to(mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache,
+                                                          uint32_t *sdepth, unsigned i, const mc_target *t,
+                                                          uint32_t max_level, int lines)
 {
     mc_front_mesh_result r;
     const mc_view v = mc_front_view_get(i);
-    r.style = mc_front_mesh_style(i);
+    r.style = lines ? mc_front_mesh_style(i) : MC_FRONT_SHADED;
     MC_FRONT_MARK(MC_FRONT_MESH_MARK_LOD);
-    r.level = mc_pmesh_lod_fit(lod, mc_front_mesh_budget(lod->pm, i));
+    r.level = mc_pmesh_lod_fit_to(lod, mc_front_mesh_budget(lod->pm, i), max_level);
     r.faces = lod->faces;
     MC_FRONT_MARK(MC_FRONT_MESH_MARK_DRAW);
     r.rc = mc_front_mesh_frame(lod, facing, cache, sdepth, &v, r.style, t, &r.st);
     MC_FRONT_MARK(MC_FRONT_MESH_MARK_DONE);
     r.hash = mc_front_fnv1a(t);
     return r;
+}
+
+/* lod: initialized on the model's part (mc_pmesh_lod_init), at any level; facing, cache and sdepth: the
+ * app binding's (app.h; cache and sdepth may be null). */
+static inline mc_front_mesh_result mc_front_mesh_check(mc_pmesh_lod *lod, uint8_t *facing, mc_xvertex *cache,
+                                                       uint32_t *sdepth, unsigned i, const mc_target *t)
+{
+    return mc_front_mesh_check_to(lod, facing, cache, sdepth, i, t, lod->pm->vertices, 1);
 }
 
 /* printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r)); longs for the reason frames.h gives.

@@ -16,10 +16,12 @@ what differs on stderr and exits 1:
     (or, for bytes after the end record, which the firmware never reads, the host's "trailing" error
     there), or the same error name, byte offset and depth kept (the last level the firmware drew);
     a mesh larger than the firmware's mesh memory ("mesh-size") is one the host refuses too;
-  - a receiver built with a mesh (make firmware-stream FW_MESH=1) prints "mesh complete after N
-    bytes" and the mesh frames exactly when the host's --stream --checksums on the whole file prints
-    mesh frames (the stream's mesh came whole), and its lines equal the host's --stream on the first N
-    bytes and, for the bake's own stream, --checksums (the baked arrays).
+  - a receiver built with a mesh (make firmware-stream FW_MESH=1) prints, each time more of the mesh
+    has come, "mesh level L of V drawable after N bytes" (then "mesh complete after N bytes" for the
+    adjacency) and the mesh frames, the levels L rising; each block equals the host's --stream
+    --checksums on the first N bytes, the last one its --stream --checksums on the whole file (so a
+    run draws a mesh exactly when the host does), and a complete mesh's, for the bake's own stream,
+    its --checksums (the baked arrays).
 Usage: stream_check.py --run RUN.txt --status QEMU_STATUS --view NAME-view --stream FILE --work DIR
 """
 import argparse
@@ -33,7 +35,7 @@ BANNER = re.compile(r"^modelc stream firmware: buffer (\d+) bytes .* frames (\d+
 LEVEL = re.compile(r"^level (\d+) drawable after (\d+) bytes$")
 FRAME = re.compile(r"^frame (\d+) .* depth (\d+) level ")
 COMPLETE = re.compile(r"^stream complete: depth (\d+), (\d+) bytes$")
-MESH = re.compile(r"^mesh complete after (\d+) bytes$")
+MESH = re.compile(r"^mesh (?:complete|level (\d+) of \d+ drawable) after (\d+) bytes$")
 MESH_FRAME = re.compile(r"^mesh frame (\d+) ")
 ERROR = re.compile(r"^stream error ([\w-]+) at byte (\d+) after (\d+) bytes(?: \([^)]*\))?; keeping depth (\d+)")
 HOST_COMPLETE = re.compile(r"^stream: complete, depth (\d+), (\d+) bytes$")
@@ -67,7 +69,7 @@ def main():
     banner = [m for m in map(BANNER.match, lines) if m]
     frames = int(banner[0].group(2)) if banner else 0
     levels = []   # (depth, bytes, [frame lines])
-    mesh = None   # (bytes, [mesh frame lines])
+    meshes = []   # (level or None for complete, bytes, [mesh frame lines])
     final = None
     i = 0
     while i < len(lines):
@@ -77,9 +79,9 @@ def main():
             while i + 1 < len(lines) and MESH_FRAME.match(lines[i + 1]):
                 block.append(lines[i + 1])
                 i += 1
-            if mesh or [int(MESH_FRAME.match(l).group(1)) for l in block] != list(range(len(block))):
-                why.append("the mesh frames: not one run numbered 0, 1, ... after one \"mesh complete\" line")
-            mesh = (int(m.group(1)), block)
+            if [int(MESH_FRAME.match(l).group(1)) for l in block] != list(range(len(block))) or not block:
+                why.append(f"{lines[i - len(block)]}: not a run of mesh frames numbered 0, 1, ... after it")
+            meshes.append((int(m.group(1)) if m.group(1) else None, int(m.group(2)), block))
             i += 1
             continue
         m = LEVEL.match(lines[i])
@@ -104,7 +106,7 @@ def main():
         why.append(f"no final line and \"done\" (QEMU status {a.status}): {' | '.join(lines[-3:])}")
         final = ""
     fc, fe = COMPLETE.match(final), ERROR.match(final)
-    rc_bad = any(" rc 0 " not in l for _, _, b in levels + ([(0, 0, mesh[1])] if mesh else []) for l in b)
+    rc_bad = any(" rc 0 " not in l for _, _, b in levels + meshes for l in b)
     want_status = 0 if fc and not rc_bad else 1
     if a.status != want_status:
         why.append(f"QEMU exit status {a.status}, expected {want_status} (124: the timeout)")
@@ -156,24 +158,26 @@ def main():
 
     # ---- the mesh frames against the host ----------------------------------------------------------------
     host_mesh = [l for l in out if l.startswith("mesh frame ")]
-    if bool(mesh) != bool(host_mesh):
-        why.append(f"mesh frames: firmware {'drew' if mesh else 'did not draw'} them, the host's --stream on the "
-                   f"whole file {'draws' if host_mesh else 'does not'}")
-    if mesh:
-        n, block = mesh
-        if block != host_mesh:
-            why.append(f"the mesh frames differ from --stream on the whole file's ({len(block)} vs {len(host_mesh)} lines)")
+    if (meshes[-1][2] if meshes else []) != host_mesh:
+        why.append(f"the last mesh frames drawn ({len(meshes[-1][2]) if meshes else 0} lines) differ from --stream "
+                   f"on the whole file's ({len(host_mesh)} lines)")
+    drawn = [lv for lv, _, _ in meshes if lv is not None]
+    if drawn != sorted(set(drawn)) or any(lv is None for lv, _, _ in meshes[:-1]):
+        why.append(f"mesh levels drawn {[lv if lv is not None else 'complete' for lv, _, _ in meshes]}: not rising, "
+                   f"complete last")
+    for lv, n, block in meshes:
         st, out, err = host(a.view, ["--stream", "-", "--checksums"], data[:n])
         if [l for l in out if l.startswith("mesh frame ")] != block:
-            why.append(f"the mesh frames differ from --stream on the first {n} bytes (exit {st}: {err.strip()[:200]})")
-        if own:
+            why.append(f"mesh {lv or 'complete'}: the mesh frames differ from --stream on the first {n} bytes "
+                       f"(exit {st}: {err.strip()[:200]})")
+        if own and lv is None:
             st, out, err = host(a.view, ["--checksums"])
             hm = [l for l in out if l.startswith("mesh frame ")]
             if hm != block:
                 diff = [f"fw: {x} | host: {y}" for x, y in zip(block, hm) if x != y][:2]
                 why.append(f"the mesh frames differ from --checksums (the baked mesh): {len(hm)} lines, {diff}")
-        with open(os.path.join(a.work, "mesh.txt"), "w") as f:
-            f.write("\n".join(block) + "\n")
+    with open(os.path.join(a.work, "mesh.txt"), "w") as f:
+        f.write("".join(f"{lv or 'complete'} {n}\n" + "\n".join(b) + "\n" for lv, n, b in meshes))
 
     if why:
         for w in why:
@@ -181,9 +185,12 @@ def main():
         return 1
     drew = (f"levels 1..{kept}: {compared} frame checksums equal the host viewer's (--stream on each level's "
             f"bytes{', --checksums --depth D' if own else ''})" if levels else "no level drawable, as for the host")
-    if mesh:
-        drew += (f"; the mesh, whole after {mesh[0]} bytes: {len(mesh[1])} mesh frame checksums equal the host "
-                 f"viewer's (--stream{', --checksums' if own else ''})")
+    if meshes:
+        whole = [n for lv, n, _ in meshes if lv is None]
+        drew += (f"; the mesh at {len([1 for lv, _, _ in meshes if lv is not None])} levels as they came"
+                 f"{f', whole after {whole[0]} bytes' if whole else ''}: {sum(len(b) for _, _, b in meshes)} mesh "
+                 f"frame checksums equal the host viewer's (--stream on each block's bytes"
+                 f"{', --checksums' if own and whole else ''})")
     print(f"firmware-stream-run: {drew}; final state as the host viewer's --stream: {final}")
     return 0
 

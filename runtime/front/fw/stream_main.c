@@ -20,10 +20,13 @@
  *
  * Built with MC_FW_STREAM_MESH (make firmware-stream FW_MESH=1: a bake --as both), the receiver also
  * keeps the level-of-detail memory of the bake's mesh part (MC_FW_STREAM_PMESH_*: its ancestor map,
- * line memory, vertex cache and sparse depth bits, static). When the stream's mesh has come whole
- * (every split and the adjacency), one line "mesh complete after N bytes" and the mesh frames of
- * mesh_frames.h, one checksum line each, exactly as the host viewer's --checksums prints them for
- * the bake: the arrays the reader filled are the bake's, byte for byte (stream.h). A stream whose
+ * line memory, vertex cache and sparse depth bits, static), and draws the mesh as it comes: each
+ * time a mesh record raises the level that has come, one line "mesh level L of V drawable after N
+ * bytes" and the mesh frames of mesh_frames.h within it (mc_front_mesh_check_to: levels up to L,
+ * the line styles shaded, the adjacency coming last); when the adjacency has come, "mesh complete
+ * after N bytes" and the mesh frames, the line styles too. Each checksum line as the host viewer's
+ * --stream --checksums prints it on the same bytes, and the complete mesh's as its --checksums of
+ * the bake: the arrays the reader fills are the bake's, byte for byte (stream.h). A stream whose
  * mesh is larger than those buffers (not this bake's) is refused: "stream error mesh-size at byte B"
  * (the byte where its mesh header ends), its points kept.
  */
@@ -75,16 +78,19 @@ static int mesh_fits(const mc_pmesh *pm)
            MC_MESH_LINES_BYTES(pm->faces) <= MC_FW_STREAM_PMESH_FACING_BYTES;
 }
 
-/* The mesh frames of the whole mesh; returns 1 if a frame failed. */
-static int draw_mesh(const mc_pmesh *pm, const mc_target *t)
+/* The mesh frames within the levels that have come (up to level; the line styles when lines);
+ * returns 1 if a frame failed. */
+static int draw_mesh(const mc_pmesh *pm, uint32_t level, int lines, const mc_target *t)
 {
     int status = 0;
-    mc_pmesh_lod lod;
-    mc_pmesh_lod_init(&lod, pm, pmesh_anc);
-    printf("mesh complete after %lu bytes\n", (unsigned long)reader.len);
+    static mc_pmesh_lod lod;   /* (its level carries over: a level's state is the same bytes however reached) */
+    if (lod.pm != pm) mc_pmesh_lod_init(&lod, pm, pmesh_anc);
+    if (lines) printf("mesh complete after %lu bytes\n", (unsigned long)reader.len);
+    else printf("mesh level %lu of %lu drawable after %lu bytes\n", (unsigned long)level, (unsigned long)pm->vertices,
+                (unsigned long)reader.len);
     for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
         mc_front_mesh_result r =
-            mc_front_mesh_check(&lod, (uint8_t *)pmesh_facing, pmesh_cache, pmesh_sdepth, i, t);
+            mc_front_mesh_check_to(&lod, (uint8_t *)pmesh_facing, pmesh_cache, pmesh_sdepth, i, t, level, lines);
         printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
         if (r.rc != MC_OK) status = 1;
     }
@@ -164,7 +170,8 @@ int main(void)
 
     int status = 0, timed_out = 0, mesh_refused = 0;
 #if MC_FW_STREAM_MESH
-    int mesh_drawn = 0;
+    uint32_t mesh_level = 0;   /* the level drawn last */
+    int mesh_lines = 0;        /* the complete mesh drawn */
 #endif
     unsigned drawn = 0;
     uint32_t idle = 0;   /* ticks without a byte */
@@ -189,14 +196,16 @@ int main(void)
         }
 #if MC_FW_STREAM_MESH
         const mc_pmesh *pm = mc_stream_pmesh(&reader);
-        if (pm && !mesh_drawn) {
+        if (pm && !mesh_lines) {
             if (!mesh_fits(pm)) {
                 mesh_refused = 1;
                 break;
             }
-            if (pm->opposite && mc_stream_mesh_level(&reader) == pm->vertices) {
-                if (draw_mesh(pm, &t)) status = 1;
-                mesh_drawn = 1;
+            const uint32_t level = mc_stream_mesh_level(&reader);
+            const int lines = pm->opposite != 0 && level == pm->vertices;
+            if (level > mesh_level || lines) {
+                if (draw_mesh(pm, level, lines, &t)) status = 1;
+                mesh_level = level, mesh_lines = lines;
             }
         }
 #endif

@@ -44,7 +44,7 @@ static void usage(FILE *f)
             "                  baked screen size and the model's depth (unless --size, --depth) and\n"
             "                  print the firmware's checksum line per frame, then with a mesh part\n"
             "                  (--as both) its mesh frames' (runtime/front/common/mesh_frames.h; with\n"
-            "                  --stream, of the stream's mesh once all of it has come);\n"
+            "                  --stream, the stream's mesh within the levels that have come);\n"
             "                  --ppm/--png then write the frame the firmware writes out\n"
             "  --yaw DEG       rotation about the vertical axis (default 0)\n"
             "  --pitch DEG     rotation about the horizontal axis (default 0)\n"
@@ -138,12 +138,14 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
 }
 
 /* --checksums: the same frames, lines and written frame as the firmware (runtime/front/fw/main.c,
- * stream_main.c): the point frames, then the mesh frames of pm (null: none). */
-static int checksums(const mc_octree *octree, const mc_pmesh *pm, const mc_target *t, unsigned depth, const char *png,
-                     const char *ppm)
+ * stream_main.c): the point frames of octree (null: none, a stream's mesh came first), then the
+ * mesh frames of pm (null: none) within its levels up to max_level, the line styles when lines
+ * (mesh_frames.h mc_front_mesh_check_to). */
+static int checksums(const mc_octree *octree, const mc_pmesh *pm, uint32_t max_level, int lines, const mc_target *t,
+                     unsigned depth, const char *png, const char *ppm)
 {
     int status = 0;
-    for (unsigned i = 0; i < MC_FRONT_FRAME_COUNT; i++) {
+    for (unsigned i = 0; octree && i < MC_FRONT_FRAME_COUNT; i++) {
         mc_front_result r = mc_front_frame(octree, i, depth, t);
         printf(MC_FRONT_FRAME_LINE, MC_FRONT_FRAME_ARGS(i, depth, t, r));
         if (r.rc != MC_OK) status = 1;
@@ -157,8 +159,8 @@ static int checksums(const mc_octree *octree, const mc_pmesh *pm, const mc_targe
         mc_pmesh_lod lod;
         mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
         for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
-            mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
-                                                         mc_app_model.pmesh_sdepth, i, t);
+            mc_front_mesh_result r = mc_front_mesh_check_to(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
+                                                            mc_app_model.pmesh_sdepth, i, t, max_level, lines);
             printf(MC_FRONT_MESH_LINE, MC_FRONT_MESH_ARGS(i, pm, t, r));
             if (r.rc != MC_OK) status = 1;
         }
@@ -303,7 +305,9 @@ int main(int argc, char **argv)
             if (mc_host_stream_ok(&stream))
                 printf("stream: complete, depth %u, %lu bytes\n", stream.depth, (unsigned long)stream.reader.len);
             fflush(stdout);
-            const int drawable = mode == MC_HOST_POINTS ? stream.depth != 0 : stream.mesh_level != 0;
+            /* --checksums draws what has come: the point frames of its octree, the mesh frames of its mesh */
+            const int drawable = check ? stream.depth != 0 || stream.mesh_level != 0
+                                 : mode == MC_HOST_POINTS ? stream.depth != 0 : stream.mesh_level != 0;
             if (!mc_host_stream_ok(&stream)) {
                 char line[300];
                 mc_host_stream_status(&stream, line, sizeof line);
@@ -321,19 +325,23 @@ int main(int argc, char **argv)
             }
             scene.octree = mc_host_stream_octree(&stream);
             if (scene.octree) octree = scene.octree;
-            if (depth > octree->depth) depth = octree->depth;
+            else if (check) octree = NULL;   /* a mesh has come before any level of points */
+            if (octree && depth > octree->depth) depth = octree->depth;
         }
     }
     if (check) {
         if (frames) return die("--checksums and --bench exclude each other", NULL);
         if (mode != MC_HOST_POINTS) return die("--checksums draws points only", NULL);
-        /* a stream's mesh frames once its mesh has come whole, as the stream firmware draws them */
+        /* a stream's mesh frames within the levels that have come, as the stream firmware draws them */
         const mc_pmesh *pm = model->pmesh;
+        uint32_t max_level = pm ? pm->vertices : 0;
+        int lines = 1;
         if (stream_src) {
             pm = mc_host_stream_pmesh(&stream);
-            if (pm && (!stream.mesh_lines || stream.mesh_level != pm->vertices)) pm = NULL;
+            max_level = stream.mesh_level;
+            lines = stream.mesh_lines && pm && max_level == pm->vertices;
         }
-        int rc = checksums(octree, pm, &t, depth, png, ppm);
+        int rc = checksums(octree, pm, max_level, lines, &t, depth, png, ppm);
         return rc ? rc : stream_failed;
     }
     mc_view v = mc_view_default();
