@@ -115,20 +115,26 @@ EXPORT("mcw_rgba") const uint8_t *mcw_rgba(void) { return rgba; }
 EXPORT("mcw_drawn") uint32_t mcw_drawn(void) { return last.points; }
 EXPORT("mcw_drawn_depth") uint32_t mcw_drawn_depth(void) { return last.depth; }
 
+/* The w x h target over the frame buffers and the view (the default one turned and zoomed); 0 when
+ * w x h is empty or exceeds the screen. */
+static int frame(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoom, mc_target *t, mc_view *v)
+{
+    if (w < 1 || h < 1 || w > MAX_WIDTH || h > MAX_HEIGHT || (uint64_t)w * h > (MC_WEB_MAX_PIXELS)) return 0;
+    t->color = FRAME_COLOR, t->depth = FRAME_DEPTH, t->width = (uint16_t)w, t->height = (uint16_t)h;
+    *v = mc_view_default();
+    v->yaw = yaw, v->pitch = pitch, v->zoom = zoom;
+    return 1;
+}
+
 /* Draws a w x h frame; returns MC_OK, a renderer's MC_ERR_*, or MC_ERR_ARG when the model has no
  * points (a stream: nothing drawable yet) or w x h exceeds the bake's screen. */
 EXPORT("mcw_draw")
 int32_t mcw_draw(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoom, uint32_t max_error)
 {
     const mc_octree *octree = MODEL_OCTREE;
-    if (!octree || w < 1 || h < 1 || w > MAX_WIDTH || h > MAX_HEIGHT ||
-        (uint64_t)w * h > (MC_WEB_MAX_PIXELS) || max_error > 0xFFFFu)
-        return MC_ERR_ARG;
-    mc_target t = {FRAME_COLOR, FRAME_DEPTH, (uint16_t)w, (uint16_t)h};
-    mc_view v = mc_view_default();
-    v.yaw = yaw;
-    v.pitch = pitch;
-    v.zoom = zoom;
+    mc_target t;
+    mc_view v;
+    if (!octree || max_error > 0xFFFFu || !frame(w, h, yaw, pitch, zoom, &t, &v)) return MC_ERR_ARG;
     const mc_octree_options opt = {MC_SPLAT_DEFAULT, (uint16_t)max_error, MC_CULL_DEFAULT};
     mc_stats st = {0, 0, 0, 0, 0};
     mc_clear(&t);
@@ -221,14 +227,10 @@ EXPORT("mcw_draw_mesh")
 int32_t mcw_draw_mesh(uint32_t w, uint32_t h, int32_t yaw, int32_t pitch, int32_t zoom, uint32_t style, uint32_t level)
 {
     const mc_pmesh *pm = mesh();
-    if (!pm || style < MC_FRONT_SHADED || style > MC_FRONT_SHADED_LINES || w < 1 || h < 1 || w > MAX_WIDTH ||
-        h > MAX_HEIGHT || (uint64_t)w * h > (MC_WEB_MAX_PIXELS))
+    mc_target t;
+    mc_view v;
+    if (!pm || style < MC_FRONT_SHADED || style > MC_FRONT_SHADED_LINES || !frame(w, h, yaw, pitch, zoom, &t, &v))
         return MC_ERR_ARG;
-    mc_target t = {FRAME_COLOR, FRAME_DEPTH, (uint16_t)w, (uint16_t)h};
-    mc_view v = mc_view_default();
-    v.yaw = yaw;
-    v.pitch = pitch;
-    v.zoom = zoom;
     const uint32_t cap = mesh_cap() < pm->vertices ? mesh_cap() : pm->vertices;
     mc_pmesh_lod_set(&lod, level < pm->base_vertices ? pm->base_vertices : level > cap ? cap : level);
     if (!pm->opposite) style = MC_FRONT_SHADED;
