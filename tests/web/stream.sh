@@ -141,5 +141,24 @@ check_problems "mesh: cut at byte $cut, between mesh records (?stream=cut.mcs&mo
     "$([ "${sok:-} ${slevel:-} ${slines:-} ${fmode:-} ${flevel:-} ${fshaded:-}" = "0 $cut_level 0 lines $cut_level 1" ] && [ "$same" = same ] &&
         grep -q "truncated at byte $cut" "$dir/mesh-cut.txt" ||
         echo "$(oneline <"$dir/mesh-cut.txt") $(head -c 200 "$dir/mesh-cut.err" | oneline); image: $same")"
+# another bake's stream whose mesh has more vertices than this page's mesh memory, the stream itself
+# within its buffer (bunny00 at 13,000 faces, points at depth 1): its points drawn, the mesh refused
+# in the status line, as the native viewer refuses it
+vmax=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["pmesh"]["vertices"])' "$mbake/budget.json")
+build/bin/modelc "$model" -o "$dir/big" --name big --depth 1 --screen 320x240 --as both --max-faces 13000 --emit stream \
+    --stream-splits packed -q >"$dir/big.log" 2>&1
+cp "$dir/big/big/big.mcs" "$mweb/big.mcs" 2>/dev/null
+read -r bbuf bverts < <(python3 -c 'import json, sys; b = json.load(open(sys.argv[1]))
+print(b["stream"]["buffer"], b["pmesh"]["vertices"])' "$dir/big/big/budget.json" 2>/dev/null)
+timeout 120 python3 tests/web/cdp.py "http://127.0.0.1:$port/stream.html?stream=big.mcs&mode=shaded" \
+    --eval-file tests/web/stream_mesh.js >"$dir/mesh-big.json" 2>"$dir/mesh-big.err"
+python3 -c 'import json, sys
+r = json.load(open(sys.argv[1])); f = r["rest"] or {}
+print(int(r["stream"]["ok"]), f.get("mode"), f.get("depth"), r["status"].replace("\n", " | "))' "$dir/mesh-big.json" >"$dir/mesh-big.txt" 2>&1
+"$mbake/$mname-view" --stream "$mweb/big.mcs" --mode shaded --ppm /dev/null >/dev/null 2>"$dir/mesh-big.native.err"
+check_problems "mesh: another bake's stream ($bverts vertices; its buffer ${bbuf:-?} bytes, within this page's $(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["stream"]["buffer"])' "$mbake/budget.json")) in shaded: its points drawn, the mesh refused in the status line, as the native viewer refuses it" \
+    "$([ "${bverts:-0}" -gt "$vmax" ] && grep -q "^1 points 1 .*its mesh ($bverts vertices) is larger than this page's mesh memory: points only" "$dir/mesh-big.txt" &&
+        grep -q "larger than this viewer's mesh buffers" "$dir/mesh-big.native.err" ||
+        echo "$(oneline <"$dir/mesh-big.txt") $(head -c 200 "$dir/mesh-big.err" | oneline) native: $(oneline <"$dir/mesh-big.native.err")")"
 kill $server 2>/dev/null
 exit $status

@@ -49,7 +49,7 @@
   // the stream's state: bytes come from the network, total and levels (D) from its header, drawable
   // the bytes and time at which each depth became drawable, error the reader's or the network's
   const st = { url: streamUrl, bytes: 0, total: 0, levels: 0, depth: 0, done: false, ok: false,
-               error: null, drawable: [], meshLevel: 0, meshLines: 0 };
+               error: null, drawable: [], meshLevel: 0, meshLines: 0, meshRefused: 0 };
   let frameLine = '', streamLine = '';
 
   // file:// pages cannot fetch, so NAME.wasm.js carries the same bytes in base64 for them
@@ -215,6 +215,8 @@
         (st.total || '?') + ' bytes';
     if (meshVertices)
       streamLine += ' | mesh level ' + meshCap + ' of ' + meshVertices + (ex.mcw_mesh_lines_ready() ? '' : ', no lines yet');
+    else if (st.meshRefused)
+      streamLine += ' | its mesh (' + st.meshRefused + ' vertices) is larger than this page\'s mesh memory: points only';
     showStatus();
   }
   function readerState() {
@@ -235,6 +237,7 @@
       request();
     }
     if (!meshVertices) meshSetup();
+    if (!meshVertices) st.meshRefused = ex.mcw_mesh_refused();
     const cap = meshVertices ? ex.mcw_mesh_cap() : 0, lines = meshVertices ? ex.mcw_mesh_lines_ready() : 0;
     if (cap !== st.meshLevel || lines !== st.meshLines) {
       meshCap = st.meshLevel = cap;

@@ -212,6 +212,17 @@ static const mc_pmesh *mesh(void)
 EXPORT("mcw_mesh_vertices") uint32_t mcw_mesh_vertices(void) { return mesh() ? mesh()->vertices : 0; }
 EXPORT("mcw_mesh_base_vertices") uint32_t mcw_mesh_base_vertices(void) { return mesh() ? mesh()->base_vertices : 0; }
 EXPORT("mcw_mesh_cap") uint32_t mcw_mesh_cap(void) { return mesh() ? mesh_cap() : 0; }
+/* the vertices of a stream's mesh that came but does not fit this page's mesh memory (a stream of
+ * another bake; 0: it fits, or none came) */
+EXPORT("mcw_mesh_refused") uint32_t mcw_mesh_refused(void)
+{
+#ifdef MC_WEB_STREAM_BYTES
+    const mc_pmesh *pm = mc_stream_pmesh(stream());
+    return pm && !mesh_part() ? pm->vertices : 0;
+#else
+    return 0;
+#endif
+}
 EXPORT("mcw_mesh_lines_ready") uint32_t mcw_mesh_lines_ready(void) { return mesh() && mesh()->opposite; }
 EXPORT("mcw_mesh_level") uint32_t mcw_mesh_level(void) { return mesh() ? lod.level : 0; }
 EXPORT("mcw_mesh_faces") uint32_t mcw_mesh_faces(void) { return mesh() ? lod.faces : 0; }
