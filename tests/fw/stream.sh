@@ -236,6 +236,17 @@ print(b["depth"], s["bytes"], b["pmesh"]["faces"], s["mesh_lines_at"])' "$bake/b
     run $b mesh-cut "$out/$b.mesh-cut.mcs" idle=500
     expect $b mesh-cut "^stream error truncated at byte $cut after $cut bytes \(no byte for 500 ms\); keeping depth $depth$" \
         "cut at byte $cut inside the mesh's adjacency: the mesh's levels drawn shaded, never its lines, as the host's --stream --checksums"
+    # a byte flipped inside a record of splits: the levels before it drawn, none after (the CRC)
+    read -r at2 lv1 < <(python3 -c 'import json, sys; m = json.load(open(sys.argv[1]))["stream"]["mesh_levels"]
+print(m[2]["at"], m[1]["level"])' "$bake/budget.json")
+    flip=$((at2 - 20))
+    forge "$mcs" "$out/$b.mesh-flip.mcs" flip $flip
+    run $b mesh-flip "$out/$b.mesh-flip.mcs"
+    last_level=$(sed -n 's/^mesh level \([0-9]*\) of .*/\1/p' "$out/$b.mesh-flip.run.txt" | tail -n 1)
+    expect $b mesh-flip "^stream error crc at byte [0-9]+ after [0-9]+ bytes; keeping depth [0-9]+$" \
+        "byte $flip flipped in the mesh record ending at $at2: the mesh drawn up to level ${last_level:-none} (budget.json: $lv1 before that record), no further"
+    check_problems "$b: after the flipped mesh record, no mesh level beyond $lv1 drawn" \
+        "$([ "${last_level:-0}" = "$lv1" ] || echo "last mesh level drawn ${last_level:-none}")"
     # a mesh of more vertices than this receiver's memory, in a stream that fits its buffer (the
     # octree at depth 1 leaves room for a few more faces)
     big=$out/$b.mesh-big
