@@ -80,8 +80,9 @@ if [ -s "$dir/check.err" ] || { [ $rc -ne 0 ] && ! grep -q '^not ok' "$dir/check
 fi
 [ $rc -eq 0 ] || status=1
 
-# ---- a mesh bake's stream page: the mesh drawn as it comes ----
-# fandisk --as both at depth 6 with packed splits, served by a plain static server with a copy cut
+# ---- a mesh bake's pages: the baked one's mesh modes, the stream one's mesh drawn as it comes ----
+# fandisk --as both at depth 6 with packed splits (creases among its lines; a bake of half a second);
+# its stream page served by a plain static server with a copy cut
 # between two of the mesh's records (its adjacency not come): the whole stream in lines at 3,000
 # vertices, and the cut one in lines (drawn shaded, at the last level that came), each against the
 # native viewer of the same bake (--mode lines --lod 3000; --stream CUT --mode lines)
@@ -98,6 +99,30 @@ else
     exit 1
 fi
 mweb=$mbake/web
+# the baked page (index.html) of the same bake: opened in lines at 3,000 vertices from its address,
+# then m and [ (shaded+lines at half the splits above the base), then an arrow key
+exports=$(python3 tests/web/wasm_info.py "$mweb/$mname.wasm" | sed -n 's/^exports //p')
+problems=""
+for e in mcw_draw_mesh mcw_mesh_vertices mcw_mesh_base_vertices mcw_mesh_cap mcw_mesh_lines_ready mcw_mesh_level \
+    mcw_mesh_faces mcw_mesh_drawn mcw_mesh_line_pixels mcw_mesh_refused; do
+    [[ " $exports " == *" $e "* ]] || problems+="$e; "
+done
+check_problems "mesh: $mname.wasm exports the mesh functions viewer.js calls" "$problems"
+mkdir -p "$dir/baked"
+timeout 120 python3 tests/web/cdp.py "file://$PWD/$mweb/index.html?mode=lines&lod=3000" --eval-file tests/web/mesh.js \
+    >"$dir/baked/mesh.json" 2>"$dir/baked/mesh.err"
+python3 tests/web/mesh_check.py "$dir/baked/mesh.json" "$mbake/$mname-view" "$dir/baked" >"$dir/baked/result.txt" 2>&1
+base=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["pmesh"]["base_vertices"])' "$mbake/budget.json")
+half=$((base + (3000 - base) / 2))
+got=$(grep '^frame' "$dir/baked/result.txt" | awk '{printf "%s %s %s / ", $3, $4, $6}')
+check_problems "mesh: the baked page ?mode=lines&lod=3000 draws lines at 3,000 vertices; m then [ draw shaded+lines at $half (half the splits above the base); an arrow key turns it; the help line names the keys" \
+    "$([ "$got" = "lines 3000 0 / shaded+lines $half 0 / shaded+lines $half 64 / " ] && grep -q '^help True' "$dir/baked/result.txt" ||
+        echo "$(oneline <"$dir/baked/result.txt") $(head -c 200 "$dir/baked/mesh.err" | oneline)")"
+for k in 0 1 2; do
+    read -r _ _ mk lk fk yk sk < <(grep "^frame $k " "$dir/baked/result.txt")
+    check_problems "mesh: the baked page's frame $k (${mk:-?}, level ${lk:-?}, ${fk:-?} faces, yaw ${yk:-?}): the canvas equals the native viewer's --mode ${mk:-?} --lod ${lk:-?} PPM pixel for pixel" \
+        "$([ "${sk:-}" = same ] || python3 tests/bench/bench_tools.py image-cmp "$dir/baked/native$k.ppm" "$dir/baked/canvas$k.ppm" 2>&1 | oneline)"
+done
 read -r cut cut_level < <(python3 -c '
 import json, sys
 m = json.load(open(sys.argv[1]))["stream"]["mesh_levels"]
@@ -142,10 +167,10 @@ check_problems "mesh: cut at byte $cut, between mesh records (?stream=cut.mcs&mo
         grep -q "truncated at byte $cut" "$dir/mesh-cut.txt" ||
         echo "$(oneline <"$dir/mesh-cut.txt") $(head -c 200 "$dir/mesh-cut.err" | oneline); image: $same")"
 # another bake's stream whose mesh has more vertices than this page's mesh memory, the stream itself
-# within its buffer (bunny00 at 13,000 faces, points at depth 1): its points drawn, the mesh refused
+# within its buffer (lion_head at 13,000 faces, points at depth 1): its points drawn, the mesh refused
 # in the status line, as the native viewer refuses it
 vmax=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["pmesh"]["vertices"])' "$mbake/budget.json")
-build/bin/modelc "$model" -o "$dir/big" --name big --depth 1 --screen 320x240 --as both --max-faces 13000 --emit stream \
+build/bin/modelc "$(model_file lion_head)" -o "$dir/big" --name big --depth 1 --screen 320x240 --as both --max-faces 13000 --emit stream \
     --stream-splits packed -q >"$dir/big.log" 2>&1
 cp "$dir/big/big/big.mcs" "$mweb/big.mcs" 2>/dev/null
 read -r bbuf bverts < <(python3 -c 'import json, sys; b = json.load(open(sys.argv[1]))

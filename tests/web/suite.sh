@@ -3,7 +3,8 @@
 # headless Chromium, from file:// and from a plain static server, driven through its own handlers
 # (tests/web/drive.js, evaluated through tests/web/cdp.py in real time): the view it ends at follows from the events, the frames while it moves are
 # coarse, and its fine frame equals the native viewer's PPM for the same view, pixel for pixel.
-# The stream page has its own suite (tests/web/stream.sh). Chromium missing is a failure (make deps installs it);
+# The stream page has its own suite (tests/web/stream.sh), and so do a mesh bake's pages (there: its
+# bake has a stream too). Chromium missing is a failure (make deps installs it);
 # Chromium present but unable to start is a skip with its reason.
 set -u
 cd "$(dirname "$0")/../.."
@@ -144,39 +145,4 @@ cdp "file://$PWD/$bad/index.html" --eval \
     ok "bad page: a module that cannot load gives one status line naming it" ||
     notok "bad page: a module that cannot load gives one status line naming it" "$(oneline <"$dir/bad.txt")"
 
-# ---- a mesh bake (--as both): the mesh modes against the native viewer's ----
-# fandisk (creases among its lines; a bake of half a second) at depth 6, its page opened in lines at
-# 3,000 vertices from the address, then m and [ (shaded+lines at half the splits), then an arrow key
-mdir=$dir/mesh
-mkdir -p "$mdir"
-# shellcheck disable=SC2046
-if build/bin/modelc "$(model_file fandisk)" -o "$mdir" --name fandisk --depth 6 --as both -q >"$mdir/bake.log" 2>&1 &&
-    runtime/front/web/build.sh "$mdir" fandisk 320x240 >>"$mdir/bake.log" 2>&1 &&
-    gcc $(mkvar CFLAGS) $(mkvar RT_CFLAGS) -ffunction-sections -fdata-sections -o "$mdir/fandisk/fandisk-view" \
-        "$mdir"/fandisk/*.c $(rt_objs host) $(mkvar VIEW_LDFLAGS) >>"$mdir/bake.log" 2>&1; then
-    ok "mesh: fandisk baked --as both, its web page and native viewer built"
-else
-    notok "mesh: fandisk baked --as both, its web page and native viewer built" "$(tail -n 5 "$mdir/bake.log" | oneline)"
-    exit 1
-fi
-exports=$(python3 tests/web/wasm_info.py "$mdir/fandisk/web/fandisk.wasm" | sed -n 's/^exports //p')
-problems=""
-for e in mcw_draw_mesh mcw_mesh_vertices mcw_mesh_base_vertices mcw_mesh_level mcw_mesh_faces mcw_mesh_drawn mcw_mesh_line_pixels; do
-    [[ " $exports " == *" $e "* ]] || problems+="$e; "
-done
-check_problems "mesh: fandisk.wasm exports the mesh functions viewer.js calls" "$problems"
-cdp "file://$PWD/$mdir/fandisk/web/index.html?mode=lines&lod=3000" --eval-file tests/web/mesh.js \
-    >"$mdir/mesh.json" 2>"$mdir/mesh.err"
-python3 tests/web/mesh_check.py "$mdir/mesh.json" "$mdir/fandisk/fandisk-view" "$mdir" >"$mdir/result.txt" 2>&1
-base=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["pmesh"]["base_vertices"])' "$mdir/fandisk/budget.json")
-half=$((base + (3000 - base) / 2))
-got=$(grep '^frame' "$mdir/result.txt" | awk '{printf "%s %s %s / ", $3, $4, $6}')
-check_problems "mesh: ?mode=lines&lod=3000 draws lines at 3,000 vertices; m then [ draw shaded+lines at $half (half the splits above the base); an arrow key turns it; the help line names the keys" \
-    "$([ "$got" = "lines 3000 0 / shaded+lines $half 0 / shaded+lines $half 64 / " ] && grep -q '^help True' "$mdir/result.txt" ||
-        echo "$(oneline <"$mdir/result.txt") $(head -c 200 "$mdir/mesh.err" | oneline)")"
-for k in 0 1 2; do
-    read -r _ _ mk lk fk yk sk < <(grep "^frame $k " "$mdir/result.txt")
-    check_problems "mesh: frame $k (${mk:-?}, level ${lk:-?}, ${fk:-?} faces, yaw ${yk:-?}): the canvas equals the native viewer's --mode ${mk:-?} --lod ${lk:-?} PPM pixel for pixel" \
-        "$([ "${sk:-}" = same ] || python3 tests/bench/bench_tools.py image-cmp "$mdir/native$k.ppm" "$mdir/canvas$k.ppm" 2>&1 | oneline)"
-done
 exit $status
