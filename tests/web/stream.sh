@@ -140,13 +140,14 @@ mesh_page() {
     timeout 120 python3 tests/web/cdp.py "http://127.0.0.1:$port/stream.html?$query" --eval-file tests/web/stream_mesh.js \
         >"$dir/mesh-$tag.json" 2>"$dir/mesh-$tag.err"
     python3 - "$dir/mesh-$tag.json" "$dir/mesh-$tag.canvas.ppm" <<'PY' >"$dir/mesh-$tag.txt" 2>&1
-import base64, json, sys
+import json, sys
+sys.path.insert(0, 'tests/web')
+from mesh_check import canvas_ppm
 try:
     r = json.load(open(sys.argv[1]))
 except ValueError:
     print('error no result from the page'); sys.exit(0)
-rgba = base64.b64decode(r['rgba'])
-open(sys.argv[2], 'wb').write(b'P6\n%d %d\n255\n' % (r['width'], r['height']) + bytes(b for i, b in enumerate(rgba) if i % 4 != 3))
+canvas_ppm(r, r['rgba'], sys.argv[2])
 s, f = r['stream'], r['rest'] or {}
 print('state', int(s['ok']), s['meshLevel'], s['meshLines'], f.get('mode'), f.get('level'), int(bool(f.get('shadedOnly'))))
 print('status', r['status'].replace('\n', ' | '))

@@ -53,6 +53,15 @@ typedef struct mc_front_mesh_result {
     uint32_t hash;              /* FNV-1a of the colour and depth buffers, as frames.h */
 } mc_front_mesh_result;
 
+/* Whether a mesh part (a stream's, stream.h) fits level-of-detail memory sized for a bake's: a vertex
+ * cache of `vertices` entries, an ancestor map of lod_bytes (aligned for 4-byte entries) and line
+ * memory of lines_bytes (MC_NAME_PMESH_VERTICES, _LOD_BYTES, _FACING_BYTES). */
+static inline int mc_front_mesh_fits(const mc_pmesh *pm, uint32_t vertices, uint32_t lod_bytes, uint32_t lines_bytes)
+{
+    return pm->vertices <= vertices && MC_PMESH_LOD_BYTES(pm->vertices, pm->index_bytes) <= lod_bytes &&
+           MC_MESH_LINES_BYTES(pm->faces) <= lines_bytes;
+}
+
 /* The check of a mesh part of which only the levels up to max_level have come (a stream's, stream.h),
  * and whose line styles can draw only when lines is non-zero (its adjacency has come): the level
  * fitted within max_level too (mc_pmesh_lod_fit_to), the line styles drawn shaded without lines.

@@ -70,14 +70,6 @@ static uint32_t pmesh_facing[(MC_FW_STREAM_PMESH_FACING_BYTES + 3u) / 4u];
 static mc_xvertex pmesh_cache[MC_FW_STREAM_PMESH_VERTICES];
 static uint32_t pmesh_sdepth[MC_SDEPTH_WORDS(SCREEN_W, SCREEN_H)];
 
-/* Whether the stream's mesh fits the memory above (its header has come). */
-static int mesh_fits(const mc_pmesh *pm)
-{
-    return pm->vertices <= MC_FW_STREAM_PMESH_VERTICES &&
-           MC_PMESH_LOD_BYTES(pm->vertices, pm->index_bytes) <= MC_FW_STREAM_PMESH_LOD_BYTES &&
-           MC_MESH_LINES_BYTES(pm->faces) <= MC_FW_STREAM_PMESH_FACING_BYTES;
-}
-
 /* The mesh frames within the levels that have come (up to level; the line styles when lines);
  * returns 1 if a frame failed. */
 static int draw_mesh(const mc_pmesh *pm, uint32_t level, int lines, const mc_target *t)
@@ -197,7 +189,8 @@ int main(void)
 #if MC_FW_STREAM_MESH
         const mc_pmesh *pm = mc_stream_pmesh(&reader);
         if (pm && !mesh_lines) {
-            if (!mesh_fits(pm)) {
+            if (!mc_front_mesh_fits(pm, MC_FW_STREAM_PMESH_VERTICES, MC_FW_STREAM_PMESH_LOD_BYTES,
+                                    MC_FW_STREAM_PMESH_FACING_BYTES)) {
                 mesh_refused = 1;
                 break;
             }

@@ -323,9 +323,8 @@ int main(int argc, char **argv)
                     fprintf(stderr, "%s-view: drawing shaded: the line styles need the mesh's adjacency, which had not come\n",
                             model->name);
             }
-            scene.octree = mc_host_stream_octree(&stream);
-            if (scene.octree) octree = scene.octree;
-            else if (check) octree = NULL;   /* a mesh has come before any level of points */
+            /* the stream's points (none when only its mesh has come: --checksums draws the mesh alone) */
+            octree = scene.octree = mc_host_stream_octree(&stream);
             if (octree && depth > octree->depth) depth = octree->depth;
         }
     }

@@ -37,7 +37,7 @@
 #else
 #include <modelc/app.h>
 #endif
-#include "../common/mesh_frame.h"
+#include "../common/mesh_frames.h"
 
 /* MC_WEB_MAX_PIXELS: the RGBA frame's size in pixels; the build passes the bake's screen
  * (MC_NAME_SCREEN_WIDTH * MC_NAME_SCREEN_HEIGHT from NAME.h). */
@@ -162,11 +162,8 @@ static uint32_t pmesh_sdepth[MC_SDEPTH_WORDS(MC_WEB_MAX_WIDTH, MC_WEB_MAX_HEIGHT
 static const mc_pmesh *mesh_part(void)
 {
     const mc_pmesh *pm = mc_stream_pmesh(stream());
-    return pm && pm->vertices <= MC_WEB_PMESH_VERTICES &&
-                   MC_PMESH_LOD_BYTES(pm->vertices, pm->index_bytes) <= MC_WEB_PMESH_LOD_BYTES &&
-                   MC_MESH_LINES_BYTES(pm->faces) <= MC_WEB_PMESH_FACING_BYTES
-               ? pm
-               : 0;
+    return pm && mc_front_mesh_fits(pm, MC_WEB_PMESH_VERTICES, MC_WEB_PMESH_LOD_BYTES, MC_WEB_PMESH_FACING_BYTES) ? pm
+                                                                                                               : 0;
 }
 /* the levels that have come */
 static uint32_t mesh_cap(void) { return mc_stream_mesh_level(stream()); }
