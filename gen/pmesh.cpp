@@ -4,11 +4,24 @@
 #include "pmesh.hpp"
 #include "modelc/mesh_lines.h"   // MC_MESH_SHADES, MC_MESH_PALETTE_SIZE
 
+// OpenMesh's headers are read with NDEBUG: their property accessors otherwise assert, on every
+// call, that the property's type name is the one asked for (a string compare), which took a sixth
+// of the decimation's time. The checks are of OpenMesh's own bookkeeping, not of the input.
+#ifndef NDEBUG
+#define NDEBUG
+#define MC_OPENMESH_NDEBUG
+#endif
+#include <cassert>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#ifdef MC_OPENMESH_NDEBUG
+#undef NDEBUG
+#undef MC_OPENMESH_NDEBUG
+#include <cassert>   // assert as the build has it again, for what follows
+#endif
 
 #include <algorithm>
 #include <cmath>
