@@ -339,7 +339,7 @@ clean:
 #   make fuzz [FUZZ_SECONDS=600] [FUZZ_TARGETS="off obj ply stl xyz cao gltf glb bake track_input stream"]   findings: tests/fuzz/regress/
 FUZZ_CXX ?= clang++
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FUZZ_CXXFLAGS := -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(GEN_CXXFLAGS)
+FUZZ_CXXFLAGS := -O1 -g $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(GEN_CXXFLAGS) -DMC_OPENMESH_ASSERTS=1
 FUZZ_READERS := off obj ply stl xyz cao gltf glb
 FUZZ_TARGETS ?= $(FUZZ_READERS) bake track_input stream
 FUZZ_SECONDS ?= 600

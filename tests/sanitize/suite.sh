@@ -53,7 +53,7 @@ if has_part generator; then
 build_generator() {
     local cxx cxxflags libs src obj flags_now failed=0 pids=() srcs=() objs=()
     cxx=$(mkvar CXX)
-    cxxflags="$(mkvar GEN_CXXFLAGS) $SAN_FLAGS"
+    cxxflags="$(mkvar GEN_CXXFLAGS) $SAN_FLAGS -DMC_OPENMESH_ASSERTS=1"   # OpenMesh's own checks too (gen/pmesh.cpp)
     libs=$(mkvar GEN_LIBS)
     make -s build/gen/templates.cpp >"$san/gen/templates.log" 2>&1 || {
         echo "cannot generate build/gen/templates.cpp: $(head -n 3 "$san/gen/templates.log" | oneline)"
