@@ -391,10 +391,11 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
     const mc_pmesh *pm = lod->pm;
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
-    /* the stored opposites read in order, a run of records a chunk */
+    /* the stored opposites read in order, a run of records a chunk (or the level's own, when the
+     * state keeps a neighbour table: the same records, none of them needing a walk) */
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
-        const uint8_t *r = pm->opposite[f0 >> shift].data;
+        const uint8_t *r = lod->nbr ? lod->nbr + 3u * f0 * pm->half_bytes : pm->opposite[f0 >> shift].data;
         if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2);
         else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4);
     }

@@ -164,12 +164,35 @@ static void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *
     }
 }
 
-/* Projects every vertex present at the level into cache[v], the positions read in order. */
+/* Projects vertex v into cache[v]. */
+static void project_one(const mc_pmesh *pm, const mc_xform *x, const mc_xform_ortho *o, mc_xvertex *cache, uint32_t v)
+{
+    int32_t p[3];
+    position_of(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
+    if (x->perspective) mc_xform_vertex(x, p, &cache[v]);
+    else mc_xform_ortho_point(o, p, &cache[v]);
+}
+
+/* Projects every vertex present at the level into cache[v]. At a fine level the positions are read
+ * in order, the absent ones skipped; at a coarse one (under a third of the vertices present) only
+ * the present ones are visited, the roots by their subtrees and then the vertex of each split made,
+ * so that the work follows the level, not the full mesh. The same entries either way. */
 static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
 {
     const mc_pmesh *pm = lod->pm;
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
+    if (lod->level < pm->vertices / 3u) {
+        mc_xform_ortho o;
+        mc_xform_ortho_init(&o, x);
+        for (uint32_t v = 0, size; v < pm->vertices; v += size) {
+            size = mc_pmesh_subtree(pm, v);
+            if (size < 1 || size > pm->vertices - v) size = pm->vertices - v;   /* (as mc_pmesh_lod_init) */
+            project_one(pm, x, &o, cache, v);
+        }
+        for (uint32_t s = 0; s < lod->level - pm->base_vertices; s++) project_one(pm, x, &o, cache, mc_pmesh_split_vertex(pm, s));
+        return;
+    }
     for (uint32_t v0 = 0; v0 < pm->vertices; v0 += chunk) {
         const uint32_t n = pm->vertices - v0 < chunk ? pm->vertices - v0 : chunk;
         project_run(lod, x, cache, v0, n, pm->positions[v0 >> shift].data);

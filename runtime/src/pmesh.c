@@ -23,6 +23,7 @@ void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc)
 {
     lod->pm = pm;
     lod->anc = anc;
+    lod->nbr = 0;
     lod->level = pm->base_vertices;
     lod->faces = pm->base_faces;
     /* depth-first order: the roots' subtrees tile 0 .. V-1, each root first in its own; only the
@@ -33,6 +34,9 @@ void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc)
         anc_fill(lod, v, size, v);
     }
 }
+
+static void nbr_added(mc_pmesh_lod *lod, uint32_t f0);
+static void nbr_removed(mc_pmesh_lod *lod, uint32_t f0, uint32_t f1);
 
 uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
 {
@@ -46,6 +50,7 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
         anc_fill(lod, v, tree_field(pm, v, 1), v);
         lod->faces += r[ib];
         lod->level++;
+        if (lod->nbr) nbr_added(lod, lod->faces - r[ib]);
     }
     while (lod->level > level) {   /* collapse: the subtree goes back to the parent, which split
                                     * earlier and so is present */
@@ -53,6 +58,7 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
         const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
         uint32_t v = mc_le_index(r, ib);
         anc_fill(lod, v, tree_field(pm, v, 1), tree_field(pm, v, 0));
+        if (lod->nbr) nbr_removed(lod, lod->faces - r[ib], lod->faces);
         lod->faces -= r[ib];
     }
     return level;
@@ -74,6 +80,14 @@ uint32_t mc_pmesh_lod_fit_to(mc_pmesh_lod *lod, uint32_t max_faces, uint32_t max
     }
     return lod->level;
 }
+
+uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s)
+{
+    const unsigned ib = pm->index_bytes;
+    return mc_le_index(mc_chunk_record(pm->splits, pm->record_shift, ib + 1u, s), ib);
+}
+
+uint32_t mc_pmesh_subtree(const mc_pmesh *pm, uint32_t v) { return tree_field(pm, v, 1); }
 
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
 {
@@ -117,3 +131,65 @@ uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o)
 }
 
 uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i) { return half_at(pm, pm->edge_order, 1u, i, 0u); }
+
+/* ---- the neighbour table (mc_pmesh_lod_neighbours) ---------------------------------------------- */
+
+/* The table's entry for half-edge h. */
+static uint32_t nbr_get(const mc_pmesh_lod *lod, uint32_t h)
+{
+    const unsigned hb = lod->pm->half_bytes;
+    const uint32_t o = mc_le_index(lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb, hb);
+    return hb == 2 && o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
+}
+
+static void nbr_put(mc_pmesh_lod *lod, uint32_t h, uint32_t o)
+{
+    const unsigned hb = lod->pm->half_bytes;
+    uint8_t *p = lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb;
+    for (unsigned i = 0; i < hb; i++) p[i] = (uint8_t)(o >> (8u * i));
+}
+
+/* Half-edge h's neighbour at the current level by definition: the walk from its stored opposite. */
+static uint32_t nbr_walk(const mc_pmesh_lod *lod, uint32_t h)
+{
+    return mc_pmesh_lod_across(lod, half_at(lod->pm, lod->pm->opposite, 3u, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h)));
+}
+
+/* Faces f0 .. lod->faces-1 have just come: their entries, and those of the faces now across them
+ * (whose walks, and only theirs, now stop at one of them). */
+static void nbr_added(mc_pmesh_lod *lod, uint32_t f0)
+{
+    for (uint32_t f = f0; f < lod->faces; f++)
+        for (uint32_t k = 0; k < 3u; k++) {
+            const uint32_t o = nbr_walk(lod, MC_HALF_EDGE(f, k));
+            nbr_put(lod, MC_HALF_EDGE(f, k), o);
+            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f0) nbr_put(lod, o, nbr_walk(lod, o));
+        }
+}
+
+/* Faces f0 .. f1-1, the last of the level, are about to go (lod->faces is f1): their entries to all
+ * ones, and those of the faces across them walked again once they have gone. */
+static void nbr_removed(mc_pmesh_lod *lod, uint32_t f0, uint32_t f1)
+{
+    uint32_t beside[6], n = 0;   /* a split adds at most two faces */
+    for (uint32_t f = f0; f < f1; f++)
+        for (uint32_t k = 0; k < 3u; k++) {
+            const uint32_t o = nbr_get(lod, MC_HALF_EDGE(f, k));
+            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f0 && n < 6u) beside[n++] = o;
+            nbr_put(lod, MC_HALF_EDGE(f, k), MC_NO_HALF_EDGE);
+        }
+    const uint32_t faces = lod->faces;
+    lod->faces = f0;
+    for (uint32_t i = 0; i < n; i++) nbr_put(lod, beside[i], nbr_walk(lod, beside[i]));
+    lod->faces = faces;
+}
+
+void mc_pmesh_lod_neighbours(mc_pmesh_lod *lod, uint8_t *nbr)
+{
+    lod->nbr = nbr;
+    if (!nbr) return;
+    /* one store per entry, of a computed value (a constant fill could become a memset call) */
+    for (uint32_t f = 0; f < lod->pm->faces; f++)
+        for (uint32_t k = 0; k < 3u; k++)
+            nbr_put(lod, MC_HALF_EDGE(f, k), f < lod->faces ? nbr_walk(lod, MC_HALF_EDGE(f, k)) : MC_NO_HALF_EDGE);
+}

@@ -70,6 +70,7 @@ static mc_xvertex vcache[1u << 22];   /* mc_mesh_render's vertex cache: MC_MESH_
 #define MAX_FACES (1u << 23)
 /* mc_mesh_lines' memory (--style lines): MC_MESH_LINES_BYTES(F), uint32-aligned */
 static uint32_t lines_mem[(MC_MESH_LINES_BYTES(MAX_FACES) + 3u) / 4u];
+static uint8_t nbr[MC_PMESH_NEIGHBOUR_BYTES(MAX_FACES, 4)];   /* --neighbours: the level's neighbour table */
 /* the sparse depth buffer's bits (the lines style's hidden-line removal, mesh_frame.h) */
 static uint32_t sdepth_bits[MC_SDEPTH_WORDS(MAX_SIDE, MAX_SIDE)];
 
@@ -173,13 +174,13 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--vertices N] [--cull] [--no-cache] [--style shaded|lines]\n");
+                    "[--yaw U] [--size WxH] [--vertices N] [--cull] [--no-cache] [--neighbours] [--style shaded|lines]\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
-    int time_n = 0, frames_n = 0, w = 320, h = 240, lines = 0;
+    int time_n = 0, frames_n = 0, w = 320, h = 240, lines = 0, neighbours = 0;
     unsigned flags = 0;
     long vertices = -1;   /* the level: -1 the full mesh */
     long yaw = 0;
@@ -189,6 +190,7 @@ int main(int argc, char **argv)
         const char *a = argv[i];
         if (!strcmp(a, "--cull")) { flags |= MC_MESH_CULL_BACK; continue; }
         if (!strcmp(a, "--no-cache")) { cache = NULL; continue; }
+        if (!strcmp(a, "--neighbours")) { neighbours = 1; continue; }
         if (i + 1 >= argc) return usage();
         const char *v = argv[++i];
         if (!strcmp(a, "--time")) time_n = atoi(v);
@@ -216,6 +218,7 @@ int main(int argc, char **argv)
     mc_pmesh_lod_init(&lod, &PM, anc);
     if (vertices > (long)PM.vertices) vertices = (long)PM.vertices;
     mc_pmesh_lod_set(&lod, vertices < 0 ? PM.vertices : (uint32_t)vertices);   /* (below the base: the base) */
+    if (neighbours) mc_pmesh_lod_neighbours(&lod, nbr);   /* the level's neighbours kept in a table (pmesh.h) */
     const mc_target t = {color, depth, (uint16_t)w, (uint16_t)h};
     mc_mesh_stats st;
     if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw);

@@ -560,6 +560,19 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
         if (!bad && (mask_diff || color_diff))
             bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse against the z-buffer: %u pixels differ in showing a line "
                             "(or hold other than paper), %u in colour where one kind passes", mask_diff, color_diff);
+        /* the same drawing, byte for byte, with the level's neighbours from a table (pmesh.h) */
+        uint8_t *nbr = malloc(MC_PMESH_NEIGHBOUR_BYTES(PM.faces, PM.half_bytes) + 1);
+        if (!nbr) return 2;
+        mc_pmesh_lod_neighbours(lod, nbr);
+        mc_lines_stats s5;
+        rc = mc_sdepth_init(&sd, (uint16_t)w, (uint16_t)h, bits, d4, c4, MC_DEPTH_FILLED, MC_MESH_PAPER);
+        if (rc == MC_OK) rc = mc_mesh_lines_sparse(lod, &v, MC_LINES_ALL, &sd, lmem, cache, &s5);
+        if (!bad && (rc != MC_OK || memcmp(c3, c4, px) || memcmp(d3, d4, 2 * px) || s5.edges != s3.edges ||
+                     s5.silhouettes != s3.silhouettes || s5.creases != s3.creases || s5.borders != s3.borders ||
+                     s5.pixels != s3.pixels))
+            bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse with a neighbour table: not the same drawing");
+        mc_pmesh_lod_neighbours(lod, NULL);
+        free(nbr);
         free(c3), free(c4), free(d3), free(d4), free(bits), free(cache);
     }
     if (bad)
@@ -567,7 +580,7 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
     else
         printf("ok: level %u, %u edges: %u silhouettes, %u creases, %u borders (%u on a rounding tie); %u line pixels, "
                "%u hidden by the faces, %u shown; sparse depth buffer: the same %u shown (%u where two kinds pass take "
-               "the other's colour)\n", n, edges, count[MC_EDGE_SILHOUETTE], count[MC_EDGE_CREASE],
+               "the other's colour), and with a neighbour table\n", n, edges, count[MC_EDGE_SILHOUETTE], count[MC_EDGE_CREASE],
                count[MC_EDGE_BORDER], ties, line_px, hidden, shown, sparse_shown, kind_ties);
     free(lmem), free(rf), free(facing), free(table), free(cmem), free(cmem2), free(dmem), free(dmem2), free(want);
     return bad ? 1 : 0;
@@ -644,10 +657,21 @@ int main(int argc, char **argv)
         levels[i - 1] = levels[j], levels[j] = t;
     }
     uint64_t faces_checked = 0;
-    uint32_t adjacency_levels = 0;
+    uint32_t adjacency_levels = 0, table_levels = 0;
+    /* a second state keeping a neighbour table from the base level on, through the same levels; at
+     * the adjacency levels its neighbours against the search too, and its bytes (map and table)
+     * against a third state set straight to the level and given its table there */
+    const size_t nbr_bytes = MC_PMESH_NEIGHBOUR_BYTES(pm->faces, pm->half_bytes);
+    void *anc_t = malloc((size_t)V * ib + 8), *anc_f = malloc((size_t)V * ib + 8);
+    uint8_t *nbr_t = malloc(nbr_bytes + 1), *nbr_f = malloc(nbr_bytes + 1);
+    if (!anc_t || !anc_f || !nbr_t || !nbr_f) return 2;
+    mc_pmesh_lod tl, fl;
+    mc_pmesh_lod_init(&tl, pm, anc_t);
+    mc_pmesh_lod_neighbours(&tl, nbr_t);
     for (uint32_t i = 0; i < nl && !problems; i++) {
         uint32_t n = levels[i];
         if (mc_pmesh_lod_set(&lod, n) != n || lod.level != n) PROBLEM("level %u not set", n);
+        if (mc_pmesh_lod_set(&tl, n) != n || tl.faces != lod.faces) PROBLEM("level %u not set with the table", n);
         if (lod.faces != fcount[n]) PROBLEM("level %u: %u faces, want %u", n, lod.faces, fcount[n]);
         for (uint32_t f = 0; f < lod.faces; f++) {
             uint32_t c[3];
@@ -662,15 +686,30 @@ int main(int argc, char **argv)
             unsigned long bad = adjacency_check(&lod, first, sizeof first, problems);
             problems += bad;
             adjacency_levels += !bad;
+            if (!bad) {
+                bad = adjacency_check(&tl, first, sizeof first, problems);
+                if (bad) snprintf(first + strlen(first), sizeof first - strlen(first), " (the neighbour table)");
+                problems += bad;
+                mc_pmesh_lod_init(&fl, pm, anc_f);
+                mc_pmesh_lod_set(&fl, n);
+                mc_pmesh_lod_neighbours(&fl, nbr_f);
+                if (memcmp(anc_t, anc_f, (size_t)V * ib) || memcmp(nbr_t, nbr_f, nbr_bytes))
+                    PROBLEM("level %u: the state kept through %u levels differs from one set straight there", n, i + 1);
+                table_levels += !bad;
+            }
         }
     }
+    /* dropping the table: the walks again */
+    mc_pmesh_lod_neighbours(&tl, 0);
+    if (!problems) problems += adjacency_check(&tl, first, sizeof first, problems);
     if (!problems) problems += edge_order_check(first, sizeof first);
     if (problems)
         printf("not ok: %lu problems; first: %s\n", problems, first);
     else
-        printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked, neighbours at %u levels, "
-               "%u edges ordered\n", V, V0, pm->faces, pm->base_faces, nl, (unsigned long long)faces_checked,
-               adjacency_levels, pm->edges);
-    free(levels), free(anc), free(rank), free(fcount);
+        printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked, neighbours at %u levels "
+               "(a neighbour table's kept through the levels at %u, the same bytes as one set there), %u edges ordered\n",
+               V, V0, pm->faces, pm->base_faces, nl, (unsigned long long)faces_checked, adjacency_levels, table_levels,
+               pm->edges);
+    free(levels), free(anc), free(rank), free(fcount), free(anc_t), free(anc_f), free(nbr_t), free(nbr_f);
     return problems ? 1 : 0;
 }

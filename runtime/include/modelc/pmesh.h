@@ -82,14 +82,30 @@ typedef struct mc_pmesh_lod {
     uint32_t level;              /* vertices present: V0 .. V */
     uint32_t faces;              /* faces present: F(level) */
     void *anc;                   /* V entries, uint16_t when index_bytes is 2, else uint32_t */
+    uint8_t *nbr;                /* null, or the level's neighbour table (mc_pmesh_lod_neighbours) */
 } mc_pmesh_lod;
 
 /* Bytes of ancestor map a state needs (the generator writes it for each bake as a define). */
 #define MC_PMESH_LOD_BYTES(vertices, index_bytes) ((uint32_t)(vertices) * (uint32_t)(index_bytes))
 
+/* Bytes of a neighbour table (mc_pmesh_lod_neighbours) for a part of F faces. */
+#define MC_PMESH_NEIGHBOUR_BYTES(faces, half_bytes) (3u * (uint32_t)(faces) * (uint32_t)(half_bytes))
+
 /* Starts at the base level: anc (MC_PMESH_LOD_BYTES, aligned for its entries) maps every vertex to
- * its root. Reads the base vertices' tree records only. Work: V. */
+ * its root. Reads the base vertices' tree records only. No neighbour table. Work: V. */
 void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc);
+
+/* Keeps the current level's neighbours in nbr (MC_PMESH_NEIGHBOUR_BYTES(pm->faces, pm->half_bytes)
+ * bytes, the caller's; null drops the table): for each edge of each present face, the half-edge
+ * across it at the level (mc_pmesh_lod_opposite's walk), laid out as the opposite array's records
+ * (half_bytes wide, little-endian, all ones for none); all ones for every face not present. From
+ * then on every level change keeps it so, and mc_pmesh_lod_opposite and the line drawings read it
+ * instead of walking: at coarse levels most edges walk across removed faces, several steps each.
+ * The table is a function of the level, as the ancestor map is (the same bytes however the level was
+ * reached). Only once the opposite array is whole (a streamed mesh: stream.h). Work: a walk for each
+ * edge of the level now; then a split or collapse adds walks for its faces' edges and for those of
+ * the faces beside them, a few each. */
+void mc_pmesh_lod_neighbours(mc_pmesh_lod *lod, uint8_t *nbr);
 
 /* Refines or coarsens to level (clamped to V0 .. V); returns the level set. */
 uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level);
@@ -138,14 +154,15 @@ MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_across(const mc_pmesh_lod *lod, uint32_t 
 
 /* The half-edge across half-edge h (MC_HALF_EDGE(f, k), f < lod->faces) at the current level, or
  * MC_NO_HALF_EDGE where edge k of face f is a border there. Work: the faces removed across that edge
- * between the current level and the full mesh, at most; usually none or one. Inline: the stored
- * opposite, when its face is present. */
+ * between the current level and the full mesh, at most; usually none or one; none with a neighbour
+ * table. Inline: the stored opposite (or the table's entry), when its face is present. */
 MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_t h)
 {
     const mc_pmesh *pm = lod->pm;
     const unsigned hb = pm->half_bytes;
-    const uint8_t *r =
-        mc_chunk_record(pm->opposite, pm->record_shift, 3u * hb, MC_HALF_FACE(h)) + MC_HALF_EDGE_INDEX(h) * hb;
+    const uint8_t *r = lod->nbr ? lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb
+                                : mc_chunk_record(pm->opposite, pm->record_shift, 3u * hb, MC_HALF_FACE(h)) +
+                                      MC_HALF_EDGE_INDEX(h) * hb;
     uint32_t o;
     if (hb == 2) {
         o = mc_le16(r);
@@ -159,6 +176,12 @@ MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_
 /* Edge i (0 .. E-1) of the edge order: a half-edge of the full mesh (its face may be missing at the
  * current level). */
 uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i);
+
+/* The vertex split s (0 .. V-V0-1) brings back. */
+uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s);
+
+/* The size of vertex v's subtree: its descendants are v + 1 .. v + size - 1. */
+uint32_t mc_pmesh_subtree(const mc_pmesh *pm, uint32_t v);
 
 /* Vertex v's position: unit-cube coordinates in Q16 (q - 32768), -32768 .. 32767. */
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3]);
