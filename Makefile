@@ -16,6 +16,7 @@
 #   make bench-silhouette        silhouette search: recall against work, against the exact scan
 #   make bench-track             the tracker: time and error on synthetic and ViSP's real cube sequences, beside ViSP (make deps-bench); the line walk's two forms
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
+#   make bench-neighbours        line drawings at coarse levels with and without the neighbour table
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make bench-views             the point renderer at every view (zoom, size, perspective, deeper bakes), level of detail on and off, beside Mesa
 #   make bench-web               the web viewer's module in headless Chromium beside the native viewer, side by side
@@ -288,6 +289,12 @@ $(BUILD)/bench/hwy_timer_stub.so: tests/bench/hwy_timer_stub.c
 .PHONY: bench-lod-auto
 bench-lod-auto: $(MODELC) models
 	@tests/bench/lod_auto.sh
+
+# line drawings at coarse levels without and with the level's neighbour table (--mesh-neighbours),
+# side by side, and what the table costs a level change (a RESULTS.md section; make bench runs it too)
+.PHONY: bench-neighbours
+bench-neighbours: $(MODELC) models
+	@tests/bench/neighbours.sh
 
 # run time against error for the mesh's level of detail: shaded frames at 1-100 % of the faces against
 # the full level (PSNR, coverage), time and instructions per frame (a RESULTS.md section,

@@ -53,6 +53,7 @@ Budget budget_of(const BakeSize &s) {
     b.pmesh_facing = s.pmesh_facing;
     b.pmesh_cache = s.pmesh_cache;
     b.pmesh_sdepth = s.pmesh_sdepth;
+    b.pmesh_neighbours = s.pmesh_neighbours;
     b.code = runtime_code_bytes(s.leaf_switch, s.pmesh > 0);
     b.color_buffer = color_buffer_bytes(s.screen_w, s.screen_h);
     b.depth_buffer = depth_buffer_bytes(s.screen_w, s.screen_h);

@@ -36,9 +36,11 @@ struct Budget {
     size_t pmesh_facing = 0;                     // the line drawings' memory (mesh_lines.h MC_MESH_LINES_BYTES)
     size_t pmesh_cache = 0;                      // the vertex projection cache (mesh_render.h)
     size_t pmesh_sdepth = 0;                     // the lines style's sparse depth buffer bits (sdepth.h)
+    size_t pmesh_neighbours = 0;                 // the level's neighbour table (--mesh-neighbours; pmesh.h)
     size_t track = 0;                            // the tracker's memory beside the frame buffers (TrackRam)
     size_t ram() const {
-        return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache + pmesh_sdepth + track;
+        return color_buffer + depth_buffer + runtime_ram + pmesh_lod + pmesh_facing + pmesh_cache + pmesh_sdepth +
+               pmesh_neighbours + track;
     }
     size_t frame_buffers() const { return color_buffer + depth_buffer; }
     size_t stack = 0;                            // bound for mc_octree_render at the model's depth, or a tracker's frame
@@ -57,6 +59,7 @@ struct BakeSize {
     size_t pmesh_facing = 0;                     // and its line drawings' facing bits
     size_t pmesh_cache = 0;                      // and its vertex projection cache
     size_t pmesh_sdepth = 0;                     // and the bits of its lines style's sparse depth buffer
+    size_t pmesh_neighbours = 0;                 // and its neighbour table (0: none)
 };
 
 Budget budget_of(const BakeSize &s);

@@ -186,6 +186,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
         s.pmesh_facing = 4 + (opt.pmesh->faces.size() + 7) / 8 + (opt.pmesh->faces.size() + 1) / 2;   // MC_MESH_LINES_BYTES
         s.pmesh_cache = opt.pmesh->vertices() * sizeof(mc_xvertex);   // MC_MESH_CACHE_BYTES
         s.pmesh_sdepth = 4u * MC_SDEPTH_WORDS(opt.screen_w, opt.screen_h);
+        if (opt.mesh_neighbours) s.pmesh_neighbours = MC_PMESH_NEIGHBOUR_BYTES(opt.pmesh->faces.size(), p.half_bytes);
     }
     return budget_of(s);
 }
@@ -244,7 +245,9 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
                                   {"base_faces", std::to_string(pm.base_faces)},
                                   {"index_bits", std::to_string(8 * plan.index_bytes)},
                                   {"lod_bytes", std::to_string(bud.pmesh_lod)},
-                                  {"facing_bytes", std::to_string(bud.pmesh_facing)}};
+                                  {"facing_bytes", std::to_string(bud.pmesh_facing)},
+                                  {"neighbour_bytes", std::to_string(bud.pmesh_neighbours)},
+                                  {"neighbours", bud.pmesh_neighbours > 0}};
         for (const auto &[k, v] : pmesh_header) m.emplace(k, v);
         m.emplace("arrays", pdecls);
         m.emplace("lists", plan.pm_lists);
@@ -386,6 +389,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"facing_ram", bud.pmesh_facing},
             {"cache_ram", bud.pmesh_cache},
             {"sdepth_ram", bud.pmesh_sdepth},
+            {"neighbour_ram", bud.pmesh_neighbours},
             {"closed", pm.closed()},
             {"input",
              {{"faces_with_a_repeated_corner", pm.dropped_faces},
@@ -397,6 +401,7 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
         budget["ram"]["pmesh_facing"] = bud.pmesh_facing;
         budget["ram"]["pmesh_cache"] = bud.pmesh_cache;
         budget["ram"]["pmesh_sdepth"] = bud.pmesh_sdepth;
+        budget["ram"]["pmesh_neighbours"] = bud.pmesh_neighbours;
     }
     if (!opt.fit_note.empty()) budget["fit"] = opt.fit_note;
     for (const auto &[key, text] : opt.budget_extra) budget[key] = nlohmann::json::parse(text);

@@ -123,6 +123,9 @@ int main(int argc, char **argv) {
     app.add_option("--max-faces", pmesh_opt.max_faces, "--as both: the most faces of the mesh's finest level (0: all "
                    "of the file's)")
         ->check(CLI::Range(size_t(0), size_t(1) << 31))->capture_default_str();
+    app.add_flag("--mesh-neighbours", emit.mesh_neighbours, "--as both: the app binding also keeps a table of the "
+                 "current level's neighbours, 3 half-edges a face of RAM, so that line drawings at coarse levels "
+                 "do not walk across removed faces (runtime/include/modelc/pmesh.h)");
     app.add_option("--crease-angle", pmesh_opt.crease_angle, "--as both, --as edges: degrees between two faces' "
                    "normals above which their edge is drawn as a crease, or tracked")
         ->check(CLI::Range(0.0, 180.0))->capture_default_str();
@@ -186,6 +189,10 @@ int main(int argc, char **argv) {
     emit.stream_packed = stream_splits == "packed";
     if (emit.stream_packed && (!emit.stream || as != "both"))
         return fail("--stream-splits packed: only a stream with a mesh part has splits (--emit stream --as both)", 2);
+    if (emit.mesh_neighbours && as != "both")
+        return fail("--mesh-neighbours: only a mesh part has neighbours to keep (--as both)", 2);
+    if (emit.mesh_neighbours && emit.lib)
+        return fail("--mesh-neighbours: the table is the app binding's memory, which --emit lib leaves out", 2);
     emit.up = up == "z" ? mc::UpAxis::z : mc::UpAxis::y;
     if (name.empty()) name = name_from_path(input);
     if (!std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")))

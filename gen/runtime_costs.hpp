@@ -45,12 +45,12 @@ inline constexpr ModuleCode kModules[] = {
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
-    {"pmesh", 1076, 1076, "progressive-mesh level of detail and neighbours (pmesh.c)"},
+    {"pmesh", 2000, 2000, "progressive-mesh level of detail, neighbours and their table (pmesh.c)"},
     {"xform_vertex", 3924, 3924, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
     {"raster", 7060, 7060, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 828, 828, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
-    {"mesh_render", 3016, 3016, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
+    {"mesh_render", 3768, 3768, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
     {"mesh_lines", 7000, 7000, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };

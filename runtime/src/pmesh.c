@@ -156,10 +156,11 @@ static uint32_t nbr_walk(const mc_pmesh_lod *lod, uint32_t h)
 }
 
 /* Faces f0 .. lod->faces-1 have just come: their entries, and those of the faces now across them
- * (whose walks, and only theirs, now stop at one of them). */
+ * (whose walks, and only theirs, now stop at one of them). Never past the table's F faces, whatever
+ * the splits' face counts say (arrays not made by the generator: a forged stream). */
 static void nbr_added(mc_pmesh_lod *lod, uint32_t f0)
 {
-    for (uint32_t f = f0; f < lod->faces; f++)
+    for (uint32_t f = f0; f < lod->faces && f < lod->pm->faces; f++)
         for (uint32_t k = 0; k < 3u; k++) {
             const uint32_t o = nbr_walk(lod, MC_HALF_EDGE(f, k));
             nbr_put(lod, MC_HALF_EDGE(f, k), o);
@@ -172,7 +173,7 @@ static void nbr_added(mc_pmesh_lod *lod, uint32_t f0)
 static void nbr_removed(mc_pmesh_lod *lod, uint32_t f0, uint32_t f1)
 {
     uint32_t beside[6], n = 0;   /* a split adds at most two faces */
-    for (uint32_t f = f0; f < f1; f++)
+    for (uint32_t f = f0; f < f1 && f < lod->pm->faces; f++)
         for (uint32_t k = 0; k < 3u; k++) {
             const uint32_t o = nbr_get(lod, MC_HALF_EDGE(f, k));
             if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f0 && n < 6u) beside[n++] = o;

@@ -4,6 +4,8 @@
  *
  *   pmesh_lod ROUNDS     per round "ns per level change X" (wall clock, 2 * splits changes)
  *   pmesh_lod --sweeps N N sweeps and nothing else, for callgrind (--toggle-collect=mc_pmesh_lod_set)
+ *   --neighbours first:  the state keeps a neighbour table (pmesh.h mc_pmesh_lod_neighbours) through
+ *                        the changes
  * and "mean subtree size X": the ancestor-map entries a split rewrites, on average.
  */
 #include <stdio.h>
@@ -28,6 +30,12 @@ int main(int argc, char **argv)
     if (PM.vertices > sizeof anc / sizeof anc[0]) return 2;
     mc_pmesh_lod lod;
     mc_pmesh_lod_init(&lod, &PM, anc);
+    if (argc > 1 && !strcmp(argv[1], "--neighbours")) {
+        static uint8_t nbr[MC_PMESH_NEIGHBOUR_BYTES(1u << 23, 4)];
+        if (PM.faces > 1u << 23) return 2;
+        mc_pmesh_lod_neighbours(&lod, nbr);
+        argc--, argv++;
+    }
     const double changes = 2.0 * (PM.vertices - PM.base_vertices);
     if (argc == 3 && !strcmp(argv[1], "--sweeps")) {
         for (int r = atoi(argv[2]); r > 0; r--) {
@@ -37,7 +45,7 @@ int main(int argc, char **argv)
         printf("level changes %.0f\n", changes * atoi(argv[2]));
         return 0;
     }
-    if (argc != 2) { fprintf(stderr, "usage: pmesh_lod ROUNDS | --sweeps N\n"); return 2; }
+    if (argc != 2) { fprintf(stderr, "usage: pmesh_lod [--neighbours] ROUNDS | --sweeps N\n"); return 2; }
     uint64_t work = 0;
     for (uint32_t v = 0; v < PM.vertices; v++)
         if (mc_le_index(mc_chunk_record(PM.tree, PM.record_shift, 2u * PM.index_bytes, v), PM.index_bytes) != v)

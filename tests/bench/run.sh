@@ -232,5 +232,7 @@ step "level of detail, run time against error: section appended"
 tests/bench/lod_error.sh tests/bench/RESULTS.md >"$RES/lod_error.log"
 step "the automatic level of detail against frame-time targets: section appended"
 tests/bench/lod_auto.sh tests/bench/RESULTS.md >"$RES/lod_auto.log"
+step "the level of detail's neighbour table in line drawings: section appended"
+tests/bench/neighbours.sh tests/bench/RESULTS.md >"$RES/neighbours.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'

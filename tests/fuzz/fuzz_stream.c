@@ -28,6 +28,7 @@ static uint16_t zb[64 * 48];
 /* a mesh's level of detail and line memory: the most vertices and faces a CAP-byte stream can hold */
 static uint32_t anc[CAP / 6];
 static uint8_t facing[MC_MESH_LINES_BYTES(CAP / 6)];
+static uint8_t nbr[MC_PMESH_NEIGHBOUR_BYTES(CAP / 6, 4)];
 
 static mc_view view_of(int view)
 {
@@ -72,6 +73,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (pm) {
         mc_pmesh_lod lod;
         mc_pmesh_lod_init(&lod, pm, anc);
+        /* with the adjacency, the level's neighbour table kept through the splits and collapses too */
+        if (pm->opposite && pm->faces <= CAP / 6) mc_pmesh_lod_neighbours(&lod, nbr);
         if (mc_pmesh_lod_set(&lod, level) != level) abort();
         memset(facing, 0, MC_MESH_LINES_BYTES(pm->faces));
         for (int view = 0; view < 3; view++) {

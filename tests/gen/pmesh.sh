@@ -337,6 +337,21 @@ grep -q "^modelc: $src: a point set cannot be baked as a mesh" "$tmp/kitten.out"
 [ -e "$out/kitten" ] && problems+="wrote $out/kitten; "
 check_problems "kitten (a point set) --as both: one modelc: line, exit 1, no output" "$problems"
 
+# ---- --mesh-neighbours without a place for the table: one line, exit 2, no output ----------------
+src=$(model_file fandisk)
+for args in "--as points" "--as both --emit lib"; do
+    rm -rf "$out/nbr"
+    # shellcheck disable=SC2086
+    "$modelc" "$src" -o "$out" --name nbr --depth 1 $args --mesh-neighbours -q >"$tmp/nbr.out" 2>&1
+    rc=$?
+    problems=""
+    [ "$rc" = 2 ] || problems+="exit status $rc; "
+    [ "$(wc -l <"$tmp/nbr.out")" = 1 ] || problems+="$(wc -l <"$tmp/nbr.out") lines of output; "
+    grep -q "^modelc: --mesh-neighbours: " "$tmp/nbr.out" || problems+="said: $(oneline <"$tmp/nbr.out"); "
+    [ -e "$out/nbr" ] && problems+="wrote $out/nbr; "
+    check_problems "fandisk $args --mesh-neighbours: one modelc: line, exit 2, no output" "$problems"
+done
+
 # ---- points-only bakes untouched -----------------------------------------------------------------
 src=$(model_file fandisk)
 "$modelc" "$src" -o "$tmp/a" --name fandisk --depth 5 -q && "$modelc" "$src" -o "$tmp/b" --name fandisk --depth 5 --as points -q

@@ -168,8 +168,9 @@ else
 fi
 
 # the mesh part (--as both: a version-2 stream), against the same viewer's compiled-in mesh at --lod L:
-# whole, cut after mesh records (shaded; lines drawn shaded until the adjacency), --lod below what came
-if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit stream -q >"$dir/mesh-bake.log" 2>&1 && link mesh &&
+# whole, cut after mesh records (shaded; lines drawn shaded until the adjacency), --lod below what came.
+# That viewer's bake keeps a neighbour table (--mesh-neighbours, pmesh.h); the small bake's does not.
+if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit stream --mesh-neighbours -q >"$dir/mesh-bake.log" 2>&1 && link mesh &&
     build/bin/modelc "$model" -o "$dir" --name small --depth 8 --as both --max-faces 2000 --emit stream -q >>"$dir/mesh-bake.log" 2>&1 &&
     link small && build/bin/modelc "$model" -o "$dir" --name other --depth 2 --as both --max-faces 6000 --emit stream -q >>"$dir/mesh-bake.log" 2>&1; then
     mview=$dir/mesh/mesh-view
@@ -177,6 +178,27 @@ if build/bin/modelc "$model" -o "$dir" --name mesh --depth 4 --as both --emit st
     msize=$(stat -c %s "$mmcs")
     read -r full lines_at < <(python3 -c "import json,sys; b=json.load(open(sys.argv[1])); print(b['pmesh']['vertices'], b['stream']['mesh_lines_at'])" "$dir/mesh/budget.json")
     mapfile -t mlevels < <(python3 -c "import json,sys; [print(m['at'], m['level']) for m in json.load(open(sys.argv[1]))['stream']['mesh_levels']]" "$dir/mesh/budget.json")
+    # the neighbour table: in the budget and the binding, kept by the viewer for its mesh and for a
+    # streamed one once its adjacency has come, the same drawings as the small bake's viewer without one
+    problems=$(python3 -c "
+import json, sys
+b = json.load(open(sys.argv[1])); pm = b['pmesh']
+want = 3 * pm['faces'] * pm['half_edge_bytes']
+print('' if pm['neighbour_ram'] == want == b['ram']['pmesh_neighbours'] and
+      b['ram']['image'] == sum(v for k, v in b['ram'].items() if k not in ('image', 'total', 'note')) else
+      f\"neighbour_ram {pm['neighbour_ram']}, ram.pmesh_neighbours {b['ram']['pmesh_neighbours']}, 3 F half-edges {want}\")
+" "$dir/mesh/budget.json")
+    grep -q "static uint8_t mc_mesh_pmesh_nbr\[MC_MESH_PMESH_NEIGHBOUR_BYTES\]" "$dir/mesh/mesh_app.c" || problems+=" mesh_app.c declares no table;"
+    grep -q "neighbour-table" <("$mview" --mode lines --lod 500 --bench 2 2>&1) || problems+=" mesh-view --bench keeps no table;"
+    grep -q "neighbour-table" <("$dir/small/small-view" --mode lines --lod 500 --bench 2 2>&1) && problems+=" small-view (baked without) keeps one;"
+    for l in 300 1000; do
+        "$mview" --stream "$dir/small/small.mcs" --mode lines --lod $l --yaw 30 --pitch 20 --ppm "$dir/nbr-$l.ppm" >/dev/null 2>&1
+        "$dir/small/small-view" --mode lines --lod $l --yaw 30 --pitch 20 --ppm "$dir/nonbr-$l.ppm" >/dev/null 2>&1
+        cmp -s "$dir/nbr-$l.ppm" "$dir/nonbr-$l.ppm" || problems+=" lines at --lod $l differ;"
+    done
+    cmp -s <("$mview" --stream "$dir/small/small.mcs" --checksums | grep '^mesh') <("$dir/small/small-view" --checksums | grep '^mesh') ||
+        problems+=" --checksums' mesh frames differ;"
+    check_problems "--mesh-neighbours: budget.json's neighbour_ram 3 F half-edges, in the app binding; the viewer keeps the table (--bench says so; not the small bake's); the small bake's stream drawn with it in lines at --lod 300 and 1000 and in --checksums' mesh frames as the small viewer draws them without" "$problems"
     problems=""
     for m in shaded lines; do
         "$mview" --mode $m --yaw 30 --pitch 20 --ppm "$dir/mref-$m.ppm" >/dev/null

@@ -37,6 +37,7 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
     s->lod_want = UINT32_MAX;
     if (mc_host_scene_has_mesh(s)) {
         mc_pmesh_lod_init(&s->lod, app->model->pmesh, app->pmesh_anc);
+        mc_host_mesh_neighbours(&s->lod, app);
         mc_pmesh_lod_set(&s->lod, app->model->pmesh->vertices);
     }
     return mode == MC_HOST_POINTS || mc_host_scene_has_mesh(s) ? 0 : -1;
@@ -56,6 +57,14 @@ void mc_host_scene_set_level(mc_host_scene *s, uint32_t level)
     set_level(s);
 }
 
+void mc_host_mesh_neighbours(mc_pmesh_lod *lod, const mc_app *app)
+{
+    const mc_pmesh *pm = lod->pm, *bake = app->model->pmesh;
+    if (!lod->nbr && app->pmesh_nbr && pm && pm->opposite && bake &&
+        MC_PMESH_NEIGHBOUR_BYTES(pm->faces, pm->half_bytes) <= MC_PMESH_NEIGHBOUR_BYTES(bake->faces, bake->half_bytes))
+        mc_pmesh_lod_neighbours(lod, app->pmesh_nbr);
+}
+
 void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t level)
 {
     if (!pm) {
@@ -64,6 +73,7 @@ void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t le
     }
     const int first = s->lod.pm != pm;
     if (first) mc_pmesh_lod_init(&s->lod, pm, s->app->pmesh_anc);
+    mc_host_mesh_neighbours(&s->lod, s->app);
     s->lod_cap = level;
     /* the first frame draws the finest level that has come; the automatic level of detail then
      * moves within it (mc_host_scene_draw) */

@@ -75,6 +75,11 @@ void mc_host_scene_set_level(mc_host_scene *s, uint32_t level);
  * search moves past what has come. */
 void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t level);
 
+/* Gives lod the app binding's neighbour table (a bake with --mesh-neighbours; pmesh.h
+ * mc_pmesh_lod_neighbours) when it has none yet, lod's mesh has its adjacency (a streamed mesh's comes
+ * last) and the table fits the bake's room for it. The same frames with or without it. */
+void mc_host_mesh_neighbours(mc_pmesh_lod *lod, const mc_app *app);
+
 /* Draws one frame into t; depth: the octree depth (points). *drawn: points (points) or faces drawn
  * (mesh). abort: polled by the point renderer only. Returns the renderer's MC_OK or MC_ERR_*; 1 when
  * the point renderer gave up (abort). */

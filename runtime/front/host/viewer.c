@@ -128,8 +128,9 @@ static int bench(mc_host_scene *s, const mc_target *t, mc_view v, unsigned depth
         printf("model %s depth %u size %ux%u frames %d%s\n", mc_app_model.model->name, s->drawn_depth, t->width, t->height,
                frames, s->fill == MC_FILL_NONE ? " no-finish" : "");
     else
-        printf("model %s mode %s lod %u of %u vertices size %ux%u frames %d\n", mc_app_model.model->name,
-               mc_host_mode_name(s->mode), s->lod.level, s->lod.pm->vertices, t->width, t->height, frames);
+        printf("model %s mode %s lod %u of %u vertices size %ux%u frames %d%s\n", mc_app_model.model->name,
+               mc_host_mode_name(s->mode), s->lod.level, s->lod.pm->vertices, t->width, t->height, frames,
+               s->lod.nbr ? " neighbour-table" : "");
     printf("ms per frame (median): %.3f\n", median);
     printf("%s drawn per frame: %.0f\n", what, mean);
     if (s->mode == MC_HOST_POINTS) printf("back-facing nodes skipped per frame: %.0f\n", (double)culled / frames);
@@ -158,6 +159,7 @@ static int checksums(const mc_octree *octree, const mc_pmesh *pm, uint32_t max_l
     if (pm && mc_app_model.pmesh_anc && mc_app_model.pmesh_facing) {
         mc_pmesh_lod lod;
         mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
+        mc_host_mesh_neighbours(&lod, &mc_app_model);   /* (the same frames) */
         for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
             mc_front_mesh_result r = mc_front_mesh_check_to(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
                                                             mc_app_model.pmesh_sdepth, i, t, max_level, lines);

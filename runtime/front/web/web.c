@@ -159,6 +159,7 @@ static uint32_t pmesh_sdepth[MC_SDEPTH_WORDS(MC_WEB_MAX_WIDTH, MC_WEB_MAX_HEIGHT
 #define PMESH_FACING ((uint8_t *)pmesh_facing)
 #define PMESH_CACHE pmesh_cache
 #define PMESH_SDEPTH pmesh_sdepth
+#define PMESH_NBR 0
 static const mc_pmesh *mesh_part(void)
 {
     const mc_pmesh *pm = mc_stream_pmesh(stream());
@@ -172,6 +173,7 @@ static uint32_t mesh_cap(void) { return mc_stream_mesh_level(stream()); }
 #define PMESH_FACING 0
 #define PMESH_CACHE 0
 #define PMESH_SDEPTH 0
+#define PMESH_NBR 0
 static const mc_pmesh *mesh_part(void) { return 0; }   /* a points bake's stream page */
 static uint32_t mesh_cap(void) { return 0; }
 #endif
@@ -180,6 +182,7 @@ static uint32_t mesh_cap(void) { return 0; }
 #define PMESH_FACING mc_app_model.pmesh_facing
 #define PMESH_CACHE mc_app_model.pmesh_cache
 #define PMESH_SDEPTH mc_app_model.pmesh_sdepth
+#define PMESH_NBR mc_app_model.pmesh_nbr   /* (a bake with --mesh-neighbours; else none) */
 static const mc_pmesh *mesh_part(void)
 {
     const mc_pmesh *pm = mc_app_model.model->pmesh;
@@ -197,6 +200,7 @@ static const mc_pmesh *mesh(void)
     const mc_pmesh *pm = mesh_part();
     if (pm && lod.pm != pm) {   /* at the finest level that has come, as the native viewer starts */
         mc_pmesh_lod_init(&lod, pm, PMESH_ANC);
+        mc_pmesh_lod_neighbours(&lod, PMESH_NBR);
         mc_pmesh_lod_set(&lod, mesh_cap() < pm->vertices ? mesh_cap() : pm->vertices);
     }
     return pm;

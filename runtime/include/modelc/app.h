@@ -28,6 +28,8 @@ typedef struct mc_app {
     mc_xvertex *pmesh_cache; /* its vertex projection cache (mesh_render.h), or NULL */
     uint32_t *pmesh_sdepth;  /* its lines style's sparse depth buffer bits, MC_SDEPTH_WORDS of the screen
                                 (sdepth.h), or NULL */
+    uint8_t *pmesh_nbr;      /* with --mesh-neighbours: room for its level's neighbour table (pmesh.h
+                                mc_pmesh_lod_neighbours, MC_PMESH_NEIGHBOUR_BYTES of the bake's mesh), or NULL */
     uint8_t *edges_frame;    /* the edge part's: a grey camera frame, max_width * max_height, or NULL */
     uint8_t *edges_masks;    /* its edge masks (imgedge.h), max_width * max_height */
     uint32_t *edges_scratch; /* the edge detector's rows, MC_IMGEDGE_SCRATCH_WORDS(max_width) words */

@@ -46,7 +46,8 @@
  * (white), silhouettes black, creases grey, borders dark blue.
  *
  * Work: mc_mesh_lines finds every face's facing (from the vertex cache, or three projections), each
- * edge's neighbour (pmesh.h) and, for drawn edges, the line's pixels; the crease test of every edge
+ * edge's neighbour (pmesh.h: a walk across the faces the level lacks, or the state's neighbour table's
+ * entry) and, for drawn edges, the line's pixels; the crease test of every edge
  * only when the level changed. A face with a flagged corner costs its plane test, and a clipping of
  * its polygon for each drawn edge beside it (the slope); an edge with a flagged end, its clipping.
  * The tests of the passes over every edge and every face whose outcome is a coin toss (is the edge
