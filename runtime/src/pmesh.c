@@ -146,7 +146,8 @@ static void nbr_put(mc_pmesh_lod *lod, uint32_t h, uint32_t o)
 {
     const unsigned hb = lod->pm->half_bytes;
     uint8_t *p = lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb;
-    for (unsigned i = 0; i < hb; i++) p[i] = (uint8_t)(o >> (8u * i));
+    p[0] = (uint8_t)o, p[1] = (uint8_t)(o >> 8);
+    if (hb == 4) p[2] = (uint8_t)(o >> 16), p[3] = (uint8_t)(o >> 24);
 }
 
 /* Half-edge h's neighbour at the current level by definition: the walk from its stored opposite. */
@@ -155,33 +156,41 @@ static uint32_t nbr_walk(const mc_pmesh_lod *lod, uint32_t h)
     return mc_pmesh_lod_across(lod, half_at(lod->pm, lod->pm->opposite, 3u, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h)));
 }
 
-/* Faces f0 .. lod->faces-1 have just come: their entries, and those of the faces now across them
- * (whose walks, and only theirs, now stop at one of them). Never past the table's F faces, whatever
- * the splits' face counts say (arrays not made by the generator: a forged stream). */
+/* Faces f0 .. lod->faces-1 have just come: their entries by their walks, and the faces across them
+ * now have them across (a level's neighbours pair up: the walk that now stops at a new face's edge is
+ * the one from the face it found). Never past the table's F faces, whatever the splits' face counts
+ * say (arrays not made by the generator: a forged stream). */
 static void nbr_added(mc_pmesh_lod *lod, uint32_t f0)
 {
     for (uint32_t f = f0; f < lod->faces && f < lod->pm->faces; f++)
         for (uint32_t k = 0; k < 3u; k++) {
             const uint32_t o = nbr_walk(lod, MC_HALF_EDGE(f, k));
             nbr_put(lod, MC_HALF_EDGE(f, k), o);
-            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f0) nbr_put(lod, o, nbr_walk(lod, o));
+            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f0) nbr_put(lod, o, MC_HALF_EDGE(f, k));
         }
 }
 
 /* Faces f0 .. f1-1, the last of the level, are about to go (lod->faces is f1): their entries to all
- * ones, and those of the faces across them walked again once they have gone. */
+ * ones; across a removed face's merged edges 1 and 2 the faces found there now face each other (the
+ * walk's step through a removed face), or, where one of them goes too, the other walks again. */
 static void nbr_removed(mc_pmesh_lod *lod, uint32_t f0, uint32_t f1)
 {
-    uint32_t beside[6], n = 0;   /* a split adds at most two faces */
-    for (uint32_t f = f0; f < f1 && f < lod->pm->faces; f++)
-        for (uint32_t k = 0; k < 3u; k++) {
-            const uint32_t o = nbr_get(lod, MC_HALF_EDGE(f, k));
-            if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f0 && n < 6u) beside[n++] = o;
-            nbr_put(lod, MC_HALF_EDGE(f, k), MC_NO_HALF_EDGE);
-        }
+    uint32_t again[6], n = 0;   /* a split adds at most two faces */
+    for (uint32_t f = f0; f < f1 && f < lod->pm->faces; f++) {
+        /* across edge 0, the collapsed edge, lies the other face going (or nothing): else walk again */
+        const uint32_t c = nbr_get(lod, MC_HALF_EDGE(f, 0));
+        if (c != MC_NO_HALF_EDGE && MC_HALF_FACE(c) < f0 && n < 6u) again[n++] = c;
+        const uint32_t a = nbr_get(lod, MC_HALF_EDGE(f, 1)), b = nbr_get(lod, MC_HALF_EDGE(f, 2));
+        const int a_stays = a != MC_NO_HALF_EDGE && MC_HALF_FACE(a) < f0;
+        const int b_stays = b != MC_NO_HALF_EDGE && MC_HALF_FACE(b) < f0;
+        const int b_known = b == MC_NO_HALF_EDGE || b_stays, a_known = a == MC_NO_HALF_EDGE || a_stays;
+        if (a_stays) { if (b_known) nbr_put(lod, a, b); else if (n < 6u) again[n++] = a; }
+        if (b_stays) { if (a_known) nbr_put(lod, b, a); else if (n < 6u) again[n++] = b; }
+        for (uint32_t k = 0; k < 3u; k++) nbr_put(lod, MC_HALF_EDGE(f, k), MC_NO_HALF_EDGE);
+    }
     const uint32_t faces = lod->faces;
     lod->faces = f0;
-    for (uint32_t i = 0; i < n; i++) nbr_put(lod, beside[i], nbr_walk(lod, beside[i]));
+    for (uint32_t i = 0; i < n; i++) nbr_put(lod, again[i], nbr_walk(lod, again[i]));
     lod->faces = faces;
 }
 

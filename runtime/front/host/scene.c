@@ -37,7 +37,6 @@ int mc_host_scene_init(mc_host_scene *s, const mc_app *app, mc_host_mode mode, c
     s->lod_want = UINT32_MAX;
     if (mc_host_scene_has_mesh(s)) {
         mc_pmesh_lod_init(&s->lod, app->model->pmesh, app->pmesh_anc);
-        mc_host_mesh_neighbours(&s->lod, app);
         mc_pmesh_lod_set(&s->lod, app->model->pmesh->vertices);
     }
     return mode == MC_HOST_POINTS || mc_host_scene_has_mesh(s) ? 0 : -1;
@@ -73,7 +72,6 @@ void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t le
     }
     const int first = s->lod.pm != pm;
     if (first) mc_pmesh_lod_init(&s->lod, pm, s->app->pmesh_anc);
-    mc_host_mesh_neighbours(&s->lod, s->app);
     s->lod_cap = level;
     /* the first frame draws the finest level that has come; the automatic level of detail then
      * moves within it (mc_host_scene_draw) */
@@ -108,6 +106,10 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     }
     mc_front_style style = (mc_front_style)s->mode;
     if (!s->lod.pm->opposite) style = MC_FRONT_SHADED;   /* a streamed mesh before its adjacency */
+    /* the neighbour table only while lines are drawn: shaded frames do not read it, and every level
+     * change keeps it at a cost */
+    if (style == MC_FRONT_SHADED) mc_pmesh_lod_neighbours(&s->lod, NULL);
+    else mc_host_mesh_neighbours(&s->lod, s->app);
     const double t0 = mc_host_now_ms();
     const uint32_t level = s->lod.level;
     if (s->target_ms > 0) {
