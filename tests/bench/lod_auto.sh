@@ -4,7 +4,10 @@
 # moving average of the time per face over the frames that kept the level) over a full turn, per
 # style and target: the median frame time and the frames within 10 % of the target after the first
 # 20. A target is a share of the style's full-level median time in the same run (a target above
-# that is met by drawing everything, and holds nothing). Writes a marked section of RESULTS.md.
+# that is met by drawing everything, and holds nothing). The line style's targets are run twice, one
+# after the other: by the viewer of a plain bake and by that of a bake keeping the level's neighbour
+# table (--mesh-neighbours), whose coarse levels cost less and whose level changes cost more.
+# Writes a marked section of RESULTS.md.
 #   tests/bench/lod_auto.sh [RESULTS.md]        (make bench runs it; make bench-lod-auto alone)
 #   AUTO_MODEL (bunny00), AUTO_FRAMES (300), AUTO_TARGETS ("shaded:0.3 shaded:0.6 shaded:0.9 lines:0.7
 #   lines:0.8 lines:0.9": style:share of its full level's median ms)
@@ -21,43 +24,53 @@ cmds=()
 run() { cmds+=("$*"); "$@"; }
 src=build/models/$model.off
 [ -f "$src" ] || make -s "$src"
-run make -s view MODEL="$src" NAME="$name" BAKE_OPTS="--as both --mesh-neighbours" >"$out/build.log"
-view=build/$name/$name-view
+run make -s view MODEL="$src" NAME="$name" BAKE_OPTS="--as both" >"$out/build.log"
+run make -s view MODEL="$src" NAME="${name}_nbr" BAKE_OPTS="--as both --mesh-neighbours" >>"$out/build.log"
 : >"$out/rows.txt"
 rm -f "$out"/*-full.txt
 for st in $targets; do
     style=${st%%:*} share=${st#*:}
+    view=build/$name/$name-view
     # the style's full level first (once), whose median time the targets are shares of
     [ -f "$out/$style-full.txt" ] || run "$view" --mode "$style" --bench "$frames" >"$out/$style-full.txt"
     full=$(sed -n 's/^ms per frame (median): //p' "$out/$style-full.txt")
     t=$(python3 -c "print(round($share * $full, 3))")
-    run "$view" --mode "$style" --lod auto --target-ms "$t" --bench "$frames" >"$out/$style-$t.txt"
-    echo "$style $t $share" >>"$out/rows.txt"
+    bakes=plain
+    [ "$style" = shaded ] || bakes="plain table"
+    for b in $bakes; do
+        v=$view
+        [ "$b" = table ] && v=build/${name}_nbr/${name}_nbr-view
+        run "$v" --mode "$style" --lod auto --target-ms "$t" --bench "$frames" >"$out/$style-$b-$t.txt"
+        echo "$style $b $t $share" >>"$out/rows.txt"
+    done
 done
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$out" "$model" "$frames" "$load" >"$out/section.md" <<'PY'
 import json, re, sys
 out, model, frames, load = sys.argv[1:5]
 print("## Automatic level of detail: holding a frame-time target\n")
-print(f"`tests/bench/lod_auto.sh` (`make bench`, `make bench-lod-auto`): {model} baked `--as both --mesh-neighbours` "
-      "(the level's neighbours kept in a table, as a desktop viewer's bake would have them), the viewer's "
+print(f"`tests/bench/lod_auto.sh` (`make bench`, `make bench-lod-auto`): {model} baked `--as both`, the viewer's "
       f"`--bench {frames}` (a full turn, 320x240) with `--lod auto --target-ms T`: before each frame the finest level "
       "within a face budget (`mc_pmesh_lod_fit`); the budget is the target at the measured time per face of the level "
       "(a moving average over about five frames, of the frames that kept the level: one that changed it also paid for the "
       "change, in the line styles the new level's creases); the level changes only when the budget moves by more than 4 %. "
       "Held: frames after the first 20 whose time is within 10 % of the target. Each target is a share of the style's "
-      "full-level median time in the same run (a target above that is met by drawing everything).\n")
-print("| style | target ms (share of the full level's) | median ms | frames held within 10 % | level at the end (vertices) | full level's median ms |")
-print("|---|---:|---:|---:|---:|---:|")
+      "full-level median time in the same run (a target above that is met by drawing everything). The lines targets "
+      "twice, one run after the other: the plain bake's viewer, and that of the same bake with `--mesh-neighbours` "
+      "(neighbour table: the level's neighbours kept in RAM, so coarse levels draw their lines without walking across "
+      "removed faces, and every level change keeps the table).\n")
+print("| style | bake | target ms (share of the full level's) | median ms | frames held within 10 % | level at the end (vertices) | full level's median ms |")
+print("|---|---|---:|---:|---:|---:|---:|")
 for line in open(f"{out}/rows.txt"):
-    style, t, share = line.split()
-    a = open(f"{out}/{style}-{t}.txt").read()
+    style, bake, t, share = line.split()
+    a = open(f"{out}/{style}-{bake}-{t}.txt").read()
     full = open(f"{out}/{style}-full.txt").read()
     med = float(re.search(r"ms per frame \(median\): ([\d.]+)", a).group(1))
     held, n = map(int, re.search(r"(\d+) of (\d+) frames after the first 20 within 10 %", a).groups())
     level = int(re.search(r"lod (\d+) of \d+ vertices", a).group(1))
     fmed = float(re.search(r"ms per frame \(median\): ([\d.]+)", full).group(1))
-    print(f"| {style} | {float(t):g} ({float(share):g}) | {med:.3f} | {held} of {n} ({100 * held / n:.0f} %) | {level:,} | {fmed:.3f} |")
+    bake = "neighbour table" if bake == "table" else "plain"
+    print(f"| {style} | {bake} | {float(t):g} ({float(share):g}) | {med:.3f} | {held} of {n} ({100 * held / n:.0f} %) | {level:,} | {fmed:.3f} |")
 print(f"\nLoad average at the end: {load}.")
 PY
 write_section "$results" lod-auto "$out/section.md" "${cmds[@]}"

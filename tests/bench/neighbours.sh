@@ -102,7 +102,9 @@ for line in open(f"{out}/lod.txt"):
 p, q = statistics.median(lod["plain"]), statistics.median(lod["table"])
 print(f"\nA level change (`tests/bench/pmesh_lod.c`: the base to the full level and back, split by split), median of "
       f"{rounds} rounds: {p:.1f} ns without the table, {q:.1f} ns with it ({q / p:.1f} times: each split or collapse "
-      "also walks its faces' edges and their neighbours'; {:.1f} M and {:.1f} M level changes a second).".format(1e3 / p, 1e3 / q))
+      "keeps the table: a split walks its new faces' edges from their stored neighbours and gives the faces it finds "
+      "their new neighbour, a collapse pairs the faces across each removed face; {:.1f} M and {:.1f} M level changes a "
+      "second).".format(1e3 / p, 1e3 / q))
 print(f"\nLoad average at the end: {load}.")
 PY
 write_section "$results" neighbours "$out/section.md" "${cmds[@]}"
