@@ -287,6 +287,11 @@ for b in mps2-an386 lm3s6965evb; do
             [ "${first_mesh:-0}" -gt "${last_point:-0}" ] || echo "$nfw lines: $(head -3 "$out/$t.fw-mesh.txt" | oneline)")"
     check "$b mesh: the frames draw the three styles, each at two levels or more, the full level and five levels in all" \
         "$(mesh_schedule "$out/$t.fw-mesh.txt")"
+    # the level's neighbour table where the board's bake asks for one (boards/B.mk mesh_opts)
+    want_nbr=no
+    [[ " $(mkvar FW_BAKE_OPTS BOARD=$b FW_MESH=1 MODEL=$model) " == *" --mesh-neighbours "* ]] && want_nbr=yes
+    check "$b mesh: the firmware keeps a neighbour table as its bake asks ($want_nbr)" \
+        "$(grep -q "^modelc firmware: mesh .* neighbour table $want_nbr\$" "$run" || grep '^modelc firmware: mesh' "$run" | oneline)"
     base=$(sed -n 's/^modelc firmware: mesh .* (base \([0-9]*\), .*/\1/p' "$run")
     check "$b mesh: a frame draws the base level (${base:-?} vertices)" \
         "$([ -n "$base" ] && grep -q " level $base of " "$out/$t.fw-mesh.txt" || echo "no frame at level '$base'")"

@@ -8,8 +8,9 @@ failed. The checks:
      no wrapper definitions, so a heap call would not even link; this confirms nothing else pulled one.
   2. model data exact: every array budget.json lists under flash.arrays is a symbol of exactly that
      size, and the frame buffers (ram.color_buffer, ram.depth_buffer) and, with a mesh part, its state
-     (ram.pmesh_lod, pmesh_facing, pmesh_cache, pmesh_sdepth: the app binding's ancestor map, facing
-     bits, vertex cache and sparse depth buffer bits) are symbols of exactly those sizes.
+     (ram.pmesh_lod, pmesh_facing, pmesh_cache, pmesh_sdepth, pmesh_neighbours: the app binding's
+     ancestor map, facing bits, vertex cache, sparse depth buffer bits and neighbour table; no symbol
+     for an item of 0 bytes) are symbols of exactly those sizes.
   3. ELF against budget totals: flash used (the sections arm-none-eabi-size -A places in flash) minus
      budget.json's flash.image (its estimate of the image), or flash.total (model data only) for an
      older budget.json, and RAM used (sections in RAM except the stack reservation) minus its
@@ -152,7 +153,8 @@ def main():
     # budget's bytes, or those rounded up to whole 32-bit words (an array the binding declares in words
     # for alignment); an item of 0 bytes (a bake without that buffer) must have no symbol
     mesh = {"pmesh_lod": f"mc_{model}_pmesh_anc", "pmesh_facing": f"mc_{model}_pmesh_facing",
-            "pmesh_cache": f"mc_{model}_pmesh_cache", "pmesh_sdepth": f"mc_{model}_pmesh_sdepth"}
+            "pmesh_cache": f"mc_{model}_pmesh_cache", "pmesh_sdepth": f"mc_{model}_pmesh_sdepth",
+            "pmesh_neighbours": f"mc_{model}_pmesh_nbr"}
     mesh = {k: sym for k, sym in mesh.items() if k in ram}
     if mesh:
         bad = [f"{sym}: ELF {syms.get(sym)} vs budget {ram[k]}" for k, sym in mesh.items()

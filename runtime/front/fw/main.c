@@ -63,9 +63,10 @@ static int mesh_frames(const mc_pmesh *pm, const mc_target *t)
     int status = 0;
     mc_pmesh_lod lod;
     mc_pmesh_lod_init(&lod, pm, mc_app_model.pmesh_anc);
-    printf("modelc firmware: mesh %lu vertices %lu faces (base %lu, %lu) vertex cache %s\n",
+    mc_pmesh_lod_neighbours(&lod, mc_app_model.pmesh_nbr);   /* (a bake with --mesh-neighbours; else none) */
+    printf("modelc firmware: mesh %lu vertices %lu faces (base %lu, %lu) vertex cache %s neighbour table %s\n",
            (unsigned long)pm->vertices, (unsigned long)pm->faces, (unsigned long)pm->base_vertices,
-           (unsigned long)pm->base_faces, mc_app_model.pmesh_cache ? "yes" : "no");
+           (unsigned long)pm->base_faces, mc_app_model.pmesh_cache ? "yes" : "no", lod.nbr ? "yes" : "no");
     for (unsigned i = 0; i < MC_FRONT_VIEW_COUNT; i++) {
         mc_front_mesh_result r = mc_front_mesh_check(&lod, mc_app_model.pmesh_facing, mc_app_model.pmesh_cache,
                                                          mc_app_model.pmesh_sdepth, i, t);
