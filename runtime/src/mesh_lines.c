@@ -342,14 +342,6 @@ MC_ALWAYS_INLINE void edge_one(const mc_pmesh_lod *lod, const mc_xform *x, const
     if (kind & flags) draw_edge(lod, x, cache, style, t, sd, st, MC_HALF_EDGE(f, k), o, kind);
 }
 
-/* A stored opposite, hb bytes wide (2 or 4: a constant where called), as a half-edge id. */
-MC_ALWAYS_INLINE uint32_t stored_opposite(const uint8_t *r, unsigned hb)
-{
-    if (hb == 4) return mc_le32(r);
-    const uint32_t o = mc_le16(r);
-    return o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
-}
-
 /* The edge pass over faces f0 .. f0 + n - 1, whose opposite records start at r (hb: the index width,
  * 2 or 4, a constant where called): each edge once, from the face with the lower number (or its only
  * face), its kind from the facing and crease bits; those of a kind in flags drawn as their lines,
@@ -363,12 +355,12 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = creases(cr, f);
 #if MC_MESH_SELECT   /* a straight run of three (a loop's branches would come back) */
-        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 0, stored_opposite(r, hb), fr, fc);
-        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 1, stored_opposite(r + hb, hb), fr, fc);
-        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 2, stored_opposite(r + 2u * hb, hb), fr, fc);
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 0, mc_pmesh_half(r, hb), fr, fc);
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 1, mc_pmesh_half(r + hb, hb), fr, fc);
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 2, mc_pmesh_half(r + 2u * hb, hb), fr, fc);
 #else                /* a loop: a firmware's flash */
         for (uint32_t k = 0; k < 3u; k++)
-            edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, k, stored_opposite(r + k * hb, hb), fr, fc);
+            edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, k, mc_pmesh_half(r + k * hb, hb), fr, fc);
 #endif
     }
     st->edges += c.edges;
@@ -395,7 +387,8 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
      * state keeps a neighbour table: the same records, none of them needing a walk) */
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
-        const uint8_t *r = lod->nbr ? lod->nbr + 3u * f0 * pm->half_bytes : pm->opposite[f0 >> shift].data;
+        const uint8_t *r = lod->nbr ? MC_PMESH_NEIGHBOUR_AT(lod->nbr, MC_HALF_EDGE(f0, 0), pm->half_bytes)
+                                    : pm->opposite[f0 >> shift].data;
         if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2);
         else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4);
     }

@@ -185,11 +185,7 @@ static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex
     if (lod->level < pm->vertices / 3u) {
         mc_xform_ortho o;
         mc_xform_ortho_init(&o, x);
-        for (uint32_t v = 0, size; v < pm->vertices; v += size) {
-            size = mc_pmesh_subtree(pm, v);
-            if (size < 1 || size > pm->vertices - v) size = pm->vertices - v;   /* (as mc_pmesh_lod_init) */
-            project_one(pm, x, &o, cache, v);
-        }
+        for (uint32_t v = 0; v < pm->vertices; v += mc_pmesh_root_span(pm, v)) project_one(pm, x, &o, cache, v);
         for (uint32_t s = 0; s < lod->level - pm->base_vertices; s++) project_one(pm, x, &o, cache, mc_pmesh_split_vertex(pm, s));
         return;
     }

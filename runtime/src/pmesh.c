@@ -29,8 +29,7 @@ void mc_pmesh_lod_init(mc_pmesh_lod *lod, const mc_pmesh *pm, void *anc)
     /* depth-first order: the roots' subtrees tile 0 .. V-1, each root first in its own; only the
      * roots' tree records are read, so a mesh still arriving (stream.h) starts the same way */
     for (uint32_t v = 0, size; v < pm->vertices; v += size) {
-        size = tree_field(pm, v, 1);
-        if (size < 1 || size > pm->vertices - v) size = pm->vertices - v;   /* never with the generator's arrays */
+        size = mc_pmesh_root_span(pm, v);
         anc_fill(lod, v, size, v);
     }
 }
@@ -87,7 +86,11 @@ uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s)
     return mc_le_index(mc_chunk_record(pm->splits, pm->record_shift, ib + 1u, s), ib);
 }
 
-uint32_t mc_pmesh_subtree(const mc_pmesh *pm, uint32_t v) { return tree_field(pm, v, 1); }
+uint32_t mc_pmesh_root_span(const mc_pmesh *pm, uint32_t v)
+{
+    const uint32_t size = tree_field(pm, v, 1);
+    return size < 1 || size > pm->vertices - v ? pm->vertices - v : size;   /* never with the generator's arrays */
+}
 
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
 {
@@ -101,8 +104,7 @@ void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
 MC_ALWAYS_INLINE uint32_t half_field(const mc_chunk *list, unsigned shift, unsigned per, uint32_t i, unsigned k,
                                      unsigned hb)
 {
-    const uint32_t h = mc_le_index(mc_chunk_record(list, shift, per * hb, i) + k * hb, hb);
-    return hb == 2 && h == 0xFFFFu ? MC_NO_HALF_EDGE : h;
+    return mc_pmesh_half(mc_chunk_record(list, shift, per * hb, i) + k * hb, hb);
 }
 
 static uint32_t half_at(const mc_pmesh *pm, const mc_chunk *list, unsigned per, uint32_t i, unsigned k)
@@ -138,14 +140,13 @@ uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i) { return half_at(pm, pm->
 static uint32_t nbr_get(const mc_pmesh_lod *lod, uint32_t h)
 {
     const unsigned hb = lod->pm->half_bytes;
-    const uint32_t o = mc_le_index(lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb, hb);
-    return hb == 2 && o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
+    return mc_pmesh_half(MC_PMESH_NEIGHBOUR_AT(lod->nbr, h, hb), hb);
 }
 
 static void nbr_put(mc_pmesh_lod *lod, uint32_t h, uint32_t o)
 {
     const unsigned hb = lod->pm->half_bytes;
-    uint8_t *p = lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb;
+    uint8_t *p = MC_PMESH_NEIGHBOUR_AT(lod->nbr, h, hb);
     p[0] = (uint8_t)o, p[1] = (uint8_t)(o >> 8);
     if (hb == 4) p[2] = (uint8_t)(o >> 16), p[3] = (uint8_t)(o >> 24);
 }

@@ -33,14 +33,14 @@ run gcc $cflags -DPM=mc_pmesh_$model -include "$out/$model/$model.h" -o "$out/lo
 V=$(python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['pmesh']['vertices'])" "$out/$model/budget.json")
 levels=""
 for s in $shares; do levels+=" $(python3 -c "print(max(1, round($s * $V)))")"; done
+flag_of() { [ "$1" != table ] || echo --neighbours; }   # plain: none; table: the level's neighbour table
 : >"$out/times.txt"
 for r in $(seq 1 "$rounds"); do
     for n in $levels; do
         if [ $((r % 2)) = 1 ]; then order="plain table"; else order="table plain"; fi
         for w in $order; do
-            flag=""
-            [ "$w" = table ] && flag=--neighbours
-            "$out/frames" --style lines --vertices "$n" --time "$frames" $flag >"$out/$n-$w.txt"
+            # shellcheck disable=SC2046
+            "$out/frames" --style lines --vertices "$n" --time "$frames" $(flag_of "$w") >"$out/$n-$w.txt"
             ms=$(sed -n 's/^ms per frame (median) //p' "$out/$n-$w.txt")
             echo "$n $w $r $ms" >>"$out/times.txt"
         done
@@ -49,10 +49,9 @@ done
 cmds+=("$out/frames --style lines --vertices N --time $frames [--neighbours]   # per level, $rounds rounds, the order swapped every round")
 for n in $levels; do
     for w in plain table; do
-        flag=""
-        [ "$w" = table ] && flag=--neighbours
+        # shellcheck disable=SC2046
         valgrind --tool=callgrind --toggle-collect=mc_front_mesh_frame --callgrind-out-file="$out/$n-$w.cg" \
-            "$out/frames" --style lines --vertices "$n" --frames 20 $flag >/dev/null 2>"$out/$n-$w.cg.log"
+            "$out/frames" --style lines --vertices "$n" --frames 20 $(flag_of "$w") >/dev/null 2>"$out/$n-$w.cg.log"
     done
 done
 cmds+=("valgrind --tool=callgrind --toggle-collect=mc_front_mesh_frame --callgrind-out-file=$out/N-W.cg $out/frames --style lines --vertices N --frames 20 [--neighbours]")

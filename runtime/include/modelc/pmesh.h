@@ -76,6 +76,18 @@ typedef struct mc_pmesh {
 #define MC_HALF_EDGE_INDEX(h) ((h) & 3u)
 #define MC_NO_HALF_EDGE 0xFFFFFFFFu
 
+/* A half-edge id as the opposite and edge-order arrays (and a neighbour table) store it, hb (2 or 4)
+ * bytes wide at r: all ones is MC_NO_HALF_EDGE. */
+MC_ALWAYS_INLINE uint32_t mc_pmesh_half(const uint8_t *r, unsigned hb)
+{
+    if (hb == 4) return mc_le32(r);
+    const uint32_t o = mc_le16(r);
+    return o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
+}
+
+/* Where half-edge h's entry lies in a neighbour table (mc_pmesh_lod_neighbours) of hb-byte entries. */
+#define MC_PMESH_NEIGHBOUR_AT(nbr, h, hb) ((nbr) + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * (hb))
+
 /* The level-of-detail state: level, face count and the ancestor map (in the caller's memory). */
 typedef struct mc_pmesh_lod {
     const mc_pmesh *pm;
@@ -160,17 +172,10 @@ MC_ALWAYS_INLINE uint32_t mc_pmesh_lod_opposite(const mc_pmesh_lod *lod, uint32_
 {
     const mc_pmesh *pm = lod->pm;
     const unsigned hb = pm->half_bytes;
-    const uint8_t *r = lod->nbr ? lod->nbr + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * hb
+    const uint8_t *r = lod->nbr ? MC_PMESH_NEIGHBOUR_AT(lod->nbr, h, hb)
                                 : mc_chunk_record(pm->opposite, pm->record_shift, 3u * hb, MC_HALF_FACE(h)) +
                                       MC_HALF_EDGE_INDEX(h) * hb;
-    uint32_t o;
-    if (hb == 2) {
-        o = mc_le16(r);
-        if (o == 0xFFFFu) return MC_NO_HALF_EDGE;
-    } else {
-        o = mc_le32(r);
-    }
-    return mc_pmesh_lod_across(lod, o);
+    return mc_pmesh_lod_across(lod, mc_pmesh_half(r, hb));
 }
 
 /* Edge i (0 .. E-1) of the edge order: a half-edge of the full mesh (its face may be missing at the
@@ -180,8 +185,10 @@ uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i);
 /* The vertex split s (0 .. V-V0-1) brings back. */
 uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s);
 
-/* The size of vertex v's subtree: its descendants are v + 1 .. v + size - 1. */
-uint32_t mc_pmesh_subtree(const mc_pmesh *pm, uint32_t v);
+/* The vertices of root v's subtree, v .. v + n - 1 (its descendants follow it in depth-first order):
+ * the roots are 0 and each root plus its n. n is at least 1 and at most V - v whatever the arrays
+ * hold. */
+uint32_t mc_pmesh_root_span(const mc_pmesh *pm, uint32_t v);
 
 /* Vertex v's position: unit-cube coordinates in Q16 (q - 32768), -32768 .. 32767. */
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3]);

@@ -8,7 +8,9 @@ mps2-an386.screen := 320x240
 # 75408 faces, about 2.7 MB of flash and 0.9 MB of RAM with its vertex cache). Without the level's
 # neighbour table (--mesh-neighbours, which would fit): under QEMU's instruction counts it made a
 # level change about six times dearer (a split 840 instructions instead of 130) and saved the
-# coarse line frames only 3 to 9 % (there are no cache misses to save on this core).
+# coarse line frames only 3 to 9 % (there are no cache misses to save on this core): make
+# bench-firmware with the line below added, against its run without (tests/bench/RESULTS.md).
+#   mps2-an386.mesh_opts := --mesh-neighbours
 mps2-an386.mesh_faces := 0
 # The stream receiver (make firmware-stream): UART0 is a CMSDK APB UART (uart_cmsdk.c) on the 25 MHz
 # system clock. Depth 7 at 160x120 (93,051 bytes): QEMU hands this UART one byte per turn of its
