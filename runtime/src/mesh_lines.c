@@ -156,7 +156,8 @@ NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, uint3
 }
 
 /* The memory's parts (mesh_lines.h MC_MESH_LINES_BYTES): the level the crease bits are for, plus
- * one (0: none yet); the facing bits; four bits a face, bit k set when edge k is a crease. */
+ * one (0: none yet), in the tag's low 31 bits, and in bit 31 whether that level has a crease; the
+ * facing bits; four bits a face, bit k set when edge k is a crease. */
 static uint32_t *crease_tag(uint8_t *mem) { return (uint32_t *)(void *)mem; }
 static uint8_t *facing_of(uint8_t *mem) { return mem + 4; }
 static uint8_t *creases_of(uint8_t *mem, uint32_t faces) { return mem + 4 + MC_MESH_FACING_BYTES(faces); }
@@ -174,8 +175,9 @@ MC_ALWAYS_INLINE uint32_t creases(const uint8_t *cr, uint32_t f) { return (cr[f 
 static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
 {
     const mc_pmesh *pm = lod->pm;
-    if (*crease_tag(mem) == lod->level + 1u) return;
+    if ((*crease_tag(mem) & 0x7FFFFFFFu) == lod->level + 1u) return;
     uint8_t *cr = creases_of(mem, pm->faces);
+    uint32_t any = 0;
     for (uint32_t i = 0; i < (pm->faces + 1u) / 2u; i++) cr[i] = 0;
     for (uint32_t f = 0; f < lod->faces; f++) {
         int32_t a[3][3];
@@ -186,10 +188,10 @@ static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
             int32_t b[3][3];
             face_positions(lod, MC_HALF_FACE(o), b);
             if (mc_mesh_crease((const int32_t(*)[3])a, (const int32_t(*)[3])b, pm->crease_cos))
-                set_crease(cr, h), set_crease(cr, o);
+                set_crease(cr, h), set_crease(cr, o), any = 1;
         }
     }
-    *crease_tag(mem) = lod->level + 1u;
+    *crease_tag(mem) = (lod->level + 1u) | any << 31;
 }
 
 /* The cache entries of the corners of the face whose corner record is r (ib: the index width, a
@@ -290,7 +292,7 @@ static int edge_line(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xverte
 
 /* The counts of an edge pass, kept in locals (a pixel store could alias *st). */
 typedef struct edge_counts {
-    uint32_t edges, sil, crease, border;
+    uint32_t sil, crease, border;
 } edge_counts;
 
 /* The line of half-edge h (opposite o) of kind `kind`, drawn into t with mc_line's depth test (sd
@@ -305,65 +307,109 @@ static NOINLINE void draw_edge(const mc_pmesh_lod *lod, const mc_xform *x, const
                      : mc_line(t, la, lb, (uint8_t)kind_color(kind), style);
 }
 
-/* Edge k of face f in the edge pass, o its stored opposite as read (all ones for a border), fr and fc
- * the face's facing bit and crease bits: counted once, from the face with the lower number at the
- * level (or its only face), and drawn when of a kind in flags (edge_run). k is a constant where
- * called, so that the three edges of a face are one straight run. */
+#if MC_MESH_SELECT
+/* The facing bits of the 32 faces from face f on (bit i: face f + i), of a level of `faces` faces
+ * (bits past its last face are whatever the array holds). */
+MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint32_t faces)
+{
+    const uint32_t b = f >> 3, nb = MC_MESH_FACING_BYTES(faces);
+    uint64_t w = 0;
+    for (uint32_t k = 0; k < 5u; k++)
+        if (b + k < nb) w |= (uint64_t)facing[b + k] << (8u * k);
+    return (uint32_t)(w >> (f & 7u));
+}
+#endif
+
+/* Edge k of face f in the edge pass, o its opposite as read (all ones for a border), fr and fc the
+ * face's facing bit and crease bits. Each edge is found once: a border by its only face, a crease by
+ * the face with the lower number at the level, a silhouette by that face too when drawn into a
+ * target (mesh_lines.h: the order mesh_qi.h lists lines in) and by its front face when offered to a
+ * sparse buffer; drawn when of a kind in flags (from either face the same pixels: line.h draws a->b
+ * as b->a, the offset takes both faces' slopes, and both faces' clipped polygons cut the edge at the
+ * same points). walk and k are constants where called (walk: o is a stored opposite, whose face may
+ * be missing at the level). */
 MC_ALWAYS_INLINE void edge_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
                                unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st,
-                               edge_counts *c, uint32_t f, uint32_t k, uint32_t o, uint32_t fr, uint32_t fc)
+                               edge_counts *c, uint32_t f, uint32_t k, uint32_t o, uint32_t fr, uint32_t fc, int walk)
 {
-    o = mc_pmesh_lod_across(lod, o);
-    unsigned kind;
-#if MC_MESH_SELECT
+    if (walk) o = mc_pmesh_lod_across(lod, o);
+    const uint32_t h = MC_HALF_EDGE(f, k);
     if (o == MC_NO_HALF_EDGE) {
-        kind = MC_EDGE_BORDER;
-        c->edges++, c->border++;
-    } else {
-        /* whether the edge is this face's (the other face's number higher) taken as a value; the
-         * one branch is on a line to draw, which few edges are */
-        const uint32_t g = MC_HALF_FACE(o), own = g > f;
-        const uint32_t sil = front(facing, g) ^ fr, crease = (fc >> k) & 1u;
-        c->edges += own;
-        if (!(own & (sil | crease))) return;
-        kind = sil ? MC_EDGE_SILHOUETTE : MC_EDGE_CREASE;
-        c->sil += sil, c->crease += sil ^ 1u;
+        c->border++;
+        if (flags & MC_EDGE_BORDER) draw_edge(lod, x, cache, style, t, sd, st, h, o, MC_EDGE_BORDER);
+        return;
     }
-#else
-    if (o == MC_NO_HALF_EDGE) kind = MC_EDGE_BORDER;
-    else if (MC_HALF_FACE(o) < f) return;   /* the earlier face's */
-    else kind = front(facing, MC_HALF_FACE(o)) != fr ? MC_EDGE_SILHOUETTE
-                : (fc >> k) & 1u                     ? MC_EDGE_CREASE
-                                                     : MC_EDGE_PLAIN;
-    c->edges++;
-    if (!kind) return;
-    c->sil += kind == MC_EDGE_SILHOUETTE, c->crease += kind == MC_EDGE_CREASE, c->border += kind == MC_EDGE_BORDER;
-#endif
-    if (kind & flags) draw_edge(lod, x, cache, style, t, sd, st, MC_HALF_EDGE(f, k), o, kind);
+    const uint32_t g = MC_HALF_FACE(o);
+    if (front(facing, g) != fr) {   /* a silhouette: its front face's (sparse), its lower face's */
+        if (sd ? !fr : g < f) return;
+        c->sil++;
+        if (flags & MC_EDGE_SILHOUETTE) draw_edge(lod, x, cache, style, t, sd, st, h, o, MC_EDGE_SILHOUETTE);
+    } else if ((fc >> k) & 1u && g > f) {
+        c->crease++;
+        if (flags & MC_EDGE_CREASE) draw_edge(lod, x, cache, style, t, sd, st, h, o, MC_EDGE_CREASE);
+    }
 }
 
+/* Face f's three edges in the edge pass, its opposite records at r (hb bytes each). */
+MC_ALWAYS_INLINE void edge_face(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
+                                unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st,
+                                edge_counts *c, uint32_t f, uint32_t fr, uint32_t fc, const uint8_t *r, unsigned hb, int walk)
+{
+#if MC_MESH_SELECT   /* a straight run of three (a loop's branches would come back) */
+    edge_one(lod, x, cache, facing, flags, style, t, sd, st, c, f, 0, mc_pmesh_half(r, hb), fr, fc, walk);
+    edge_one(lod, x, cache, facing, flags, style, t, sd, st, c, f, 1, mc_pmesh_half(r + hb, hb), fr, fc, walk);
+    edge_one(lod, x, cache, facing, flags, style, t, sd, st, c, f, 2, mc_pmesh_half(r + 2u * hb, hb), fr, fc, walk);
+#else                /* a loop: a firmware's flash */
+    for (uint32_t k = 0; k < 3u; k++)
+        edge_one(lod, x, cache, facing, flags, style, t, sd, st, c, f, k, mc_pmesh_half(r + k * hb, hb), fr, fc, walk);
+#endif
+}
+
+#if MC_MESH_SELECT
+/* Bit i set when face f + i (i < n <= 32) has a crease edge. */
+MC_ALWAYS_INLINE uint32_t crease_window(const uint8_t *cr, uint32_t f, uint32_t n)
+{
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < n; i++) m |= (uint32_t)(creases(cr, f + i) != 0) << i;
+    return m;
+}
+#endif
+
 /* The edge pass over faces f0 .. f0 + n - 1, whose opposite records start at r (hb: the index width,
- * 2 or 4, a constant where called): each edge once, from the face with the lower number (or its only
- * face), its kind from the facing and crease bits; those of a kind in flags drawn as their lines,
- * into t with mc_line's depth test (sd null) or offered to sd (t null). */
+ * 2 or 4, and walk: constants where called; any_crease: whether the level has a crease). Offered to
+ * a sparse buffer, a face finds an edge only when it is front-facing (a silhouette's), has a crease
+ * edge, or may have a border (the part is not closed): in a closed part the back faces without a
+ * crease, about half, are passed over; with MC_MESH_SELECT the faces to visit are taken 32 at a time
+ * from their bits (whether a face is one is a coin toss to a predictor). Drawn into a target, every
+ * face is visited. */
 MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
                                const uint8_t *cr, unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd,
-                               mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb)
+                               mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb, int walk,
+                               int any_crease)
 {
     edge_counts c;   /* zeroed field by field: clang -O0 clears an aggregate initializer with memset */
-    c.edges = c.sil = c.crease = c.border = 0;
+    c.sil = c.crease = c.border = 0;
+    const int skip = sd && lod->pm->closed;   /* (sd: a constant where called) */
+#if MC_MESH_SELECT
+    for (uint32_t i0 = 0; i0 < n; i0 += 32u) {
+        const uint32_t m = n - i0 < 32u ? n - i0 : 32u;
+        uint32_t bits = m == 32u ? 0xFFFFFFFFu : (UINT32_C(1) << m) - 1u;
+        if (skip) bits &= facing_window(facing, f0 + i0, lod->faces) | (any_crease ? crease_window(cr, f0 + i0, m) : 0u);
+        while (bits) {
+            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i;
+            bits &= bits - 1u;
+            edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, front(facing, f), creases(cr, f),
+                      r + i * 3u * hb, hb, walk);
+        }
+    }
+#else
+    (void)any_crease;   /* (a face's crease bits are at hand) */
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = creases(cr, f);
-#if MC_MESH_SELECT   /* a straight run of three (a loop's branches would come back) */
-        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 0, mc_pmesh_half(r, hb), fr, fc);
-        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 1, mc_pmesh_half(r + hb, hb), fr, fc);
-        edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, 2, mc_pmesh_half(r + 2u * hb, hb), fr, fc);
-#else                /* a loop: a firmware's flash */
-        for (uint32_t k = 0; k < 3u; k++)
-            edge_one(lod, x, cache, facing, flags, style, t, sd, st, &c, f, k, mc_pmesh_half(r + k * hb, hb), fr, fc);
-#endif
+        if (skip && !fr && !fc) continue;
+        edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, fr, fc, r, hb, walk);
     }
-    st->edges += c.edges;
+#endif
     st->silhouettes += c.sil, st->creases += c.crease, st->borders += c.border;
 }
 
@@ -384,14 +430,24 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
     /* the stored opposites read in order, a run of records a chunk (or the level's own, when the
-     * state keeps a neighbour table: the same records, none of them needing a walk) */
+     * state keeps a neighbour table: the same records, none of them needing a walk); at the full
+     * level no stored opposite needs one either. A firmware keeps one copy of the pass (flash). */
+    const int walk = MC_MESH_SELECT ? !lod->nbr && lod->faces < pm->faces : 1;
+    const int any_crease = (*crease_tag(mem) >> 31) != 0;
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = lod->nbr ? MC_PMESH_NEIGHBOUR_AT(lod->nbr, MC_HALF_EDGE(f0, 0), pm->half_bytes)
                                     : pm->opposite[f0 >> shift].data;
-        if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2);
-        else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4);
+        if (!walk) {
+            if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2, 0, any_crease);
+            else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4, 0, any_crease);
+        } else {
+            if (pm->half_bytes == 2) edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 2, 1, any_crease);
+            else edge_run(lod, x, cache, facing, cr, flags, &style, t, sd, st, f0, n, r, 4, 1, any_crease);
+        }
     }
+    /* every edge once: a border has one half-edge at the level, any other edge two */
+    st->edges = (3u * lod->faces + st->borders) / 2u;
 }
 
 /* mc_lines_stats all zero (field by field: an aggregate initialiser becomes a memset call at -O0) */
@@ -467,19 +523,6 @@ MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xve
 #endif
     mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
 }
-
-#if MC_MESH_SELECT
-/* The facing bits of the 32 faces from face f on (bit i: face f + i), of a level of `faces` faces
- * (bits past its last face are whatever the array holds). */
-MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint32_t faces)
-{
-    const uint32_t b = f >> 3, nb = MC_MESH_FACING_BYTES(faces);
-    uint64_t w = 0;
-    for (uint32_t k = 0; k < 5u; k++)
-        if (b + k < nb) w |= (uint64_t)facing[b + k] << (8u * k);
-    return (uint32_t)(w >> (f & 7u));
-}
-#endif
 
 /* Face f of the face pass, its corner record at q (ib: the index width, a constant where called). */
 MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd, int cull,

@@ -107,13 +107,14 @@
 
 /* MC_MESH_SELECT: how the line drawings' passes over every edge and every face (mesh_lines.c) and
  * the rasterizer's triangle setup (raster.h, raster.c) take the tests whose outcome is a coin toss:
- * whether an edge is this face's or its neighbour's, whether a face is front-facing, whether a face
- * a pixel or two across covers a pixel centre and an entry, which corner is the least or greatest.
+ * whether a face is front-facing, whether a face a pixel or two across covers a pixel centre and an
+ * entry, which corner is the least or greatest.
  *   0 (default except on x86-64): a branch each. Right for Cortex-M, where a branch costs a cycle or
  *     two and the values cost instructions.
  *   1 (default on x86-64): taken as values, and only a rare answer branches (a line to draw, a face
- *     that hides an entry); the front faces of the face pass are taken 32 at a time from their
- *     facing bits. On the benchmark machine (gcc 12 -O2, bunny00's lines at 320x240) about 8 % more
+ *     that hides an entry); the faces the edge pass visits and the front faces of the face pass are
+ *     taken 32 at a time from their facing bits, and the edge pass is compiled once more for the
+ *     full level (no stored opposite there needs a walk). On the benchmark machine (gcc 12 -O2, bunny00's lines at 320x240) about 8 % more
  *     instructions, a third of the mispredicted branches and about 0.75 times the branches' time a
  *     frame, side by side: tests/bench/mesh_frames.c built as tests/bench/mesh.sh builds it, once
  *     more with -DMC_MESH_SELECT=0, each run with --style lines --time 100, alternately.

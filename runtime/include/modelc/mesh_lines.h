@@ -45,14 +45,21 @@
  * Colours: palette entries after the MC_MESH_SHADES greys (the generator writes them): paper
  * (white), silhouettes black, creases grey, borders dark blue.
  *
- * Work: mc_mesh_lines finds every face's facing (from the vertex cache, or three projections), each
- * edge's neighbour (pmesh.h: a walk across the faces the level lacks, or the state's neighbour table's
- * entry) and, for drawn edges, the line's pixels; the crease test of every edge
- * only when the level changed. A face with a flagged corner costs its plane test, and a clipping of
- * its polygon for each drawn edge beside it (the slope); an edge with a flagged end, its clipping.
- * The tests of the passes over every edge and every face whose outcome is a coin toss (is the edge
- * this face's or its neighbour's, is the face front-facing, does its box hold a centre and an entry)
- * are branches or values as config.h MC_MESH_SELECT chooses; the pixels are the same either way.
+ * Order: mc_mesh_lines draws the lines in the order of the half-edges above (face by face, edge k
+ * = 0, 1, 2), where lines cross keeping the later one not hidden by the earlier: the order mesh_qi.h
+ * lists them in. mc_mesh_lines_sparse offers a silhouette from its front face instead (where lines
+ * cross at the same depth, the first offered is kept), so that in a closed part it need not visit
+ * the back faces.
+ *
+ * Work: mc_mesh_lines finds every face's facing (from the vertex cache, or three projections), then
+ * visits the faces (mc_mesh_lines_sparse in a closed part only the front faces and those with a
+ * crease edge), their edges' neighbours (pmesh.h: a walk across the faces the level lacks, or the
+ * state's neighbour table's entry) and, for drawn edges, the line's pixels; the crease test of every
+ * edge only when the level changed. A face with a flagged corner costs its plane test, and a
+ * clipping of its polygon for each drawn edge beside it (the slope); an edge with a flagged end, its
+ * clipping. The tests of the passes over every face whose outcome is a coin toss (is the face
+ * front-facing, does its box hold a centre and an entry) are branches or values as config.h
+ * MC_MESH_SELECT chooses; the pixels are the same either way.
  * Memory: the caller's, MC_MESH_LINES_BYTES(faces); no heap, no floating point; bounded stack (the
  * clipping's buffers, about 300 bytes, only below a face with a flagged corner). Freestanding.
  */
