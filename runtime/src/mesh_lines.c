@@ -4,35 +4,49 @@
 
 static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
 
-/* The normal of the face with corners p, its components shifted right together until each fits 15
- * bits (signs kept); all zero for a face with no area. */
-static void normal15(const int32_t p[3][3], int64_t n[3])
+/* The normal of the face with corners p, its components shifted right together (towards zero, signs
+ * kept) until each fits 15 bits; all zero for a face with no area. The edges (17 bits) and the
+ * components (15 bits) are int32, so that a 32-bit core takes each product in one step. */
+static void normal15(const int32_t p[3][3], int32_t n[3])
 {
-    int64_t a[3], b[3];
-    for (int i = 0; i < 3; i++) a[i] = (int64_t)p[1][i] - p[0][i], b[i] = (int64_t)p[2][i] - p[0][i];
-    n[0] = a[1] * b[2] - a[2] * b[1];   /* components below 2^35 (mesh_render.c) */
-    n[1] = a[2] * b[0] - a[0] * b[2];
-    n[2] = a[0] * b[1] - a[1] * b[0];
-    const uint64_t m = mag(n[0]) | mag(n[1]) | mag(n[2]);
-    int s = 0;
-    while ((m >> s) >= ((uint64_t)1 << 15)) s++;
-    for (int i = 0; i < 3; i++) n[i] = n[i] / ((int64_t)1 << s);
+    int32_t a[3], b[3];
+    for (int i = 0; i < 3; i++) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i];
+    int64_t w[3];   /* components below 2^35 (mesh_render.c) */
+    w[0] = (int64_t)a[1] * b[2] - (int64_t)a[2] * b[1];
+    w[1] = (int64_t)a[2] * b[0] - (int64_t)a[0] * b[2];
+    w[2] = (int64_t)a[0] * b[1] - (int64_t)a[1] * b[0];
+    const uint64_t m = mag(w[0]) | mag(w[1]) | mag(w[2]);
+    const uint32_t hi = (uint32_t)(m >> 32);
+    const unsigned len = hi ? 64u - mc_clz32(hi) : 32u - mc_clz32((uint32_t)m);   /* bits of m */
+    const unsigned s = len > 15u ? len - 15u : 0u;
+    /* w / 2^s truncated, as a shift of the magnitude with the sign put back (a 64-bit division is a
+     * library call on a 32-bit core; the sign is a coin toss to a predictor) */
+    for (int i = 0; i < 3; i++) {
+        const uint32_t neg = 0u - (uint32_t)(w[i] < 0);
+        n[i] = (int32_t)((((uint32_t)(mag(w[i]) >> s)) ^ neg) - neg);
+    }
+}
+
+/* Whether faces with normal15 normals n and m meet at more than the crease angle. */
+static int crease_normals(const int32_t n[3], const int32_t m[3], int32_t crease_cos)
+{
+    const int64_t d = (int64_t)n[0] * m[0] + (int64_t)n[1] * m[1] + (int64_t)n[2] * m[2];   /* |d| < 3 * 2^30 */
+    const uint32_t ln = (uint32_t)(n[0] * n[0]) + (uint32_t)(n[1] * n[1]) + (uint32_t)(n[2] * n[2]);   /* < 3 * 2^30 */
+    const uint32_t lm = (uint32_t)(m[0] * m[0]) + (uint32_t)(m[1] * m[1]) + (uint32_t)(m[2] * m[2]);
+    if (ln == 0 || lm == 0) return 0;
+    /* cos = d / sqrt(ln lm) < c = crease_cos / 2^14; squared: d^2 against c^2 ln lm / 2^28, with
+     * ln lm < 9 * 2^60 and (ln lm >> 28) c^2 < 9 * 2^60: no overflow */
+    const uint64_t d2 = mag(d) * mag(d), rhs = (((uint64_t)ln * lm) >> 28) * (uint64_t)((int64_t)crease_cos * crease_cos);
+    if (crease_cos >= 0) return d < 0 || d2 < rhs;
+    return d < 0 && d2 > rhs;
 }
 
 int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_cos)
 {
-    int64_t n[3], m[3];
+    int32_t n[3], m[3];
     normal15(a, n);
     normal15(b, m);
-    const int64_t d = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];   /* |d| < 3 * 2^30 */
-    const uint64_t ln = (uint64_t)(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const uint64_t lm = (uint64_t)(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    if (ln == 0 || lm == 0) return 0;
-    /* cos = d / sqrt(ln lm) < c = crease_cos / 2^14; squared: d^2 against c^2 ln lm / 2^28, with
-     * ln lm < 9 * 2^60 and (ln lm >> 28) c^2 < 9 * 2^60: no overflow */
-    const uint64_t d2 = (uint64_t)(d * d), rhs = ((ln * lm) >> 28) * (uint64_t)((int64_t)crease_cos * crease_cos);
-    if (crease_cos >= 0) return d < 0 || d2 < rhs;
-    return d < 0 && d2 > rhs;
+    return crease_normals(n, m, crease_cos);
 }
 
 /* Twice the signed screen area of a projected face, in (1/16 pixel)^2; below 0: front-facing. */
@@ -58,11 +72,16 @@ void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
 
 MC_ALWAYS_INLINE uint32_t front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }
 
+/* Face f's corners' positions at the level (mc_pmesh_lod_face, mc_pmesh_position). */
 static void face_positions(const mc_pmesh_lod *lod, uint32_t f, int32_t p[3][3])
 {
+    const mc_pmesh *pm = lod->pm;
     uint32_t c[3];
     mc_pmesh_lod_face(lod, f, c);
-    for (int k = 0; k < 3; k++) mc_pmesh_position(lod->pm, c[k], p[k]);
+    for (int k = 0; k < 3; k++) {
+        const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, c[k]);
+        for (int i = 0; i < 3; i++) p[k][i] = (int32_t)mc_le16(r + 2 * i) - 32768;
+    }
 }
 
 unsigned mc_mesh_edge_kind(const mc_pmesh_lod *lod, const uint8_t *facing, uint32_t h, uint32_t o)
@@ -180,15 +199,16 @@ static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
     uint32_t any = 0;
     for (uint32_t i = 0; i < (pm->faces + 1u) / 2u; i++) cr[i] = 0;
     for (uint32_t f = 0; f < lod->faces; f++) {
-        int32_t a[3][3];
-        face_positions(lod, f, a);
+        int32_t n[3];
+        int normal = 0;   /* n is f's (taken only for a face with a later neighbour) */
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
             if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < f) continue;
-            int32_t b[3][3];
-            face_positions(lod, MC_HALF_FACE(o), b);
-            if (mc_mesh_crease((const int32_t(*)[3])a, (const int32_t(*)[3])b, pm->crease_cos))
-                set_crease(cr, h), set_crease(cr, o), any = 1;
+            int32_t p[3][3], m[3];
+            if (!normal) face_positions(lod, f, p), normal15((const int32_t(*)[3])p, n), normal = 1;
+            face_positions(lod, MC_HALF_FACE(o), p);
+            normal15((const int32_t(*)[3])p, m);
+            if (crease_normals(n, m, pm->crease_cos)) set_crease(cr, h), set_crease(cr, o), any = 1;
         }
     }
     *crease_tag(mem) = (lod->level + 1u) | any << 31;
