@@ -51,7 +51,7 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 828, 828, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 3768, 3768, "flat-shaded faces of the current level, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 7436, 7436, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"mesh_lines", 8736, 8736, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 // The edge part's own modules (--as edges): a tracker links them with fixed, raster, line and sdepth

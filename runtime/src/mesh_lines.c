@@ -181,22 +181,21 @@ static uint32_t *crease_tag(uint8_t *mem) { return (uint32_t *)(void *)mem; }
 static uint8_t *facing_of(uint8_t *mem) { return mem + 4; }
 static uint8_t *creases_of(uint8_t *mem, uint32_t faces) { return mem + 4 + MC_MESH_FACING_BYTES(faces); }
 
-static void set_crease(uint8_t *cr, uint32_t h)
+/* Sets (c 1) or clears (c 0) the crease bit of half-edge h. */
+static void put_crease(uint8_t *cr, uint32_t h, uint32_t c)
 {
     const uint32_t f = MC_HALF_FACE(h);
-    cr[f >> 1] |= (uint8_t)((1u << MC_HALF_EDGE_INDEX(h)) << ((f & 1u) * 4u));
+    const uint8_t bit = (uint8_t)((1u << MC_HALF_EDGE_INDEX(h)) << ((f & 1u) * 4u));
+    cr[f >> 1] = (uint8_t)(c ? cr[f >> 1] | bit : cr[f >> 1] & ~bit);
 }
 
 /* Face f's crease bits: bit k set when its edge k is a crease. */
 MC_ALWAYS_INLINE uint32_t creases(const uint8_t *cr, uint32_t f) { return (cr[f >> 1] >> ((f & 1u) * 4u)) & 7u; }
 
-/* The crease bits of the level (a function of the level alone: recomputed only when it changed). */
-static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
+/* Every crease bit of the level, each face's normal taken once for its later neighbours. */
+static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
 {
     const mc_pmesh *pm = lod->pm;
-    if ((*crease_tag(mem) & 0x7FFFFFFFu) == lod->level + 1u) return;
-    uint8_t *cr = creases_of(mem, pm->faces);
-    uint32_t any = 0;
     for (uint32_t i = 0; i < (pm->faces + 1u) / 2u; i++) cr[i] = 0;
     for (uint32_t f = 0; f < lod->faces; f++) {
         int32_t n[3];
@@ -208,10 +207,110 @@ static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
             if (!normal) face_positions(lod, f, p), normal15((const int32_t(*)[3])p, n), normal = 1;
             face_positions(lod, MC_HALF_FACE(o), p);
             normal15((const int32_t(*)[3])p, m);
-            if (crease_normals(n, m, pm->crease_cos)) set_crease(cr, h), set_crease(cr, o), any = 1;
+            if (crease_normals(n, m, pm->crease_cos)) put_crease(cr, h, 1), put_crease(cr, o, 1);
         }
     }
-    *crease_tag(mem) = (lod->level + 1u) | any << 31;
+}
+
+/* The crease bits of face f's three edges, on both sides of each. */
+static void creases_face(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t f)
+{
+    int32_t p[3][3], n[3];
+    face_positions(lod, f, p);
+    normal15((const int32_t(*)[3])p, n);
+    for (uint32_t k = 0; k < 3; k++) {
+        const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
+        uint32_t c = 0;
+        if (o != MC_NO_HALF_EDGE) {
+            int32_t q[3][3], m[3];
+            face_positions(lod, MC_HALF_FACE(o), q);
+            normal15((const int32_t(*)[3])q, m);
+            c = (uint32_t)crease_normals(n, m, lod->pm->crease_cos);
+            put_crease(cr, o, c);
+        }
+        put_crease(cr, h, c);
+    }
+}
+
+/* creases_face for every face around corner j of face g (the level's faces at that vertex, turning
+ * through the neighbours one way until a border or back at g, then the other way). Returns 0, with
+ * some done, past `limit` faces (arrays whose neighbours do not pair up could turn forever). */
+static int creases_fan(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j, uint32_t limit)
+{
+    uint32_t f = g, k = j, n = 0;   /* corner k of f is the vertex: edge k leaves it, edge k + 2 ends there */
+    for (;;) {
+        creases_face(lod, cr, f);
+        if (++n > limit) return 0;
+        const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, (k + 2u) % 3u));
+        if (o == MC_NO_HALF_EDGE) break;
+        f = MC_HALF_FACE(o), k = MC_HALF_EDGE_INDEX(o);   /* o leaves the vertex */
+        if (f == g) return 1;
+    }
+    for (f = g, k = j;;) {
+        const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, k));
+        if (o == MC_NO_HALF_EDGE) return 1;
+        f = MC_HALF_FACE(o), k = (MC_HALF_EDGE_INDEX(o) + 1u) % 3u;   /* o ends at the vertex */
+        if (f == g) return 1;
+        creases_face(lod, cr, f);
+        if (++n > limit) return 0;
+    }
+}
+
+/* Brings the crease bits of level `from` to the current level by recomputing the faces around the
+ * vertices the splits between the two moved: refined, around every corner of the faces they made
+ * (each split vertex and its parent is one, and a face whose corner moved, or whose neighbour
+ * changed, lies at one); coarsened, the faces they made cleared and the faces around both ends of
+ * each edge they merged (the faces now across those faces' edges 1 and 2, pmesh.h). Returns 0, to
+ * recompute all, when that would cost about as much (the faces changed over a 48th of the level's:
+ * a changed face costs some forty of the full pass's, its corners' fans being recomputed whole) or
+ * when an edge or a fan cannot be found. */
+static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
+{
+    const mc_pmesh *pm = lod->pm;
+    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
+    const uint32_t to = lod->level, lo = from < to ? from : to, hi = from < to ? to : from;
+    if (lo < pm->base_vertices || hi > pm->vertices) return 0;
+    uint32_t nf = 0;
+    for (uint32_t s = lo - pm->base_vertices; s < hi - pm->base_vertices; s++) {
+        nf += mc_chunk_record(pm->splits, shift, ib + 1u, s)[ib];
+        if (nf > lod->faces / 48u) return 0;
+    }
+    const uint32_t limit = lod->faces < 1024u ? lod->faces : 1024u;
+    if (to > from) {   /* the new faces are the level's last nf */
+        for (uint32_t f = lod->faces - nf; f < lod->faces; f++)
+            for (uint32_t j = 0; j < 3u; j++)
+                if (!creases_fan(lod, cr, f, j, limit)) return 0;
+        return 1;
+    }
+    if (lod->faces + nf > pm->faces) return 0;
+    for (uint32_t f = lod->faces; f < lod->faces + nf; f++) cr[f >> 1] &= (uint8_t)(f & 1u ? 0x0Fu : 0xF0u);
+    for (uint32_t f = lod->faces; f < lod->faces + nf; f++) {
+        int found = 0;
+        for (uint32_t k = 1; k < 3u; k++) {
+            const uint8_t *r = mc_chunk_record(pm->opposite, shift, 3u * pm->half_bytes, f) + k * pm->half_bytes;
+            const uint32_t o = mc_pmesh_lod_across(lod, mc_pmesh_half(r, pm->half_bytes));
+            if (o == MC_NO_HALF_EDGE) continue;
+            const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
+            if (!creases_fan(lod, cr, g, j, limit) || !creases_fan(lod, cr, g, (j + 1u) % 3u, limit)) return 0;
+            found = 1;
+        }
+        if (!found) return 0;
+    }
+    return 1;
+}
+
+/* The crease bits of the level (a function of the level alone): kept while it is unchanged, brought
+ * over from the last level by creases_step when that is near, else recomputed. */
+static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
+{
+    const mc_pmesh *pm = lod->pm;
+    const uint32_t tag = *crease_tag(mem) & 0x7FFFFFFFu;
+    if (tag == lod->level + 1u) return;
+    uint8_t *cr = creases_of(mem, pm->faces);
+    if (!tag || !creases_step(lod, cr, tag - 1u)) creases_all(lod, cr);
+    uint32_t any = 0;
+    for (uint32_t i = 0; i < (lod->faces + 1u) / 2u; i++) any |= cr[i];
+    *crease_tag(mem) = (lod->level + 1u) | (uint32_t)(any != 0) << 31;
 }
 
 /* The cache entries of the corners of the face whose corner record is r (ib: the index width, a

@@ -699,6 +699,36 @@ int main(int argc, char **argv)
             }
         }
     }
+    /* mc_mesh_lines' memory kept through small steps (some crease bits brought over from the last
+     * level) and jumps, by a state without and one with a neighbour table, against a memory that saw
+     * only the level: the same level tag and crease bits (the facing bits past the level's faces are
+     * whatever an earlier level left) */
+    const size_t lbytes = MC_MESH_LINES_BYTES(pm->faces);
+    uint8_t *lm_k = calloc(lbytes, 1), *lm_t = calloc(lbytes, 1), *lm_f = malloc(lbytes);
+    if (!lm_k || !lm_t || !lm_f) return 2;
+    uint8_t col[64];
+    uint16_t dep[64];
+    mc_target tiny = {col, dep, 8, 8};
+    const mc_view view = mc_view_default();
+    uint32_t cn = V0 + (V - V0) / 2, crease_levels = 0;
+    for (uint32_t i = 0; i < 240 && !problems; i++) {
+        x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+        const uint32_t span = i % 40 == 39 ? V - V0 + 1 : i % 3 ? 9u : 129u;   /* a jump, small steps */
+        const int64_t next = i % 40 == 39 ? (int64_t)V0 + (int64_t)(x % span) : (int64_t)cn + (int64_t)(x % span) - (int64_t)(span / 2);
+        cn = next < (int64_t)V0 ? V0 : next > (int64_t)V ? V : (uint32_t)next;
+        mc_pmesh_lod_set(&lod, cn), mc_pmesh_lod_set(&tl, cn);
+        mc_mesh_lines(&lod, &view, MC_LINES_ALL, &tiny, lm_k, NULL, NULL);
+        mc_mesh_lines(&tl, &view, MC_LINES_ALL, &tiny, lm_t, NULL, NULL);
+        if (i % 8 == 7) {
+            memset(lm_f, 0, lbytes);
+            mc_mesh_lines(&lod, &view, MC_LINES_ALL, &tiny, lm_f, NULL, NULL);
+            const size_t cb = 4 + MC_MESH_FACING_BYTES(pm->faces);   /* where the crease bits start */
+            if (memcmp(lm_k, lm_f, 4) || memcmp(lm_k + cb, lm_f + cb, lbytes - cb)) PROBLEM("level %u: mc_mesh_lines' crease bits kept through %u levels differ from a fresh memory's", cn, i + 1);
+            else if (memcmp(lm_t, lm_f, 4) || memcmp(lm_t + cb, lm_f + cb, lbytes - cb)) PROBLEM("level %u: mc_mesh_lines' crease bits kept with a neighbour table differ from a fresh memory's", cn);
+            else crease_levels++;
+        }
+    }
+    free(lm_k), free(lm_t), free(lm_f);
     /* dropping the table: the walks again */
     mc_pmesh_lod_neighbours(&tl, 0);
     if (!problems) problems += adjacency_check(&tl, first, sizeof first, problems);
@@ -707,9 +737,10 @@ int main(int argc, char **argv)
         printf("not ok: %lu problems; first: %s\n", problems, first);
     else
         printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked, neighbours at %u levels "
-               "(a neighbour table's kept through the levels at %u, the same bytes as one set there), %u edges ordered\n",
+               "(a neighbour table's kept through the levels at %u, the same bytes as one set there), %u edges ordered, "
+               "crease bits kept through small steps the same as fresh at %u levels\n",
                V, V0, pm->faces, pm->base_faces, nl, (unsigned long long)faces_checked, adjacency_levels, table_levels,
-               pm->edges);
+               pm->edges, crease_levels);
     free(levels), free(anc), free(rank), free(fcount), free(anc_t), free(anc_f), free(nbr_t), free(nbr_f);
     return problems ? 1 : 0;
 }

@@ -54,8 +54,9 @@
  * Work: mc_mesh_lines finds every face's facing (from the vertex cache, or three projections), then
  * visits the faces (mc_mesh_lines_sparse in a closed part only the front faces and those with a
  * crease edge), their edges' neighbours (pmesh.h: a walk across the faces the level lacks, or the
- * state's neighbour table's entry) and, for drawn edges, the line's pixels; the crease test of every
- * edge only when the level changed. A face with a flagged corner costs its plane test, and a
+ * state's neighbour table's entry) and, for drawn edges, the line's pixels; when the level changed,
+ * the crease tests of the edges around the vertices that moved (a small change) or of every edge
+ * (a large one, or the first call). A face with a flagged corner costs its plane test, and a
  * clipping of its polygon for each drawn edge beside it (the slope); an edge with a flagged end, its
  * clipping. The tests of the passes over every face whose outcome is a coin toss (is the face
  * front-facing, does its box hold a centre and an entry) are branches or values as config.h
@@ -121,11 +122,13 @@ int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_
 /* Draws the level's edges of the kinds in flags (MC_EDGE_* bits; MC_LINES_NO_HIDING) seen through
  * view into t, whose faces the caller has drawn for hidden-line removal. mem: the caller's
  * MC_MESH_LINES_BYTES(lod->pm->faces) bytes for this part, zeroed before the first call; the crease
- * bits it keeps are recomputed only when the level changed since the last call (creases do not
- * depend on the view), so a frame at an unchanged level tests no crease. cache: null, or the vertex
- * cache mc_mesh_render filled drawing this level through the same view onto a target of the same
- * size (mesh_render.h; the same lines either way). Returns MC_OK, MC_ERR_ARG (a null argument) or
- * MC_ERR_SIZE (a side over MC_TARGET_MAX; nothing drawn). stats may be null. */
+ * bits it keeps (creases do not depend on the view) are kept while the level is unchanged, so a
+ * frame at an unchanged level tests no crease, and brought over from the last call's level when it
+ * is near (under a 48th of the faces changed: only the faces around the vertices the splits between
+ * moved are tested), else tested anew; either way the same bits, a function of the level. cache:
+ * null, or the vertex cache mc_mesh_render filled drawing this level through the same view onto a
+ * target of the same size (mesh_render.h; the same lines either way). Returns MC_OK, MC_ERR_ARG (a
+ * null argument) or MC_ERR_SIZE (a side over MC_TARGET_MAX; nothing drawn). stats may be null. */
 int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
                   const mc_xvertex *cache, mc_lines_stats *stats);
 
