@@ -376,8 +376,8 @@ for b, cpu, co, head in mesh_rows:
       f"the level, culled or not, clear included). Lines at the full level (frames 1 and 5): "
       f"**{agg['ld'] / max(agg['lpix'], 1):,.0f} instructions per line pixel**, {agg['ld'] / max(agg['ledges'], 1):,.0f} per "
       "edge of the level: the line drawing's cost is its scan of every edge of the level (each face's facing, each "
-      "edge's neighbour and kind, and here every edge's crease test: each frame's level lies an eighth of the faces "
-      "from the last one's, too far to bring the crease bits over, mesh_lines.h), not its pixels, so the figure per "
+      "edge's neighbour and kind, and here every edge's crease test: frame 1 is the first line drawing and frame 5 "
+      "follows one at the base level, too far to bring the crease bits over, mesh_lines.h), not its pixels, so the figure per "
       "pixel falls as the screen grows and the one per edge is the one that carries over.")
     A("")
 A("### Against the source paper")
