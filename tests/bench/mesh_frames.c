@@ -39,7 +39,11 @@
  *              per frame P" (mean of mc_lines_stats.pixels: the lines' pixels before the depth
  *              test) and "lines total T" (summed over the turn: tests/bench/osmesa_mesh.c --style
  *              lines --time N must find the same number)
- *   --frames N prints "lines per frame L" as well
+ *   --frames N prints "lines per frame L" as well; with --step S the frames after the first
+ *              alternate between the level and the one S splits finer (coarser where that passes
+ *              the full mesh), set outside mc_front_mesh_frame: every frame but the first draws a
+ *              level S splits from the last one's (for callgrind --toggle-collect=update_creases:
+ *              the crease bits brought over, mesh_lines.h)
  *   --ppm      the drawing (paper, black silhouettes, grey creases, blue borders); --mask FILE 255
  *              where a pixel holds a line's colour (MC_LINES_SILHOUETTE_COLOR .. BORDER_COLOR)
  */
@@ -100,9 +104,10 @@ static int write_image(const char *path, const mc_target *t, int mask, int lines
 }
 
 /* --style lines: see the header */
-static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int time_n, int frames_n,
-                      const char *ppm, const char *mask, long yaw)
+static int lines_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int time_n, int frames_n,
+                      const char *ppm, const char *mask, long yaw, long step)
 {
+    const uint32_t n0 = lod->level, n1 = n0 + (uint32_t)step <= PM.vertices ? n0 + (uint32_t)step : n0 - (uint32_t)step;
     uint8_t *mem = (uint8_t *)lines_mem;
     memset(lines_mem, 0, MC_MESH_LINES_BYTES(PM.faces));
     mc_front_mesh_stats st;
@@ -118,6 +123,7 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
         double nl = 0;
         for (int i = 0; i < frames_n; i++) {
             const mc_view v = bench_turn_view(bench_turn_yaw(i, frames_n));
+            if (step) mc_pmesh_lod_set(lod, i & 1 ? n1 : n0);
             if (mc_front_mesh_frame(lod, mem, cache, sdepth_bits, &v, MC_FRONT_LINES, t, &st) != MC_OK) return 1;
             nl += (double)st.lines.silhouettes + st.lines.creases + st.lines.borders;
         }
@@ -174,7 +180,8 @@ static int lines_main(const mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *c
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--vertices N] [--cull] [--no-cache] [--neighbours] [--style shaded|lines]\n");
+                    "[--yaw U] [--size WxH] [--vertices N] [--step S] [--cull] [--no-cache] [--neighbours] "
+                    "[--style shaded|lines]\n");
     return 2;
 }
 
@@ -183,6 +190,7 @@ int main(int argc, char **argv)
     int time_n = 0, frames_n = 0, w = 320, h = 240, lines = 0, neighbours = 0;
     unsigned flags = 0;
     long vertices = -1;   /* the level: -1 the full mesh */
+    long step = 0;        /* --step: splits between the levels --frames alternates */
     long yaw = 0;
     const char *ppm = NULL, *mask = NULL;
     mc_xvertex *cache = vcache;
@@ -200,6 +208,7 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--mask")) mask = v;
         else if (!strcmp(a, "--yaw")) yaw = atol(v);
         else if (!strcmp(a, "--vertices")) vertices = atol(v);
+        else if (!strcmp(a, "--step")) { if ((step = atol(v)) < 0) return usage(); }
         else if (!strcmp(a, "--style")) {
             if (!strcmp(v, "lines")) lines = 1;
             else if (strcmp(v, "shaded")) return usage();
@@ -221,7 +230,8 @@ int main(int argc, char **argv)
     if (neighbours) mc_pmesh_lod_neighbours(&lod, nbr);   /* the level's neighbours kept in a table (pmesh.h) */
     const mc_target t = {color, depth, (uint16_t)w, (uint16_t)h};
     mc_mesh_stats st;
-    if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw);
+    if (step && (!lines || step >= (long)PM.vertices - (long)PM.base_vertices)) return usage();
+    if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw, step);
 
     if (frames_n) {   /* untimed: what callgrind counts (mc_mesh_render only) */
         for (int i = 0; i < frames_n; i++) {

@@ -5,16 +5,18 @@
 # to the full mesh, each level timed without and with the table in turn (the order swapped every
 # round), ROUNDS rounds of a full turn; callgrind's instructions a frame for both at each level; and
 # what the table costs a level change (tests/bench/pmesh_lod.c: refinement from the base to the
-# full level and back, without and with it). Writes a marked section of RESULTS.md.
+# full level and back, without and with it); then what a level change of S splits costs the line
+# drawings' crease bits (mesh_frames --step: brought over from the last level, against every edge
+# tested). Writes a marked section of RESULTS.md.
 #   tests/bench/neighbours.sh [RESULTS.md]        (make bench runs it; make bench-neighbours alone)
 #   NBR_MODEL (bunny00), NBR_SHARES ("0.02 0.05 0.1 0.2 0.33 0.5 1": shares of the vertices),
-#   NBR_ROUNDS (7), NBR_FRAMES (100 a timed turn)
+#   NBR_ROUNDS (7), NBR_FRAMES (100 a timed turn), NBR_STEPS ("10 100 1000": splits a change)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 model=${NBR_MODEL:-bunny00} rounds=${NBR_ROUNDS:-7} frames=${NBR_FRAMES:-100}
-shares=${NBR_SHARES:-0.02 0.05 0.1 0.2 0.33 0.5 1}
+shares=${NBR_SHARES:-0.02 0.05 0.1 0.2 0.33 0.5 1} steps=${NBR_STEPS:-10 100 1000}
 out=build/bench/neighbours
 mkdir -p "$out"
 cmds=()
@@ -61,10 +63,23 @@ for r in $(seq 1 "$rounds"); do
 done
 mv "$out/lod.txt.$$" "$out/lod.txt"
 cmds+=("$out/lod 1; $out/lod --neighbours 1   # $rounds rounds")
+# the crease bits after a level change of S splits (mesh_frames --step): the first frame's level has
+# them from the warm-up (every edge tested), each of the next 20 brings them over from the last
+crease_levels="$V $(python3 -c "print(round(0.2 * $V))")"
+for n in $crease_levels; do
+    for st in $steps; do
+        for k in 1 21; do
+            valgrind --tool=callgrind --toggle-collect=update_creases --callgrind-out-file="$out/crease-$n-$st-$k.cg" \
+                "$out/frames" --style lines --vertices "$n" --step "$st" --frames "$k" --size 64x48 \
+                >"$out/crease-$n-$st-$k.txt" 2>"$out/crease-$n-$st-$k.log"
+        done
+    done
+done
+cmds+=("valgrind --tool=callgrind --toggle-collect=update_creases --callgrind-out-file=$out/crease-N-S-K.cg $out/frames --style lines --vertices N --step S --frames K --size 64x48   # K = 1, 21")
 load=$(cut -d' ' -f1-3 /proc/loadavg)
-python3 - "$out" "$model" "$V" "$frames" "$rounds" "$load" >"$out/section.md" <<'PY'
+python3 - "$out" "$model" "$V" "$frames" "$rounds" "$load" "$crease_levels" "$steps" >"$out/section.md" <<'PY'
 import re, statistics, sys
-out, model, V, frames, rounds, load = sys.argv[1:7]
+out, model, V, frames, rounds, load, crease_levels, steps = sys.argv[1:9]
 V = int(V)
 t = {}
 for line in open(f"{out}/times.txt"):
@@ -104,6 +119,24 @@ print(f"\nA level change (`tests/bench/pmesh_lod.c`: the base to the full level 
       "keeps the table: a split walks its new faces' edges from their stored neighbours and gives the faces it finds "
       "their new neighbour, a collapse pairs the faces across each removed face; {:.1f} M and {:.1f} M level changes a "
       "second).".format(1e3 / p, 1e3 / q))
+print("\n### The crease bits after a level change\n")
+print("The line drawings keep each level's crease bits (`mc_mesh_lines`' memory, mesh_lines.h) and, when the level "
+      "changed by under a 48th of its faces, bring them over from the last one by testing only the faces around the "
+      "vertices the splits between moved; else every edge is tested again. Instructions of `update_creases` "
+      "(callgrind `--toggle-collect=update_creases`): `mesh_frames --style lines --vertices N --step S` at 64x48, "
+      "whose first frame's bits come from the warm-up frame (every edge tested) and whose next 20 frames alternate "
+      "between the level and the one S splits finer (coarser at the full level): a change brought over = (the run of "
+      "21 frames - the run of 1) / 20.\n")
+print("| level (vertices) | faces | splits changed | Ir, every edge tested | Ir a change | times fewer |")
+print("|---:|---:|---:|---:|---:|---:|")
+def summary(n, st, k):
+    return int(re.search(r"^summary: (\d+)", open(f"{out}/crease-{n}-{st}-{k}.cg").read(), re.M).group(1))
+for n in crease_levels.split():
+    for st in steps.split():
+        faces = int(re.search(r"^faces per frame (\d+)", open(f"{out}/crease-{n}-{st}-1.txt").read(), re.M).group(1))
+        full = summary(n, st, 1)
+        per = (summary(n, st, 21) - full) / 20
+        print(f"| {int(n):,} | {faces:,} | {st} | {full / 1e6:.2f} M | {per / 1e6:.2f} M | {full / per:.1f} |")
 print(f"\nLoad average at the end: {load}.")
 PY
 write_section "$results" neighbours "$out/section.md" "${cmds[@]}"
