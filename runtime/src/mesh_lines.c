@@ -1,53 +1,9 @@
 /* Line drawings of a progressive mesh: see modelc/mesh_lines.h. */
 #include "modelc/mesh_lines.h"
 #include "modelc/bits.h"   /* mc_ctz */
+#include "mesh_creases.h"
 
 static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
-
-/* The normal of the face with corners p, its components shifted right together (towards zero, signs
- * kept) until each fits 15 bits; all zero for a face with no area. The edges (17 bits) and the
- * components (15 bits) are int32, so that a 32-bit core takes each product in one step. */
-static void normal15(const int32_t p[3][3], int32_t n[3])
-{
-    int32_t a[3], b[3];
-    for (int i = 0; i < 3; i++) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i];
-    int64_t w[3];   /* components below 2^35 (mesh_render.c) */
-    w[0] = (int64_t)a[1] * b[2] - (int64_t)a[2] * b[1];
-    w[1] = (int64_t)a[2] * b[0] - (int64_t)a[0] * b[2];
-    w[2] = (int64_t)a[0] * b[1] - (int64_t)a[1] * b[0];
-    const uint64_t m = mag(w[0]) | mag(w[1]) | mag(w[2]);
-    const uint32_t hi = (uint32_t)(m >> 32);
-    const unsigned len = hi ? 64u - mc_clz32(hi) : 32u - mc_clz32((uint32_t)m);   /* bits of m */
-    const unsigned s = len > 15u ? len - 15u : 0u;
-    /* w / 2^s truncated, as a shift of the magnitude with the sign put back (a 64-bit division is a
-     * library call on a 32-bit core; the sign is a coin toss to a predictor) */
-    for (int i = 0; i < 3; i++) {
-        const uint32_t neg = 0u - (uint32_t)(w[i] < 0);
-        n[i] = (int32_t)((((uint32_t)(mag(w[i]) >> s)) ^ neg) - neg);
-    }
-}
-
-/* Whether faces with normal15 normals n and m meet at more than the crease angle. */
-static int crease_normals(const int32_t n[3], const int32_t m[3], int32_t crease_cos)
-{
-    const int64_t d = (int64_t)n[0] * m[0] + (int64_t)n[1] * m[1] + (int64_t)n[2] * m[2];   /* |d| < 3 * 2^30 */
-    const uint32_t ln = (uint32_t)(n[0] * n[0]) + (uint32_t)(n[1] * n[1]) + (uint32_t)(n[2] * n[2]);   /* < 3 * 2^30 */
-    const uint32_t lm = (uint32_t)(m[0] * m[0]) + (uint32_t)(m[1] * m[1]) + (uint32_t)(m[2] * m[2]);
-    if (ln == 0 || lm == 0) return 0;
-    /* cos = d / sqrt(ln lm) < c = crease_cos / 2^14; squared: d^2 against c^2 ln lm / 2^28, with
-     * ln lm < 9 * 2^60 and (ln lm >> 28) c^2 < 9 * 2^60: no overflow */
-    const uint64_t d2 = mag(d) * mag(d), rhs = (((uint64_t)ln * lm) >> 28) * (uint64_t)((int64_t)crease_cos * crease_cos);
-    if (crease_cos >= 0) return d < 0 || d2 < rhs;
-    return d < 0 && d2 > rhs;
-}
-
-int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_cos)
-{
-    int32_t n[3], m[3];
-    normal15(a, n);
-    normal15(b, m);
-    return crease_normals(n, m, crease_cos);
-}
 
 /* Twice the signed screen area of a projected face, in (1/16 pixel)^2; below 0: front-facing. */
 MC_ALWAYS_INLINE int64_t area2(const mc_raster_vertex v[3])
@@ -72,26 +28,14 @@ void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing)
 
 MC_ALWAYS_INLINE uint32_t front(const uint8_t *facing, uint32_t f) { return (facing[f >> 3] >> (f & 7u)) & 1u; }
 
-/* Face f's corners' positions at the level (mc_pmesh_lod_face, mc_pmesh_position). */
-static void face_positions(const mc_pmesh_lod *lod, uint32_t f, int32_t p[3][3])
-{
-    const mc_pmesh *pm = lod->pm;
-    uint32_t c[3];
-    mc_pmesh_lod_face(lod, f, c);
-    for (int k = 0; k < 3; k++) {
-        const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, c[k]);
-        for (int i = 0; i < 3; i++) p[k][i] = (int32_t)mc_le16(r + 2 * i) - 32768;
-    }
-}
-
 unsigned mc_mesh_edge_kind(const mc_pmesh_lod *lod, const uint8_t *facing, uint32_t h, uint32_t o)
 {
     if (o == MC_NO_HALF_EDGE) return MC_EDGE_BORDER;
     const uint32_t f = MC_HALF_FACE(h), g = MC_HALF_FACE(o);
     if (front(facing, f) != front(facing, g)) return MC_EDGE_SILHOUETTE;
     int32_t a[3][3], b[3][3];
-    face_positions(lod, f, a);
-    face_positions(lod, g, b);
+    mc_mesh_face_positions(lod, f, a);
+    mc_mesh_face_positions(lod, g, b);
     /* (C99 converts int32_t (*)[3] to its const form only by a cast) */
     return mc_mesh_crease((const int32_t(*)[3])a, (const int32_t(*)[3])b, lod->pm->crease_cos) ? MC_EDGE_CREASE
                                                                                               : MC_EDGE_PLAIN;
@@ -120,7 +64,7 @@ MC_ALWAYS_INLINE uint32_t corners(const mc_pmesh_lod *lod, const mc_xform *x, co
 static int face_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
 {
     int32_t p[3][3];
-    face_positions(lod, f, p);
+    mc_mesh_face_positions(lod, f, p);
     return mc_mesh_face_front(x, (const int32_t(*)[3])p);
 }
 
@@ -138,7 +82,7 @@ static NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *
     int32_t p[3][3], q[3][3];
     mc_xvertex poly[MC_XFORM_CLIP_MAX];
     mc_raster_vertex tri[3];
-    face_positions(lod, f, p);
+    mc_mesh_face_positions(lod, f, p);
     for (int k = 0; k < 3; k++) mc_xform_view(x, p[k], q[k]);
     const unsigned n = mc_xform_clip_triangle(x, (const int32_t(*)[3])q, poly);
     uint64_t best = 0;
@@ -166,151 +110,12 @@ NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, uint3
     int32_t p[3][3], q[2][3];
     mc_xvertex e[2];
     const uint32_t f = MC_HALF_FACE(h), k = MC_HALF_EDGE_INDEX(h);
-    face_positions(lod, f, p);
+    mc_mesh_face_positions(lod, f, p);
     for (int i = 0; i < 2; i++) mc_xform_view(x, p[(k + (uint32_t)i) % 3], q[i]), mc_xform_project(x, q[i], &e[i]);
     const int flagged = (e[0].flags | e[1].flags) != 0;
     if (flagged && !mc_xform_clip_segment(x, q[0], q[1], e)) return 2;
     for (int i = 0; i < 2; i++) ends[i].x = e[i].x, ends[i].y = e[i].y, ends[i].z = e[i].z;
     return flagged;
-}
-
-/* The memory's parts (mesh_lines.h MC_MESH_LINES_BYTES): the level the crease bits are for, plus
- * one (0: none yet), in the tag's low 31 bits, and in bit 31 whether that level has a crease; the
- * facing bits; four bits a face, bit k set when edge k is a crease. */
-static uint32_t *crease_tag(uint8_t *mem) { return (uint32_t *)(void *)mem; }
-static uint8_t *facing_of(uint8_t *mem) { return mem + 4; }
-static uint8_t *creases_of(uint8_t *mem, uint32_t faces) { return mem + 4 + MC_MESH_FACING_BYTES(faces); }
-
-/* Sets (c 1) or clears (c 0) the crease bit of half-edge h. */
-static void put_crease(uint8_t *cr, uint32_t h, uint32_t c)
-{
-    const uint32_t f = MC_HALF_FACE(h);
-    const uint8_t bit = (uint8_t)((1u << MC_HALF_EDGE_INDEX(h)) << ((f & 1u) * 4u));
-    cr[f >> 1] = (uint8_t)(c ? cr[f >> 1] | bit : cr[f >> 1] & ~bit);
-}
-
-/* Face f's crease bits: bit k set when its edge k is a crease. */
-MC_ALWAYS_INLINE uint32_t creases(const uint8_t *cr, uint32_t f) { return (cr[f >> 1] >> ((f & 1u) * 4u)) & 7u; }
-
-/* Every crease bit of the level, each face's normal taken once for its later neighbours. */
-static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
-{
-    const mc_pmesh *pm = lod->pm;
-    for (uint32_t i = 0; i < (pm->faces + 1u) / 2u; i++) cr[i] = 0;
-    for (uint32_t f = 0; f < lod->faces; f++) {
-        int32_t n[3];
-        int normal = 0;   /* n is f's (taken only for a face with a later neighbour) */
-        for (uint32_t k = 0; k < 3; k++) {
-            const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
-            if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < f) continue;
-            int32_t p[3][3], m[3];
-            if (!normal) face_positions(lod, f, p), normal15((const int32_t(*)[3])p, n), normal = 1;
-            face_positions(lod, MC_HALF_FACE(o), p);
-            normal15((const int32_t(*)[3])p, m);
-            if (crease_normals(n, m, pm->crease_cos)) put_crease(cr, h, 1), put_crease(cr, o, 1);
-        }
-    }
-}
-
-/* The crease bits of face f's three edges, on both sides of each. */
-static void creases_face(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t f)
-{
-    int32_t p[3][3], n[3];
-    face_positions(lod, f, p);
-    normal15((const int32_t(*)[3])p, n);
-    for (uint32_t k = 0; k < 3; k++) {
-        const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
-        uint32_t c = 0;
-        if (o != MC_NO_HALF_EDGE) {
-            int32_t q[3][3], m[3];
-            face_positions(lod, MC_HALF_FACE(o), q);
-            normal15((const int32_t(*)[3])q, m);
-            c = (uint32_t)crease_normals(n, m, lod->pm->crease_cos);
-            put_crease(cr, o, c);
-        }
-        put_crease(cr, h, c);
-    }
-}
-
-/* creases_face for every face around corner j of face g (the level's faces at that vertex, turning
- * through the neighbours one way until a border or back at g, then the other way). Returns 0, with
- * some done, past `limit` faces (arrays whose neighbours do not pair up could turn forever). */
-static int creases_fan(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j, uint32_t limit)
-{
-    uint32_t f = g, k = j, n = 0;   /* corner k of f is the vertex: edge k leaves it, edge k + 2 ends there */
-    for (;;) {
-        creases_face(lod, cr, f);
-        if (++n > limit) return 0;
-        const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, (k + 2u) % 3u));
-        if (o == MC_NO_HALF_EDGE) break;
-        f = MC_HALF_FACE(o), k = MC_HALF_EDGE_INDEX(o);   /* o leaves the vertex */
-        if (f == g) return 1;
-    }
-    for (f = g, k = j;;) {
-        const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, k));
-        if (o == MC_NO_HALF_EDGE) return 1;
-        f = MC_HALF_FACE(o), k = (MC_HALF_EDGE_INDEX(o) + 1u) % 3u;   /* o ends at the vertex */
-        if (f == g) return 1;
-        creases_face(lod, cr, f);
-        if (++n > limit) return 0;
-    }
-}
-
-/* Brings the crease bits of level `from` to the current level by recomputing the faces around the
- * vertices the splits between the two moved: refined, around every corner of the faces they made
- * (each split vertex and its parent is one, and a face whose corner moved, or whose neighbour
- * changed, lies at one); coarsened, the faces they made cleared and the faces around both ends of
- * each edge they merged (the faces now across those faces' edges 1 and 2, pmesh.h). Returns 0, to
- * recompute all, when that would cost about as much (the faces changed over a 48th of the level's:
- * a changed face costs some forty of the full pass's, its corners' fans being recomputed whole) or
- * when an edge or a fan cannot be found. */
-static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
-{
-    const mc_pmesh *pm = lod->pm;
-    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
-    const uint32_t to = lod->level, lo = from < to ? from : to, hi = from < to ? to : from;
-    if (lo < pm->base_vertices || hi > pm->vertices) return 0;
-    uint32_t nf = 0;
-    for (uint32_t s = lo - pm->base_vertices; s < hi - pm->base_vertices; s++) {
-        nf += mc_chunk_record(pm->splits, shift, ib + 1u, s)[ib];
-        if (nf > lod->faces / 48u) return 0;
-    }
-    const uint32_t limit = lod->faces < 1024u ? lod->faces : 1024u;
-    if (to > from) {   /* the new faces are the level's last nf */
-        for (uint32_t f = lod->faces - nf; f < lod->faces; f++)
-            for (uint32_t j = 0; j < 3u; j++)
-                if (!creases_fan(lod, cr, f, j, limit)) return 0;
-        return 1;
-    }
-    if (lod->faces + nf > pm->faces) return 0;
-    for (uint32_t f = lod->faces; f < lod->faces + nf; f++) cr[f >> 1] &= (uint8_t)(f & 1u ? 0x0Fu : 0xF0u);
-    for (uint32_t f = lod->faces; f < lod->faces + nf; f++) {
-        int found = 0;
-        for (uint32_t k = 1; k < 3u; k++) {
-            const uint8_t *r = mc_chunk_record(pm->opposite, shift, 3u * pm->half_bytes, f) + k * pm->half_bytes;
-            const uint32_t o = mc_pmesh_lod_across(lod, mc_pmesh_half(r, pm->half_bytes));
-            if (o == MC_NO_HALF_EDGE) continue;
-            const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
-            if (!creases_fan(lod, cr, g, j, limit) || !creases_fan(lod, cr, g, (j + 1u) % 3u, limit)) return 0;
-            found = 1;
-        }
-        if (!found) return 0;
-    }
-    return 1;
-}
-
-/* The crease bits of the level (a function of the level alone): kept while it is unchanged, brought
- * over from the last level by creases_step when that is near, else recomputed. */
-static void update_creases(const mc_pmesh_lod *lod, uint8_t *mem)
-{
-    const mc_pmesh *pm = lod->pm;
-    const uint32_t tag = *crease_tag(mem) & 0x7FFFFFFFu;
-    if (tag == lod->level + 1u) return;
-    uint8_t *cr = creases_of(mem, pm->faces);
-    if (!tag || !creases_step(lod, cr, tag - 1u)) creases_all(lod, cr);
-    uint32_t any = 0;
-    for (uint32_t i = 0; i < (lod->faces + 1u) / 2u; i++) any |= cr[i];
-    *crease_tag(mem) = (lod->level + 1u) | (uint32_t)(any != 0) << 31;
 }
 
 /* The cache entries of the corners of the face whose corner record is r (ib: the index width, a
@@ -489,7 +294,7 @@ MC_ALWAYS_INLINE void edge_face(const mc_pmesh_lod *lod, const mc_xform *x, cons
 MC_ALWAYS_INLINE uint32_t crease_window(const uint8_t *cr, uint32_t f, uint32_t n)
 {
     uint32_t m = 0;
-    for (uint32_t i = 0; i < n; i++) m |= (uint32_t)(creases(cr, f + i) != 0) << i;
+    for (uint32_t i = 0; i < n; i++) m |= (uint32_t)(mc_lines_face_creases(cr, f + i) != 0) << i;
     return m;
 }
 #endif
@@ -517,14 +322,14 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
         while (bits) {
             const uint32_t i = i0 + mc_ctz(bits), f = f0 + i;
             bits &= bits - 1u;
-            edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, front(facing, f), creases(cr, f),
+            edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, front(facing, f), mc_lines_face_creases(cr, f),
                       r + i * 3u * hb, hb, walk);
         }
     }
 #else
     (void)any_crease;   /* (a face's crease bits are at hand) */
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
-        const uint32_t fr = front(facing, f), fc = creases(cr, f);
+        const uint32_t fr = front(facing, f), fc = mc_lines_face_creases(cr, f);
         if (skip && !fr && !fc) continue;
         edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, fr, fc, r, hb, walk);
     }
@@ -538,9 +343,9 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
 MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *mem,
                                  unsigned flags, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st)
 {
-    uint8_t *facing = facing_of(mem);
-    const uint8_t *cr = creases_of(mem, lod->pm->faces);
-    update_creases(lod, mem);
+    uint8_t *facing = mc_lines_facing(mem);
+    const uint8_t *cr = mc_lines_creases(mem, lod->pm->faces);
+    mc_mesh_creases_update(lod, mem);
     set_facing(lod, x, cache, facing);
     mc_line_style style;
     style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
@@ -552,7 +357,7 @@ MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, con
      * state keeps a neighbour table: the same records, none of them needing a walk); at the full
      * level no stored opposite needs one either. A firmware keeps one copy of the pass (flash). */
     const int walk = MC_MESH_SELECT ? !lod->nbr && lod->faces < pm->faces : 1;
-    const int any_crease = (*crease_tag(mem) >> 31) != 0;
+    const int any_crease = mc_lines_any_crease(mem);
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = lod->nbr ? MC_PMESH_NEIGHBOUR_AT(lod->nbr, MC_HALF_EDGE(f0, 0), pm->half_bytes)
@@ -596,7 +401,7 @@ static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const 
 {
     int32_t p[3][3];
     mc_raster_vertex poly[MC_XFORM_CLIP_MAX];
-    face_positions(lod, f, p);
+    mc_mesh_face_positions(lod, f, p);
     const unsigned n = mc_mesh_clip_face(x, (const int32_t(*)[3])p, poly);
     for (unsigned i = 1; i + 1 < n; i++) {
         mc_raster_vertex tri[3];
@@ -691,7 +496,7 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
     if (cache) mc_mesh_project(lod, &x, cache);
     /* the lines first: their pixels become the buffer's entries, the nearest kept */
     draw_edges(lod, &x, cache, mem, flags, 0, sd, &st);
-    const uint8_t *facing = facing_of(mem);
+    const uint8_t *facing = mc_lines_facing(mem);
     /* then the faces mc_mesh_render would draw empty the entries they hide (a face with a flagged
      * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
      * corners and its box */
@@ -703,7 +508,7 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
                 if (cull && !front(facing, f)) continue;
                 int32_t p[3][3];
                 mc_xvertex v[3];
-                face_positions(lod, f, p);
+                mc_mesh_face_positions(lod, f, p);
                 for (int k = 0; k < 3; k++) mc_xform_vertex(&x, p[k], &v[k]);
                 if (v[0].flags | v[1].flags | v[2].flags) hide_clipped(sd, lod, &x, f);
                 else hide_face(sd, &v[0], &v[1], &v[2], cull);

@@ -40,7 +40,7 @@ run_glob() { cmds+=("$1"); eval "$1"; }
 runtime_from=$(runtime_snapshot "$out/src" "$rev") || { echo "mesh.sh: cannot copy the runtime" >&2; exit 1; }
 rt=$out/src/runtime
 rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c | sha256sum | cut -c1-12)
-lines_sha=$(cat "$rt"/src/{mesh_lines,line,sdepth,raster}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
+lines_sha=$(cat "$rt"/src/{mesh_lines,mesh_creases,line,sdepth,raster}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
 flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
 # timed_rounds M STEM [ARGS...]: rounds of the timed turn, modelc's and Mesa's alternately and the
@@ -211,7 +211,7 @@ if lines_rows:
           "line pixels: the pixels of modelc's lines before the depth test (`mc_lines_stats.pixels`, mean). Rounds, medians "
           "and ratio as above (ratio: median over rounds of Mesa's wall ms / modelc's; CPU ratio likewise with both "
           "sides' process CPU time). Instructions: callgrind, `mc_front_mesh_frame` only (with everything it calls: "
-          f"paper, lines, faces), a turn of {cg_frames} frames after the untimed one. mesh_lines.c, line.c, sdepth.c, raster.c, "
+          f"paper, lines, faces), a turn of {cg_frames} frames after the untimed one. mesh_lines.c, mesh_creases.c, line.c, sdepth.c, raster.c, "
           f"mesh_frame.c: sha256 {lines_sha}.\n")
     print("| mesh | lines per frame | silhouettes / creases / borders | line pixels | modelc ms | modelc CPU ms | "
           "Mesa wall ms | Mesa CPU ms | ratio | CPU ratio | edge list ms | modelc Ir per frame |")

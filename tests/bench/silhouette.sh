@@ -26,7 +26,7 @@ for m in $models; do
     run build/bin/modelc "$src" -o "$out" --name "$m" --depth 5 --as both -q
     run gcc -O2 -g -std=c99 -Wall -Wextra -Iruntime/include "-DPM=mc_pmesh_$m" -include "$out/$m/$m.h" \
         -o "$out/$m-sil" tests/gen/sil_check.c \
-        runtime/src/{silhouette,pmesh,mesh_render,mesh_lines,line,raster,sdepth,xform,xform_vertex,target,fixed,trig,sintab}.c \
+        runtime/src/{silhouette,pmesh,mesh_render,mesh_lines,mesh_creases,line,raster,sdepth,xform,xform_vertex,target,fixed,trig,sintab}.c \
         "$out/$m"/*.c -lm
     for b in $budgets exact; do
         if [ "$b" = exact ]; then mode=exact fn=mc_sil_exact args="0 0"; else mode=search fn=mc_sil_search args="$b $((b / 10))"; fi

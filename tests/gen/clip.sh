@@ -22,7 +22,7 @@ TAP_PREFIX="clip: "
 temp_dir
 
 # the runtime the sanitized checker is built with (the -O2 one links the viewers' objects, rt_objs)
-runtime="pmesh mesh_render mesh_lines line raster sdepth xform xform_vertex target fixed trig sintab"
+runtime="pmesh mesh_render mesh_lines mesh_creases line raster sdepth xform xform_vertex target fixed trig sintab"
 top=$PWD
 opt="-std=c99 -O2 -Wall -Wextra -Werror -I$top/runtime/include"
 san="-std=c99 $SAN_FLAGS -Wall -Wextra -Werror -I$top/runtime/include"
