@@ -1,8 +1,6 @@
 /* The line drawings' crease bits: see mesh_creases.h; mc_mesh_crease: mesh_lines.h. */
 #include "mesh_creases.h"
 
-static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
-
 /* The normal of the face with corners p, its components shifted right together (towards zero, signs
  * kept) until each fits 15 bits; all zero for a face with no area. The edges (17 bits) and the
  * components (15 bits) are int32, so that a 32-bit core takes each product in one step. */
@@ -14,15 +12,14 @@ static void normal15(const int32_t p[3][3], int32_t n[3])
     w[0] = (int64_t)a[1] * b[2] - (int64_t)a[2] * b[1];
     w[1] = (int64_t)a[2] * b[0] - (int64_t)a[0] * b[2];
     w[2] = (int64_t)a[0] * b[1] - (int64_t)a[1] * b[0];
-    const uint64_t m = mag(w[0]) | mag(w[1]) | mag(w[2]);
-    const uint32_t hi = (uint32_t)(m >> 32);
-    const unsigned len = hi ? 64u - mc_clz32(hi) : 32u - mc_clz32((uint32_t)m);   /* bits of m */
-    const unsigned s = len > 15u ? len - 15u : 0u;
+    const uint64_t m = mc_mag64(w[0]) | mc_mag64(w[1]) | mc_mag64(w[2]);
+    const uint32_t top = (uint32_t)(m >> 15);   /* (below 2^20) */
+    const unsigned s = top ? 32u - mc_clz32(top) : 0u;   /* as mc_mesh_shade's: the least with m >> s < 2^15 */
     /* w / 2^s truncated, as a shift of the magnitude with the sign put back (a 64-bit division is a
      * library call on a 32-bit core; the sign is a coin toss to a predictor) */
     for (int i = 0; i < 3; i++) {
         const uint32_t neg = 0u - (uint32_t)(w[i] < 0);
-        n[i] = (int32_t)((((uint32_t)(mag(w[i]) >> s)) ^ neg) - neg);
+        n[i] = (int32_t)((((uint32_t)(mc_mag64(w[i]) >> s)) ^ neg) - neg);
     }
 }
 
@@ -35,7 +32,7 @@ static int crease_normals(const int32_t n[3], const int32_t m[3], int32_t crease
     if (ln == 0 || lm == 0) return 0;
     /* cos = d / sqrt(ln lm) < c = crease_cos / 2^14; squared: d^2 against c^2 ln lm / 2^28, with
      * ln lm < 9 * 2^60 and (ln lm >> 28) c^2 < 9 * 2^60: no overflow */
-    const uint64_t d2 = mag(d) * mag(d), rhs = (((uint64_t)ln * lm) >> 28) * (uint64_t)((int64_t)crease_cos * crease_cos);
+    const uint64_t d2 = mc_mag64(d) * mc_mag64(d), rhs = (((uint64_t)ln * lm) >> 28) * (uint64_t)((int64_t)crease_cos * crease_cos);
     if (crease_cos >= 0) return d < 0 || d2 < rhs;
     return d < 0 && d2 > rhs;
 }
@@ -151,8 +148,7 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
     for (uint32_t f = lod->faces; f < lod->faces + nf; f++) {
         int found = 0;
         for (uint32_t k = 1; k < 3u; k++) {
-            const uint8_t *r = mc_chunk_record(pm->opposite, shift, 3u * pm->half_bytes, f) + k * pm->half_bytes;
-            const uint32_t o = mc_pmesh_lod_across(lod, mc_pmesh_half(r, pm->half_bytes));
+            const uint32_t o = mc_pmesh_lod_across(lod, mc_pmesh_opposite(pm, MC_HALF_EDGE(f, k)));
             if (o == MC_NO_HALF_EDGE) continue;
             const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
             if (!creases_fan(lod, cr, g, j, limit) || !creases_fan(lod, cr, g, (j + 1u) % 3u, limit)) return 0;

@@ -40,10 +40,7 @@ static inline void mc_mesh_face_positions(const mc_pmesh_lod *lod, uint32_t f, i
     const mc_pmesh *pm = lod->pm;
     uint32_t c[3];
     mc_pmesh_lod_face(lod, f, c);
-    for (int k = 0; k < 3; k++) {
-        const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, c[k]);
-        for (int i = 0; i < 3; i++) p[k][i] = (int32_t)mc_le16(r + 2 * i) - 32768;
-    }
+    for (int k = 0; k < 3; k++) mc_pmesh_position_at(mc_chunk_record(pm->positions, pm->record_shift, 6u, c[k]), p[k]);
 }
 
 /* Brings mem's tag and crease bits to the current level (above). */

@@ -3,8 +3,6 @@
 #include "modelc/bits.h"   /* mc_ctz */
 #include "mesh_creases.h"
 
-static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
-
 /* Twice the signed screen area of a projected face, in (1/16 pixel)^2; below 0: front-facing. */
 MC_ALWAYS_INLINE int64_t area2(const mc_raster_vertex v[3])
 {
@@ -90,7 +88,7 @@ static NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *
     for (unsigned i = 1; i + 1 < n; i++) {
         const int64_t a = (int64_t)(poly[i].x - poly[0].x) * (poly[i + 1].y - poly[0].y) -
                           (int64_t)(poly[i + 1].x - poly[0].x) * (poly[i].y - poly[0].y);
-        if (mag(a) > best) best = mag(a), at = i;
+        if (mc_mag64(a) > best) best = mc_mag64(a), at = i;
     }
     if (best == 0) return 0;
     const mc_xvertex *c[3] = {&poly[0], &poly[at], &poly[at + 1]};

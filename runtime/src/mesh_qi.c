@@ -45,8 +45,6 @@ typedef struct qi_ctx {
 
 /* ---- integers ------------------------------------------------------------------------------------ */
 
-static uint64_t mag(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
-
 /* a * b < c * d for a, b, c, d < 2^64: the 128-bit products compared from 32-bit halves (no
  * 64 x 64 multiply wider than 64 bits exists in C99) */
 static void mul128(uint64_t a, uint64_t b, uint64_t *hi, uint64_t *lo)
@@ -73,7 +71,7 @@ static int cmp_frac(int64_t a, int64_t b, int64_t c, int64_t d)
     const int sa = (a > 0) - (a < 0), sc = (c > 0) - (c < 0);
     if (sa != sc) return sa < sc ? -1 : 1;
     if (sa == 0) return 0;
-    const int r = cmp_mul(mag(a), (uint64_t)d, mag(c), (uint64_t)b);
+    const int r = cmp_mul(mc_mag64(a), (uint64_t)d, mc_mag64(c), (uint64_t)b);
     return sa > 0 ? r : -r;
 }
 
@@ -169,7 +167,7 @@ static void face_line(const mc_raster_vertex v[3], int64_t a, int32_t px, int32_
         q->p[k] = sg * (ex * dx + ey * dy);
     }
     /* barycentric: |a| z_F(P) = sum_k e_k(P) z_{k+2}; the k = 1 term is z_0's, folded into |a| z_0 */
-    const int64_t z0 = v[0].z, z1 = (int64_t)v[1].z - z0, z2 = (int64_t)v[2].z - z0, aa = (int64_t)mag(a);
+    const int64_t z0 = v[0].z, z1 = (int64_t)v[1].z - z0, z2 = (int64_t)v[2].z - z0, aa = (int64_t)mc_mag64(a);
     q->al = q->e[0] * z2 + q->e[2] * z1 + aa * (z0 - (int64_t)pz);
     q->be = q->s[0] * z2 + q->s[2] * z1 - aa * dz;
 }

@@ -16,19 +16,12 @@ static const uint32_t shade_limit[MC_MESH_SHADES - 1] = {
     907540891, 972345289, 1039384320,
 };
 
-/* |v|, without a branch (a normal's signs are a coin toss to a predictor) */
-static uint64_t mag(int64_t v)
-{
-    const uint64_t neg = 0u - ((uint64_t)v >> 63);   /* all ones for v < 0 */
-    return ((uint64_t)v ^ neg) - neg;
-}
-
 unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3])
 {
     const int64_t a0 = (int64_t)p1[0] - p0[0], a1 = (int64_t)p1[1] - p0[1], a2 = (int64_t)p1[2] - p0[2];
     const int64_t b0 = (int64_t)p2[0] - p0[0], b1 = (int64_t)p2[1] - p0[1], b2 = (int64_t)p2[2] - p0[2];
     /* |a|, |b| < 2^17 a component: |n| < 2^35 */
-    const uint64_t m0 = mag(a1 * b2 - a2 * b1), m1 = mag(a2 * b0 - a0 * b2), m2 = mag(a0 * b1 - a1 * b0);
+    const uint64_t m0 = mc_mag64(a1 * b2 - a2 * b1), m1 = mc_mag64(a2 * b0 - a0 * b2), m2 = mc_mag64(a0 * b1 - a1 * b0);
     const uint64_t m = m0 | m1 | m2;
     if (m == 0) return MC_MESH_SHADES / 2;
     /* the normal's 15 leading bits: each component divided by 2^s toward zero, s the smallest shift
@@ -49,18 +42,10 @@ unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p
     return k;
 }
 
-/* The position a record holds (pmesh.h: x, y, z as uint16, q - 32768) */
-MC_ALWAYS_INLINE void position_of(const uint8_t *r, int32_t p[3])
-{
-    p[0] = (int32_t)mc_le16(r) - 32768;
-    p[1] = (int32_t)mc_le16(r + 2) - 32768;
-    p[2] = (int32_t)mc_le16(r + 4) - 32768;
-}
-
 /* Vertex v's position, as mc_pmesh_position (inlined: the loop below needs it per face) */
 MC_ALWAYS_INLINE void position(const mc_pmesh *pm, uint32_t v, int32_t p[3])
 {
-    position_of(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
+    mc_pmesh_position_at(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
 }
 
 uint32_t mc_mesh_face(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f, int32_t p[3][3], mc_raster_vertex v[3])
@@ -158,7 +143,7 @@ static void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
         if ((wide ? anc32[v] : anc16[v]) != v) continue;
         int32_t p[3];
-        position_of(r, p);
+        mc_pmesh_position_at(r, p);
         if (perspective) mc_xform_vertex(x, p, &cache[v]);
         else mc_xform_ortho_point(&o, p, &cache[v]);
     }
@@ -168,7 +153,7 @@ static void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *
 static void project_one(const mc_pmesh *pm, const mc_xform *x, const mc_xform_ortho *o, mc_xvertex *cache, uint32_t v)
 {
     int32_t p[3];
-    position_of(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
+    mc_pmesh_position_at(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
     if (x->perspective) mc_xform_vertex(x, p, &cache[v]);
     else mc_xform_ortho_point(o, p, &cache[v]);
 }

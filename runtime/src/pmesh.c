@@ -94,8 +94,7 @@ uint32_t mc_pmesh_root_span(const mc_pmesh *pm, uint32_t v)
 
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3])
 {
-    const uint8_t *r = mc_chunk_record(pm->positions, pm->record_shift, 6u, v);
-    for (unsigned k = 0; k < 3; k++) xyz[k] = (int32_t)mc_le16(r + 2 * k) - 32768;
+    mc_pmesh_position_at(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), xyz);
 }
 
 /* Field k of record i of list (per half-edge fields a record, 2^shift records a chunk), a half-edge
@@ -134,6 +133,11 @@ uint32_t mc_pmesh_lod_opposite_walk(const mc_pmesh_lod *lod, uint32_t o)
 
 uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i) { return half_at(pm, pm->edge_order, 1u, i, 0u); }
 
+uint32_t mc_pmesh_opposite(const mc_pmesh *pm, uint32_t h)
+{
+    return half_at(pm, pm->opposite, 3u, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h));
+}
+
 /* ---- the neighbour table (mc_pmesh_lod_neighbours) ---------------------------------------------- */
 
 /* The table's entry for half-edge h. */
@@ -154,7 +158,7 @@ static void nbr_put(mc_pmesh_lod *lod, uint32_t h, uint32_t o)
 /* Half-edge h's neighbour at the current level by definition: the walk from its stored opposite. */
 static uint32_t nbr_walk(const mc_pmesh_lod *lod, uint32_t h)
 {
-    return mc_pmesh_lod_across(lod, half_at(lod->pm, lod->pm->opposite, 3u, MC_HALF_FACE(h), MC_HALF_EDGE_INDEX(h)));
+    return mc_pmesh_lod_across(lod, mc_pmesh_opposite(lod->pm, h));
 }
 
 /* Faces f0 .. lod->faces-1 have just come: their entries by their walks, and the faces across them

@@ -141,9 +141,6 @@ static unsigned outcode(const mc_xform *x, const int32_t q[3])
     return code;
 }
 
-/* |v| */
-static uint64_t mag64(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
-
 /* The cut c = a + (b - a) fa / (fa - fb) of the edge from a (inside, fa >= 0) to b (outside,
  * fb <= 0, fa - fb > 0). The fraction is taken to 32 bits: fa and fa - fb shifted right together
  * until the divisor fits 32 bits (t then within 2^-31 of fa / (fa - fb)); each coordinate is
@@ -159,7 +156,7 @@ static void cut(const int32_t a[3], const int32_t b[3], int64_t fa, int64_t fb, 
     }
     for (int i = 0; i < 3; i++) {
         const int64_t delta = (int64_t)b[i] - a[i];
-        const uint64_t r = (mag64(delta) * num + den / 2u) / den;   /* the one division: 64 by 32 bits */
+        const uint64_t r = (mc_mag64(delta) * num + den / 2u) / den;   /* the one division: 64 by 32 bits */
         c[i] = (int32_t)(delta < 0 ? (int64_t)a[i] - (int64_t)r : (int64_t)a[i] + (int64_t)r);
     }
 }
@@ -233,7 +230,7 @@ int mc_xform_clip_segment(const mc_xform *x, const int32_t a[3], const int32_t b
 /* (hi, lo) += a b, a 128-bit two's complement sum, the product made of 32-bit halves */
 static void mac128(uint64_t *hi, uint64_t *lo, int64_t a, int64_t b)
 {
-    const uint64_t ua = mag64(a), ub = mag64(b);
+    const uint64_t ua = mc_mag64(a), ub = mc_mag64(b);
     const uint64_t al = ua & 0xFFFFFFFFu, ah = ua >> 32, bl = ub & 0xFFFFFFFFu, bh = ub >> 32;
     const uint64_t ll = al * bl, lh = al * bh, hl = ah * bl, hh = ah * bh;
     const uint64_t mid = (ll >> 32) + (lh & 0xFFFFFFFFu) + (hl & 0xFFFFFFFFu);

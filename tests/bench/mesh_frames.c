@@ -107,7 +107,9 @@ static int write_image(const char *path, const mc_target *t, int mask, int lines
 static int lines_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int time_n, int frames_n,
                       const char *ppm, const char *mask, long yaw, long step)
 {
-    const uint32_t n0 = lod->level, n1 = n0 + (uint32_t)step <= PM.vertices ? n0 + (uint32_t)step : n0 - (uint32_t)step;
+    /* --step: S splits finer, or coarser where that passes the full mesh (below the base: the base) */
+    const uint32_t n0 = lod->level, s = (uint32_t)step;
+    const uint32_t n1 = n0 + s <= PM.vertices ? n0 + s : n0 > s ? n0 - s : 0u;
     uint8_t *mem = (uint8_t *)lines_mem;
     memset(lines_mem, 0, MC_MESH_LINES_BYTES(PM.faces));
     mc_front_mesh_stats st;

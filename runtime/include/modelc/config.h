@@ -114,10 +114,11 @@
  *   1 (default on x86-64): taken as values, and only a rare answer branches (a line to draw, a face
  *     that hides an entry); the faces the edge pass visits and the front faces of the face pass are
  *     taken 32 at a time from their facing bits, and the edge pass is compiled once more for the
- *     full level (no stored opposite there needs a walk). On the benchmark machine (gcc 12 -O2, bunny00's lines at 320x240) about 8 % more
- *     instructions, a third of the mispredicted branches and about 0.75 times the branches' time a
- *     frame, side by side: tests/bench/mesh_frames.c built as tests/bench/mesh.sh builds it, once
- *     more with -DMC_MESH_SELECT=0, each run with --style lines --time 100, alternately.
+ *     full level (no stored opposite there needs a walk). On the benchmark machine (gcc 12 -O2,
+ *     bunny00's lines at 320x240) about 5 % fewer instructions, a third of the mispredicted branches
+ *     (cachegrind --branch-sim=yes, --frames 20) and about 0.77 times the branches' time a frame,
+ *     side by side: tests/bench/mesh_frames.c built as tests/bench/mesh.sh builds it, once more with
+ *     -DMC_MESH_SELECT=0, each run with --style lines --time 100, alternately.
  * Both draw the same pixels. */
 #ifndef MC_MESH_SELECT
 #if defined(__x86_64__) || defined(_M_X64)

@@ -36,6 +36,14 @@ static inline int64_t mc_round_shift(int64_t v, int s)
     return v >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
+/* |v| as an unsigned number, exact for every v (INT64_MIN too), without a branch (the signs of a
+ * normal's or an edge's components are a coin toss to a predictor). */
+static inline uint64_t mc_mag64(int64_t v)
+{
+    const uint64_t neg = 0u - ((uint64_t)v >> 63);   /* all ones for v < 0 */
+    return ((uint64_t)v ^ neg) - neg;
+}
+
 /* n / d rounded to nearest, ties away from zero, for d > 0 and |n| + d / 2 within int64. */
 static inline int64_t mc_div_round(int64_t n, int64_t d) { return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d); }
 

@@ -190,7 +190,21 @@ uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s);
  * hold. */
 uint32_t mc_pmesh_root_span(const mc_pmesh *pm, uint32_t v);
 
-/* Vertex v's position: unit-cube coordinates in Q16 (q - 32768), -32768 .. 32767. */
+/* The position a positions record at r holds: unit-cube coordinates in Q16 (q - 32768), -32768 ..
+ * 32767. */
+MC_ALWAYS_INLINE void mc_pmesh_position_at(const uint8_t *r, int32_t xyz[3])
+{
+    xyz[0] = (int32_t)mc_le16(r) - 32768;
+    xyz[1] = (int32_t)mc_le16(r + 2) - 32768;
+    xyz[2] = (int32_t)mc_le16(r + 4) - 32768;
+}
+
+/* Vertex v's position (mc_pmesh_position_at of its record). */
 void mc_pmesh_position(const mc_pmesh *pm, uint32_t v, int32_t xyz[3]);
+
+/* The half-edge across half-edge h in the full mesh (the opposite array's entry; MC_NO_HALF_EDGE
+ * for a border), whether or not h's face is present at a level: mc_pmesh_lod_across of it is the
+ * level's neighbour, found by the walk. */
+uint32_t mc_pmesh_opposite(const mc_pmesh *pm, uint32_t h);
 
 #endif
