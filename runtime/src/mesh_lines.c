@@ -482,6 +482,11 @@ MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const
 #endif
 }
 
+void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem)
+{
+    if (lod && lod->pm && lod->pm->opposite && mem) mc_mesh_creases_update(lod, mem);
+}
+
 int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
                          mc_xvertex *cache, mc_lines_stats *stats)
 {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The automatic level of detail against a frame-time target: the viewer's --lod auto --target-ms T
-# (runtime/front/host/scene.c: each frame the finest level within a face budget, the budget from a
-# moving average of the time per face over the frames that kept the level) over a full turn, per
+# (runtime/front/host/lod_auto.h: the level kept while its frames are within 6 % of the target, else
+# moved in one change to the face budget a power law through the last two levels' times predicts
+# meets it; the change timed apart from the frame) over a full turn, per
 # style and target: the median frame time and the frames within 10 % of the target after the first
 # 20. A target is a share of the style's full-level median time in the same run (a target above
 # that is met by drawing everything, and holds nothing). The line style's targets are run twice, one
@@ -50,10 +51,12 @@ import json, re, sys
 out, model, frames, load = sys.argv[1:5]
 print("## Automatic level of detail: holding a frame-time target\n")
 print(f"`tests/bench/lod_auto.sh` (`make bench`, `make bench-lod-auto`): {model} baked `--as both`, the viewer's "
-      f"`--bench {frames}` (a full turn, 320x240) with `--lod auto --target-ms T`: before each frame the finest level "
-      "within a face budget (`mc_pmesh_lod_fit`); the budget is the target at the measured time per face of the level "
-      "(a moving average over about five frames, of the frames that kept the level: one that changed it also paid for the "
-      "change, in the line styles the new level's creases); the level changes only when the budget moves by more than 4 %. "
+      f"`--bench {frames}` (a full turn, 320x240) with `--lod auto --target-ms T` (runtime/front/host/lod_auto.h): the "
+      "level is kept while its time per frame (a moving average about three frames deep) is within 6 % of the target, "
+      "and otherwise moved in one change to the finest level within the face budget that a power law t ~ F^e through "
+      "the times of the current and the last level predicts meets the target (`mc_pmesh_lod_fit`; e learned as the "
+      "levels change): a level change in the line styles costs far more than its splits (the crease bits brought over "
+      "or recomputed), so it is made seldom, and it is timed apart from the frames, which teach the level's time. "
       "Held: frames after the first 20 whose time is within 10 % of the target. Each target is a share of the style's "
       "full-level median time in the same run (a target above that is met by drawing everything). The lines targets "
       "twice, one run after the other: the plain bake's viewer, and that of the same bake with `--mesh-neighbours` "

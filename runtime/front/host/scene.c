@@ -2,7 +2,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include "scene.h"
 
-#include <math.h>
 #include <string.h>
 
 #include "timing.h"
@@ -81,7 +80,7 @@ void mc_host_scene_stream_mesh(mc_host_scene *s, const mc_pmesh *pm, uint32_t le
 void mc_host_scene_auto(mc_host_scene *s, double target_ms)
 {
     s->target_ms = mc_host_scene_has_mesh(s) ? target_ms : 0;
-    s->face_ms = 0;
+    mc_host_lod_auto_init(&s->lod_auto, s->target_ms);
 }
 
 int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_abort_fn abort, const mc_target *t,
@@ -110,24 +109,17 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
      * change keeps it at a cost */
     if (style == MC_FRONT_SHADED) mc_pmesh_lod_neighbours(&s->lod, NULL);
     else mc_host_mesh_neighbours(&s->lod, s->app);
-    const double t0 = mc_host_now_ms();
     const uint32_t level = s->lod.level;
     if (s->target_ms > 0) {
-        if (s->face_ms > 0) {
-            const double budget = s->target_ms / s->face_ms, now = s->lod.faces;
-            if (fabs(budget - now) > 0.04 * now)
-                mc_pmesh_lod_fit_to(&s->lod, budget < 0 ? 0u : (uint32_t)budget, s->lod_cap ? s->lod_cap : UINT32_MAX);
-        }
+        const mc_host_lod_plan plan = mc_host_lod_auto_plan(&s->lod_auto, s->lod.faces);
+        if (plan.move) mc_pmesh_lod_fit_to(&s->lod, plan.max_faces, s->lod_cap ? s->lod_cap : UINT32_MAX);
+        /* the change apart from the frame (lod_auto.h): the line styles' crease bits are part of it */
+        if (s->lod.level != level && style != MC_FRONT_SHADED) mc_mesh_lines_level(&s->lod, s->app->pmesh_facing);
     }
+    const double t0 = mc_host_now_ms();
     int rc = mc_front_mesh_frame(&s->lod, s->app->pmesh_facing, s->app->pmesh_cache, s->app->pmesh_sdepth, v,
                                  style, t, &st);
-    /* the cost per face from frames that kept the level: one that changed it also paid the change
-     * (its splits, and in the line styles the new level's creases), which the next frames do not */
-    if (s->target_ms > 0 && (s->lod.level == level || s->face_ms <= 0)) {
-        const double ms = mc_host_now_ms() - t0;
-        const double per = ms / (s->lod.faces ? s->lod.faces : 1u);
-        s->face_ms = s->face_ms > 0 ? s->face_ms + (per - s->face_ms) / 5 : per;
-    }
+    if (s->target_ms > 0) mc_host_lod_auto_frame(&s->lod_auto, s->lod.faces, mc_host_now_ms() - t0);
     *drawn = st.faces.drawn;
     return rc;
 }

@@ -26,6 +26,7 @@
 #include <modelc/app.h>
 #include <modelc/modelc.h>
 #include "../common/mesh_frame.h"
+#include "lod_auto.h"
 
 typedef enum mc_host_mode {
     MC_HOST_POINTS = 0,
@@ -47,7 +48,7 @@ typedef struct mc_host_scene {
     uint32_t lod_want;       /* the level asked for (--lod, the keys); drawn as far as it has come */
     uint32_t lod_cap;        /* a streamed mesh: the finest level that has come (0: the whole mesh) */
     double target_ms;        /* > 0: automatic level of detail for this frame time */
-    double face_ms;          /* its measured time per face (0: none yet) */
+    mc_host_lod_auto lod_auto;   /* what it has learned (lod_auto.h) */
 } mc_host_scene;
 
 /* "points", "shaded", "lines", "shaded+lines" -> mode; returns -1 for anything else. */

@@ -132,6 +132,11 @@ int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_
 int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t, uint8_t *mem,
                   const mc_xvertex *cache, mc_lines_stats *stats);
 
+/* Brings mem (as mc_mesh_lines takes it, for a part with its adjacency) to the current level: the
+ * crease bits, as the next drawing would first. For a caller that times a level change apart from
+ * the frames drawn after it (the host viewer's automatic level of detail). */
+void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem);
+
 /* The same lines with hidden lines removed over a sparse depth buffer (sdepth.h) instead of the
  * target's z-buffer, and no faces drawn: each line's pixels (its ends clipped as mc_mesh_lines
  * clips them) are offered to sd (mc_line_sdepth, the same pixels and offset depths as mc_line's
