@@ -73,58 +73,98 @@ static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
     }
 }
 
-/* The crease bits of face f's three edges, on both sides of each. */
-static void creases_face(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t f)
+/* Face f's normal15 normal at the level. */
+/* (apart: the fans call it from four places, a firmware's flash keeps it once) */
+static MC_NOINLINE void face_normal(const mc_pmesh_lod *lod, uint32_t f, int32_t n[3])
 {
-    int32_t p[3][3], n[3];
+    int32_t p[3][3];
     mc_mesh_face_positions(lod, f, p);
     normal15((const int32_t(*)[3])p, n);
-    for (uint32_t k = 0; k < 3; k++) {
-        const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
-        uint32_t c = 0;
-        if (o != MC_NO_HALF_EDGE) {
-            int32_t q[3][3], m[3];
-            mc_mesh_face_positions(lod, MC_HALF_FACE(o), q);
-            normal15((const int32_t(*)[3])q, m);
-            c = (uint32_t)crease_normals(n, m, lod->pm->crease_cos);
-            put_crease(cr, o, c);
-        }
-        put_crease(cr, h, c);
-    }
 }
 
-/* creases_face for every face around corner j of face g (the level's faces at that vertex, turning
- * through the neighbours one way until a border or back at g, then the other way). Returns 0, with
- * some done, past `limit` faces (arrays whose neighbours do not pair up could turn forever). */
+/* The crease bit of edge h, whose face has normal n, and of its opposite o (none: a border, never a
+ * crease), whose face has normal m (ignored for a border). */
+static void put_edge(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t h, uint32_t o, const int32_t n[3], const int32_t m[3])
+{
+    uint32_t c = 0;
+    if (o != MC_NO_HALF_EDGE) {
+        c = (uint32_t)crease_normals(n, m, lod->pm->crease_cos);
+        put_crease(cr, o, c);
+    }
+    put_crease(cr, h, c);
+}
+
+/* The crease bits of edge k (not a spoke: the one across from the fan's vertex) of fan face f, whose
+ * normal is n, on both sides. */
+static void put_rim(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t f, uint32_t k, const int32_t n[3])
+{
+    const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
+    int32_t m[3] = {0, 0, 0};
+    if (o != MC_NO_HALF_EDGE) face_normal(lod, MC_HALF_FACE(o), m);
+    put_edge(lod, cr, h, o, n, m);
+}
+
+/* The crease bits of every edge of every face around corner j of face g (the level's faces at that
+ * vertex, turning through the neighbours one way until a border or back at g, then the other way),
+ * on both sides: each face's normal taken once, its spokes (the edges at the vertex) from the normals
+ * of the faces on either side, its rim edge from the face across it. Returns 0, with some done, past
+ * `limit` faces (arrays whose neighbours do not pair up could turn forever). */
 static int creases_fan(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j, uint32_t limit)
 {
-    uint32_t f = g, k = j, n = 0;   /* corner k of f is the vertex: edge k leaves it, edge k + 2 ends there */
-    for (;;) {
-        creases_face(lod, cr, f);
-        if (++n > limit) return 0;
-        const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, (k + 2u) % 3u));
-        if (o == MC_NO_HALF_EDGE) break;
-        f = MC_HALF_FACE(o), k = MC_HALF_EDGE_INDEX(o);   /* o leaves the vertex */
-        if (f == g) return 1;
+    int32_t ng[3], n[3], m[3];
+    face_normal(lod, g, ng);
+    put_rim(lod, cr, g, (j + 1u) % 3u, ng);
+    /* corner k of f is the vertex: edge k leaves it, edge k + 2 ends there */
+    uint32_t f = g, k = j, count = 1;
+    n[0] = ng[0], n[1] = ng[1], n[2] = ng[2];
+    for (;;) {   /* one way: across the spoke that ends at the vertex */
+        const uint32_t h = MC_HALF_EDGE(f, (k + 2u) % 3u), o = mc_pmesh_lod_opposite(lod, h);
+        if (o == MC_NO_HALF_EDGE) {
+            put_edge(lod, cr, h, o, n, n);
+            break;
+        }
+        const uint32_t e = MC_HALF_FACE(o);
+        if (e == g) {   /* round: the last spoke, between f and g */
+            put_edge(lod, cr, h, o, n, ng);
+            return 1;
+        }
+        if (++count > limit) return 0;
+        face_normal(lod, e, m);
+        put_edge(lod, cr, h, o, n, m);
+        f = e, k = MC_HALF_EDGE_INDEX(o);   /* o leaves the vertex */
+        put_rim(lod, cr, f, (k + 1u) % 3u, m);
+        n[0] = m[0], n[1] = m[1], n[2] = m[2];
     }
-    for (f = g, k = j;;) {
-        const uint32_t o = mc_pmesh_lod_opposite(lod, MC_HALF_EDGE(f, k));
-        if (o == MC_NO_HALF_EDGE) return 1;
-        f = MC_HALF_FACE(o), k = (MC_HALF_EDGE_INDEX(o) + 1u) % 3u;   /* o ends at the vertex */
-        if (f == g) return 1;
-        creases_face(lod, cr, f);
-        if (++n > limit) return 0;
+    f = g, k = j;
+    n[0] = ng[0], n[1] = ng[1], n[2] = ng[2];
+    for (;;) {   /* the other way from g, to the border: across the spoke that leaves the vertex */
+        const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
+        if (o == MC_NO_HALF_EDGE) {
+            put_edge(lod, cr, h, o, n, n);
+            return 1;
+        }
+        const uint32_t e = MC_HALF_FACE(o);
+        if (e == g) return 1;   /* (arrays whose neighbours do not pair up) */
+        if (++count > limit) return 0;
+        face_normal(lod, e, m);
+        put_edge(lod, cr, h, o, n, m);
+        f = e, k = (MC_HALF_EDGE_INDEX(o) + 1u) % 3u;   /* o ends at the vertex */
+        put_rim(lod, cr, f, (k + 1u) % 3u, m);
+        n[0] = m[0], n[1] = m[1], n[2] = m[2];
     }
 }
 
 /* Brings the crease bits of level `from` to the current level by recomputing the faces around the
- * vertices the splits between the two moved: refined, around every corner of the faces they made
- * (each split vertex and its parent is one, and a face whose corner moved, or whose neighbour
- * changed, lies at one); coarsened, the faces they made cleared and the faces around both ends of
+ * vertices the splits between the two moved: refined, around both ends of edge 0 of every face they
+ * made (a split's vertex and its parent, or the descendants standing for them at the level: a face
+ * whose corner moved lies at such an end of some split between, and a face whose neighbour changed
+ * has a new face across, all of whose edges are taken; the third corner moved nothing), a vertex
+ * once for a split's two faces; coarsened, the faces they made cleared and the faces around both ends of
  * each edge they merged (the faces now across those faces' edges 1 and 2, pmesh.h). Returns 0, to
- * recompute all, when that would cost about as much (the faces changed over a 48th of the level's:
- * a changed face costs some forty of the full pass's, its corners' fans being recomputed whole) or
- * when an edge or a fan cannot be found. */
+ * recompute all, when that would cost about as much (the faces changed over a 16th of the level's:
+ * a changed face costs some fifteen of the full pass's on bunny00, the fans of its vertices being
+ * recomputed whole) or when an edge or a fan cannot be found. Each fan's vertex is taken once among
+ * the last few (a split's faces share theirs). */
 static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
 {
     const mc_pmesh *pm = lod->pm;
@@ -134,24 +174,37 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
     uint32_t nf = 0;
     for (uint32_t s = lo - pm->base_vertices; s < hi - pm->base_vertices; s++) {
         nf += mc_chunk_record(pm->splits, shift, ib + 1u, s)[ib];
-        if (nf > lod->faces / 48u) return 0;
+        if (nf > lod->faces / 16u) return 0;
     }
     const uint32_t limit = lod->faces < 1024u ? lod->faces : 1024u;
     if (to > from) {   /* the new faces are the level's last nf */
-        for (uint32_t f = lod->faces - nf; f < lod->faces; f++)
-            for (uint32_t j = 0; j < 3u; j++)
-                if (!creases_fan(lod, cr, f, j, limit)) return 0;
+        uint32_t done[2] = {MC_NO_HALF_EDGE, MC_NO_HALF_EDGE};   /* the last face's fan vertices */
+        for (uint32_t f = lod->faces - nf; f < lod->faces; f++) {
+            uint32_t c[3];
+            mc_pmesh_lod_face(lod, f, c);
+            for (uint32_t j = 0; j < 2u; j++)   /* the ends of edge 0: a split's vertex and its parent */
+                if (c[j] != done[0] && c[j] != done[1] && !creases_fan(lod, cr, f, j, limit)) return 0;
+            done[0] = c[0], done[1] = c[1];
+        }
         return 1;
     }
     if (lod->faces + nf > pm->faces) return 0;
     for (uint32_t f = lod->faces; f < lod->faces + nf; f++) cr[f >> 1] &= (uint8_t)(f & 1u ? 0x0Fu : 0xF0u);
+    uint32_t done[4] = {MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE}, next = 0;
     for (uint32_t f = lod->faces; f < lod->faces + nf; f++) {
         int found = 0;
         for (uint32_t k = 1; k < 3u; k++) {
             const uint32_t o = mc_pmesh_lod_across(lod, mc_pmesh_opposite(pm, MC_HALF_EDGE(f, k)));
             if (o == MC_NO_HALF_EDGE) continue;
             const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
-            if (!creases_fan(lod, cr, g, j, limit) || !creases_fan(lod, cr, g, (j + 1u) % 3u, limit)) return 0;
+            uint32_t c[3];
+            mc_pmesh_lod_face(lod, g, c);
+            for (uint32_t i = 0; i < 2u; i++) {   /* both ends, each vertex once among the last four */
+                const uint32_t e = (j + i) % 3u;
+                if (c[e] == done[0] || c[e] == done[1] || c[e] == done[2] || c[e] == done[3]) continue;
+                if (!creases_fan(lod, cr, g, e, limit)) return 0;
+                done[next++ & 3u] = c[e];
+            }
             found = 1;
         }
         if (!found) return 0;

@@ -10,7 +10,7 @@
  * Promise: after mc_mesh_creases_update the tag and the crease bits are those of the current level,
  * the same bytes however the level was reached and whichever levels the memory saw before (a
  * function of the level, as pmesh.h's ancestor map is). Work: none while the level is unchanged;
- * after a change of under a 48th of the level's faces, the faces around the vertices the splits
+ * after a change of under a 16th of the level's faces, the faces around the vertices the splits
  * between moved (the bits brought over); else every edge of the level. Freestanding, no heap,
  * bounded stack.
  */

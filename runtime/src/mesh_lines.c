@@ -66,16 +66,10 @@ static int face_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
     return mc_mesh_face_front(x, (const int32_t(*)[3])p);
 }
 
-#if defined(__GNUC__) || defined(__clang__)
-#define NOINLINE __attribute__((noinline))
-#else
-#define NOINLINE
-#endif
-
 /* mc_raster_slope of face f, a face with a flagged corner: of the largest triangle of its clipped
  * polygon's fan (0 when nothing is left), as the face's plane has one slope on the screen wherever
  * it is cut. (Apart, and the clipping's buffers with it: only such a face needs them on the stack.) */
-static NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
+static MC_NOINLINE uint64_t clipped_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
 {
     int32_t p[3][3], q[3][3];
     mc_xvertex poly[MC_XFORM_CLIP_MAX];
@@ -103,7 +97,7 @@ static uint64_t face_slope(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t 
 }
 
 /* Apart (noinline), as clipped_slope: only an edge with a flagged corner on its face needs it. */
-NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t h, mc_raster_vertex ends[2])
+MC_NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t h, mc_raster_vertex ends[2])
 {
     int32_t p[3][3], q[2][3];
     mc_xvertex e[2];
@@ -220,7 +214,7 @@ typedef struct edge_counts {
 /* The line of half-edge h (opposite o) of kind `kind`, drawn into t with mc_line's depth test (sd
  * null) or offered to sd (t null). Apart (noinline): few edges are lines, and each of the edge pass's
  * copies (two sinks, two record widths, three edges a face) would otherwise carry it. */
-static NOINLINE void draw_edge(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_line_style *style,
+static MC_NOINLINE void draw_edge(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_line_style *style,
                                const mc_target *t, mc_sdepth *sd, mc_lines_stats *st, uint32_t h, uint32_t o, unsigned kind)
 {
     mc_line_vertex la, lb;
@@ -395,7 +389,7 @@ int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, 
 
 /* Empties the entries of sd that face f, a face with a flagged corner, hides: the triangles of its
  * clipped polygon's fan, as mc_mesh_render draws them (not culled). Apart, as clipped_slope. */
-static NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
+static MC_NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f)
 {
     int32_t p[3][3];
     mc_raster_vertex poly[MC_XFORM_CLIP_MAX];

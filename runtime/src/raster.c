@@ -499,17 +499,12 @@ MC_ALWAYS_INLINE uint32_t rows_path(const mc_target *t, mc_sdepth *sd, tri *g, i
     return count;
 }
 
-#if defined(__GNUC__) || defined(__clang__)
-#define NOINLINE __attribute__((noinline))
-#else
-#define NOINLINE
-#endif
-NOINLINE static uint32_t draw_rows(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
+MC_NOINLINE static uint32_t draw_rows(const mc_target *t, tri *g, int32_t i0, int32_t i1, int32_t j0, int32_t j1,
                                    uint8_t color)
 {
     return rows_path(t, 0, g, i0, i1, j0, j1, color);
 }
-NOINLINE static uint32_t draw_rows_hide(const mc_target *t, mc_sdepth *sd, tri *g, int32_t i0, int32_t i1, int32_t j0,
+MC_NOINLINE static uint32_t draw_rows_hide(const mc_target *t, mc_sdepth *sd, tri *g, int32_t i0, int32_t i1, int32_t j0,
                                         int32_t j1)
 {
     return rows_path(t, sd, g, i0, i1, j0, j1, 0);

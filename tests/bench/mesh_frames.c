@@ -42,7 +42,7 @@
  *   --frames N prints "lines per frame L" as well; with --step S the frames after the first
  *              alternate between the level and the one S splits finer (coarser where that passes
  *              the full mesh), set outside mc_front_mesh_frame: every frame but the first draws a
- *              level S splits from the last one's (for callgrind --toggle-collect=update_creases:
+ *              level S splits from the last one's (for callgrind --toggle-collect=mc_mesh_creases_update:
  *              the crease bits brought over, mesh_lines.h)
  *   --ppm      the drawing (paper, black silhouettes, grey creases, blue borders); --mask FILE 255
  *              where a pixel holds a line's colour (MC_LINES_SILHOUETTE_COLOR .. BORDER_COLOR)

@@ -69,13 +69,13 @@ crease_levels="$V $(python3 -c "print(round(0.2 * $V))")"
 for n in $crease_levels; do
     for st in $steps; do
         for k in 1 21; do
-            valgrind --tool=callgrind --toggle-collect=update_creases --callgrind-out-file="$out/crease-$n-$st-$k.cg" \
+            valgrind --tool=callgrind --toggle-collect=mc_mesh_creases_update --callgrind-out-file="$out/crease-$n-$st-$k.cg" \
                 "$out/frames" --style lines --vertices "$n" --step "$st" --frames "$k" --size 64x48 \
                 >"$out/crease-$n-$st-$k.txt" 2>"$out/crease-$n-$st-$k.log"
         done
     done
 done
-cmds+=("valgrind --tool=callgrind --toggle-collect=update_creases --callgrind-out-file=$out/crease-N-S-K.cg $out/frames --style lines --vertices N --step S --frames K --size 64x48   # K = 1, 21")
+cmds+=("valgrind --tool=callgrind --toggle-collect=mc_mesh_creases_update --callgrind-out-file=$out/crease-N-S-K.cg $out/frames --style lines --vertices N --step S --frames K --size 64x48   # K = 1, 21")
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 python3 - "$out" "$model" "$V" "$frames" "$rounds" "$load" "$crease_levels" "$steps" >"$out/section.md" <<'PY'
 import re, statistics, sys
@@ -121,9 +121,9 @@ print(f"\nA level change (`tests/bench/pmesh_lod.c`: the base to the full level 
       "second).".format(1e3 / p, 1e3 / q))
 print("\n### The crease bits after a level change\n")
 print("The line drawings keep each level's crease bits (`mc_mesh_lines`' memory, mesh_lines.h) and, when the level "
-      "changed by under a 48th of its faces, bring them over from the last one by testing only the faces around the "
-      "vertices the splits between moved; else every edge is tested again. Instructions of `update_creases` "
-      "(callgrind `--toggle-collect=update_creases`): `mesh_frames --style lines --vertices N --step S` at 64x48, "
+      "changed by under a 16th of its faces, bring them over from the last one by testing only the faces around the "
+      "vertices the splits between moved; else every edge is tested again. Instructions of `mc_mesh_creases_update` "
+      "(callgrind `--toggle-collect=mc_mesh_creases_update`): `mesh_frames --style lines --vertices N --step S` at 64x48, "
       "whose first frame's bits come from the warm-up frame (every edge tested) and whose next 20 frames alternate "
       "between the level and the one S splits finer (coarser at the full level): a change brought over = (the run of "
       "21 frames - the run of 1) / 20.\n")

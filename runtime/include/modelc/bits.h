@@ -21,8 +21,10 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define MC_ALWAYS_INLINE static inline __attribute__((always_inline))
+#define MC_NOINLINE __attribute__((noinline))   /* a rare path kept out of a hot loop's registers, or code kept once */
 #else
 #define MC_ALWAYS_INLINE static inline
+#define MC_NOINLINE
 #endif
 
 /* MC_BITS_BUILTINS: 1 (default with GCC and Clang) takes the compiler's builtins, 0 the portable
