@@ -699,8 +699,8 @@ int main(int argc, char **argv)
             }
         }
     }
-    /* mc_mesh_lines' memory kept through small steps (some crease bits brought over from the last
-     * level) and jumps, by a state without and one with a neighbour table, against a memory that saw
+    /* mc_mesh_lines' memory kept through steps small and large (crease bits brought over from the last
+     * level, or all tested) and jumps, by a state without and one with a neighbour table, against a memory that saw
      * only the level: the same level tag and crease bits (the facing bits past the level's faces are
      * whatever an earlier level left) */
     const size_t lbytes = MC_MESH_LINES_BYTES(pm->faces);
@@ -713,7 +713,8 @@ int main(int argc, char **argv)
     uint32_t cn = V0 + (V - V0) / 2, crease_levels = 0;
     for (uint32_t i = 0; i < 240 && !problems; i++) {
         x ^= x << 13, x ^= x >> 7, x ^= x << 17;
-        const uint32_t span = i % 40 == 39 ? V - V0 + 1 : i % 3 ? 9u : 129u;   /* a jump, small steps */
+        /* a jump, steps of up to an eighth of the splits (brought over under a 16th of the faces), small steps */
+        const uint32_t span = i % 40 == 39 ? V - V0 + 1 : i % 5 == 4 ? (V - V0) / 8u + 1u : i % 3 ? 9u : 129u;
         const int64_t next = i % 40 == 39 ? (int64_t)V0 + (int64_t)(x % span) : (int64_t)cn + (int64_t)(x % span) - (int64_t)(span / 2);
         cn = next < (int64_t)V0 ? V0 : next > (int64_t)V ? V : (uint32_t)next;
         mc_pmesh_lod_set(&lod, cn), mc_pmesh_lod_set(&tl, cn);
@@ -738,7 +739,7 @@ int main(int argc, char **argv)
     else
         printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked, neighbours at %u levels "
                "(a neighbour table's kept through the levels at %u, the same bytes as one set there), %u edges ordered, "
-               "crease bits kept through small steps the same as fresh at %u levels\n",
+               "crease bits kept through steps and jumps the same as fresh at %u levels\n",
                V, V0, pm->faces, pm->base_faces, nl, (unsigned long long)faces_checked, adjacency_levels, table_levels,
                pm->edges, crease_levels);
     free(levels), free(anc), free(rank), free(fcount), free(anc_t), free(anc_f), free(nbr_t), free(nbr_f);
