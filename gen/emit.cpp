@@ -3,6 +3,7 @@
 #include "cones.hpp"
 #include "emit_files.hpp"
 #include "runtime_costs.hpp"
+#include "modelc/mesh_lines.h"   // MC_MESH_LINES_BYTES: the line drawings' memory
 #include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
 #include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
 #include "modelc/stream.h"  // MC_STREAM_PACKED_BYTES, which pm_packed_bytes restates in 64 bits
@@ -183,7 +184,7 @@ Budget budget_of(const Octree &t, const EmitOptions &opt, const Plan &p) {
     if (opt.pmesh) {
         s.pmesh = p.pm_data;
         s.pmesh_lod = opt.pmesh->vertices() * p.index_bytes;
-        s.pmesh_facing = 4 + (opt.pmesh->faces.size() + 7) / 8 + (opt.pmesh->faces.size() + 1) / 2;   // MC_MESH_LINES_BYTES
+        s.pmesh_facing = MC_MESH_LINES_BYTES(opt.pmesh->faces.size());
         s.pmesh_cache = opt.pmesh->vertices() * sizeof(mc_xvertex);   // MC_MESH_CACHE_BYTES
         s.pmesh_sdepth = 4u * MC_SDEPTH_WORDS(opt.screen_w, opt.screen_h);
         if (opt.mesh_neighbours) s.pmesh_neighbours = MC_PMESH_NEIGHBOUR_BYTES(opt.pmesh->faces.size(), p.half_bytes);
