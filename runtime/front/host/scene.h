@@ -8,16 +8,13 @@
  * modes need a bake with a mesh part (--as both); the level-of-detail state lives in the app
  * binding's static memory (app.h).
  *
- * Automatic level of detail (mesh modes, target_ms > 0): after every frame that kept the level the
- * time per face of the level is updated (a moving average over about five frames of the measured
- * time over the level's faces; a frame that changed the level also paid for the change, which the
- * next frames do not), and the next frame's face budget is the target at that cost. With a fixed
- * part a in the frame time (a + b F), budget F' = F T / (a + b F) settles where a + b F = T. The
- * level is set to the finest within the budget (mc_pmesh_lod_fit: the same level on every machine
- * for the same budget), and changed only when the budget moves by more than 4 % of the level's
- * faces, so measurement noise does not move the level every frame (a change costs its splits, and
- * in the lines styles the level's creases). A streamed mesh caps it at the level that has come
- * (mc_pmesh_lod_fit_to).
+ * Automatic level of detail (mesh modes, target_ms > 0): lod_auto.h decides before each frame whether
+ * to move the level and to what face budget, and learns from the frame's time; the level is set to
+ * the finest within the budget (mc_pmesh_lod_fit: the same level on every machine for the same
+ * budget), capped for a streamed mesh at the level that has come (mc_pmesh_lod_fit_to). The change
+ * (the level set and, in the line styles, its crease bits brought over: mc_mesh_lines_level) is
+ * timed apart from the frame. What was learned is dropped when the style changes (a level's time
+ * in one style says nothing of another's).
  */
 #ifndef MODELC_HOST_SCENE_H
 #define MODELC_HOST_SCENE_H
@@ -49,6 +46,7 @@ typedef struct mc_host_scene {
     uint32_t lod_cap;        /* a streamed mesh: the finest level that has come (0: the whole mesh) */
     double target_ms;        /* > 0: automatic level of detail for this frame time */
     mc_host_lod_auto lod_auto;   /* what it has learned (lod_auto.h) */
+    int lod_auto_style;      /* the style it learned in (mc_front_style; -1: none yet) */
 } mc_host_scene;
 
 /* "points", "shaded", "lines", "shaded+lines" -> mode; returns -1 for anything else. */
