@@ -402,6 +402,9 @@ static MC_NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, con
     }
 }
 
+/* an unflagged vertex lies within the band, which lies within the rasterizer's limit */
+typedef char mc_band_within_raster_limit[((int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS) <= MC_RASTER_COORD_LIMIT ? 1 : -1];
+
 /* Empties the entries of sd that the face with projected corners a, b, c (none flagged) hides, culled
  * when cull; a face whose box holds no pixel centre or no entry is rejected here, inline, before its
  * corners are copied. With MC_MESH_SELECT, for a box of at most two rows within one 32-pixel block (a
@@ -410,9 +413,9 @@ static MC_NOINLINE void hide_clipped(mc_sdepth *sd, const mc_pmesh_lod *lod, con
 MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xvertex *b, const mc_xvertex *c, int cull)
 {
 #if MC_MESH_SELECT
-    mc_raster_box box = {0, -1, 0, -1};   /* (what a corner beyond the rasterizer's limit leaves: nothing) */
-    const int ok = mc_raster_centre_run(a->y, b->y, c->y, sd->height, &box.j0, &box.j1) &
-                   mc_raster_centre_run(a->x, b->x, c->x, sd->width, &box.i0, &box.i1);
+    mc_raster_box box;   /* (the corners are unflagged: inside the band, so inside the rasterizer's limit) */
+    const int ok = mc_raster_centre_run_inside(a->y, b->y, c->y, sd->height, &box.j0, &box.j1) &
+                   mc_raster_centre_run_inside(a->x, b->x, c->x, sd->width, &box.i0, &box.i1);
     const uint32_t i0 = (uint32_t)box.i0, i1 = (uint32_t)box.i1, j0 = (uint32_t)box.j0;   /* i0, j0 >= 0 */
     int hit;
     if (box.j1 - box.j0 > 1 || (i0 >> 5) != (i1 >> 5)) {   /* (i1 < 0 lands here too) */

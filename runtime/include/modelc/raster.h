@@ -96,16 +96,27 @@ MC_ALWAYS_INLINE int32_t mc_raster_max3(int32_t c0, int32_t c1, int32_t c2)
  * corners' bounding box, and not on its right or bottom side: a centre there lies on a vertical
  * right edge or a horizontal bottom edge, or on the rightmost or lowest corner, which has a right
  * edge through it. So xmin <= 16 i + 8 < xmax and ymin <= 16 j + 8 < ymax, on the frame.
- * mc_raster_centre_run gives one axis's run of pixels (lo .. hi of side; 0 when empty). */
-MC_ALWAYS_INLINE int mc_raster_centre_run(int32_t c0, int32_t c1, int32_t c2, uint32_t side, int32_t *lo, int32_t *hi)
+ * mc_raster_centre_run gives one axis's run of pixels (lo .. hi of side; 0 when empty),
+ * mc_raster_centre_run_of the same from the least and the greatest coordinate. */
+MC_ALWAYS_INLINE int mc_raster_centre_run_of(int32_t cmin, int32_t cmax, uint32_t side, int32_t *lo, int32_t *hi)
 {
-    const int32_t cmin = mc_raster_min3(c0, c1, c2), cmax = mc_raster_max3(c0, c1, c2);
-    if (cmin < -MC_RASTER_COORD_LIMIT || cmax > MC_RASTER_COORD_LIMIT) return 0;
     int32_t a = mc_raster_floor16(cmin + 7), b = mc_raster_floor16(cmax - 9);
     if (a < 0) a = 0;
     if (b > (int32_t)side - 1) b = (int32_t)side - 1;
     *lo = a, *hi = b;
     return a <= b;   /* also 0 on an empty frame */
+}
+MC_ALWAYS_INLINE int mc_raster_centre_run(int32_t c0, int32_t c1, int32_t c2, uint32_t side, int32_t *lo, int32_t *hi)
+{
+    const int32_t cmin = mc_raster_min3(c0, c1, c2), cmax = mc_raster_max3(c0, c1, c2);
+    if (cmin < -MC_RASTER_COORD_LIMIT || cmax > MC_RASTER_COORD_LIMIT) return 0;
+    return mc_raster_centre_run_of(cmin, cmax, side, lo, hi);
+}
+/* mc_raster_centre_run of coordinates known to lie within the limit (a projected vertex without a
+ * flag: xform.h's band), without testing it. */
+MC_ALWAYS_INLINE int mc_raster_centre_run_inside(int32_t c0, int32_t c1, int32_t c2, uint32_t side, int32_t *lo, int32_t *hi)
+{
+    return mc_raster_centre_run_of(mc_raster_min3(c0, c1, c2), mc_raster_max3(c0, c1, c2), side, lo, hi);
 }
 
 MC_ALWAYS_INLINE int mc_raster_centres(const mc_raster_vertex v[3], uint32_t width, uint32_t height, mc_raster_box *b)
