@@ -1,6 +1,7 @@
 /* The host viewer's automatic level of detail (runtime/front/host/lod_auto.h):
  *   - the plan: the level kept before a frame has been measured after the first, and while the
  *     level's time is within the trigger; otherwise the budget of the power-law fit, exactly;
+ *     learning started anew when the style drawn changes, kept while it does not;
  *   - the exponent learned from two levels' times of an exact power law, halving its distance each
  *     change (EMA weight 1/2 from 1);
  *   - closed loop, against a plant made after bunny00's line drawings at 320x240 (make
@@ -34,6 +35,7 @@ static void test_plan(void **state)
     assert_int_equal(mc_host_lod_auto_plan(&a, 1000).move, 0);   /* within the trigger */
     assert_int_equal(mc_host_lod_auto_plan(&a, 1200).move, 0);   /* another level than the one timed */
     mc_host_lod_auto_init(&a, 2.0);
+    mc_host_lod_auto_style(&a, 1);
     mc_host_lod_auto_frame(&a, 1000, 1.0);
     mc_host_lod_auto_frame(&a, 1000, 4.0);
     mc_host_lod_plan p = mc_host_lod_auto_plan(&a, 1000);
@@ -46,6 +48,18 @@ static void test_plan(void **state)
     assert_int_equal(p.move, 1);
     assert_true(p.max_faces > 1000);
     assert_true(fabs(p.max_faces - 1000 * 2.0 / a.level_ms) <= 1);
+    /* another style: nothing learned, and its first frame teaches nothing; the same style: kept */
+    mc_host_lod_auto_style(&a, 1);
+    assert_int_equal(mc_host_lod_auto_plan(&a, 1000).move, 1);
+    mc_host_lod_auto_style(&a, 2);
+    assert_int_equal(mc_host_lod_auto_plan(&a, 1000).move, 0);
+    mc_host_lod_auto_frame(&a, 1000, 9.0);
+    assert_int_equal(mc_host_lod_auto_plan(&a, 1000).move, 0);
+    mc_host_lod_auto_frame(&a, 1000, 4.0);
+    assert_int_equal(mc_host_lod_auto_plan(&a, 1000).move, 1);
+    assert_int_equal(mc_host_lod_auto_plan(&a, 1000).max_faces, 500);
+    mc_host_lod_auto_style(&a, 2);
+    assert_int_equal(mc_host_lod_auto_plan(&a, 1000).max_faces, 500);
 }
 
 /* Exact times c F^0.4 at levels moving by a fifth: the exponent from 1 halves its way to 0.4 with

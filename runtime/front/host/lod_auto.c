@@ -18,6 +18,14 @@ void mc_host_lod_auto_init(mc_host_lod_auto *a, double target_ms)
     a->level_ms = a->last_ms = 0;
     a->exponent = 1;
     a->level_faces = a->level_frames = a->last_faces = a->frames = 0;
+    a->style = -1;
+}
+
+void mc_host_lod_auto_style(mc_host_lod_auto *a, int style)
+{
+    if (style == a->style) return;
+    mc_host_lod_auto_init(a, a->target_ms);
+    a->style = style;
 }
 
 mc_host_lod_plan mc_host_lod_auto_plan(const mc_host_lod_auto *a, uint32_t faces)

@@ -40,6 +40,7 @@ typedef struct mc_host_lod_auto {
     uint32_t level_frames;  /* its frames measured */
     uint32_t last_faces;    /* faces of the last level timed (0: none) */
     uint32_t frames;        /* frames measured */
+    int style;              /* what is drawn (the caller's tag: a style), whose times these are */
 } mc_host_lod_auto;
 
 typedef struct mc_host_lod_plan {
@@ -47,8 +48,12 @@ typedef struct mc_host_lod_plan {
     uint32_t max_faces;     /* the face budget when moving */
 } mc_host_lod_plan;
 
-/* Starts holding target_ms (> 0) with nothing learned. */
+/* Starts holding target_ms (> 0) with nothing learned, for style -1 (none yet). */
 void mc_host_lod_auto_init(mc_host_lod_auto *a, double target_ms);
+
+/* Before a frame drawn in `style` (the caller's tag): when it is not the style learned so far, starts
+ * anew for it (a level's time in one style says nothing of another's). */
+void mc_host_lod_auto_style(mc_host_lod_auto *a, int style);
 
 /* The plan for the next frame at a level of `faces` faces. */
 mc_host_lod_plan mc_host_lod_auto_plan(const mc_host_lod_auto *a, uint32_t faces);

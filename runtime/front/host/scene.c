@@ -81,7 +81,6 @@ void mc_host_scene_auto(mc_host_scene *s, double target_ms)
 {
     s->target_ms = mc_host_scene_has_mesh(s) ? target_ms : 0;
     mc_host_lod_auto_init(&s->lod_auto, s->target_ms);
-    s->lod_auto_style = -1;
 }
 
 int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_abort_fn abort, const mc_target *t,
@@ -112,7 +111,7 @@ int mc_host_scene_draw(mc_host_scene *s, const mc_view *v, unsigned depth, mc_ab
     else mc_host_mesh_neighbours(&s->lod, s->app);
     const uint32_t level = s->lod.level;
     if (s->target_ms > 0) {
-        if ((int)style != s->lod_auto_style) mc_host_lod_auto_init(&s->lod_auto, s->target_ms), s->lod_auto_style = (int)style;
+        mc_host_lod_auto_style(&s->lod_auto, (int)style);
         const mc_host_lod_plan plan = mc_host_lod_auto_plan(&s->lod_auto, s->lod.faces);
         if (plan.move) mc_pmesh_lod_fit_to(&s->lod, plan.max_faces, s->lod_cap ? s->lod_cap : UINT32_MAX);
         /* the change apart from the frame (lod_auto.h): the line styles' crease bits are part of it */

@@ -45,8 +45,7 @@ typedef struct mc_host_scene {
     uint32_t lod_want;       /* the level asked for (--lod, the keys); drawn as far as it has come */
     uint32_t lod_cap;        /* a streamed mesh: the finest level that has come (0: the whole mesh) */
     double target_ms;        /* > 0: automatic level of detail for this frame time */
-    mc_host_lod_auto lod_auto;   /* what it has learned (lod_auto.h) */
-    int lod_auto_style;      /* the style it learned in (mc_front_style; -1: none yet) */
+    mc_host_lod_auto lod_auto;   /* what it has learned (lod_auto.h), in which style */
 } mc_host_scene;
 
 /* "points", "shaded", "lines", "shaded+lines" -> mode; returns -1 for anything else. */
