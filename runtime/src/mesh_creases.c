@@ -13,8 +13,7 @@ static void normal15(const int32_t p[3][3], int32_t n[3])
     w[1] = (int64_t)a[2] * b[0] - (int64_t)a[0] * b[2];
     w[2] = (int64_t)a[0] * b[1] - (int64_t)a[1] * b[0];
     const uint64_t m = mc_mag64(w[0]) | mc_mag64(w[1]) | mc_mag64(w[2]);
-    const uint32_t top = (uint32_t)(m >> 15);   /* (below 2^20) */
-    const unsigned s = top ? 32u - mc_clz32(top) : 0u;   /* as mc_mesh_shade's: the least with m >> s < 2^15 */
+    const unsigned s = mc_fit_shift(m, 15u);   /* (m below 2^35) */
     /* w / 2^s truncated, as a shift of the magnitude with the sign put back (a 64-bit division is a
      * library call on a 32-bit core; the sign is a coin toss to a predictor) */
     for (int i = 0; i < 3; i++) {
@@ -53,6 +52,15 @@ static void put_crease(uint8_t *cr, uint32_t h, uint32_t c)
     cr[f >> 1] = (uint8_t)(c ? cr[f >> 1] | bit : cr[f >> 1] & ~bit);
 }
 
+/* Face f's normal15 normal at the level (apart: called from six places, which a firmware's flash
+ * keeps once). */
+static MC_NOINLINE void face_normal(const mc_pmesh_lod *lod, uint32_t f, int32_t n[3])
+{
+    int32_t p[3][3];
+    mc_mesh_face_positions(lod, f, p);
+    normal15((const int32_t(*)[3])p, n);
+}
+
 /* Every crease bit of the level, each face's normal taken once for its later neighbours. */
 static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
 {
@@ -64,22 +72,12 @@ static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
             if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < f) continue;
-            int32_t p[3][3], m[3];
-            if (!normal) mc_mesh_face_positions(lod, f, p), normal15((const int32_t(*)[3])p, n), normal = 1;
-            mc_mesh_face_positions(lod, MC_HALF_FACE(o), p);
-            normal15((const int32_t(*)[3])p, m);
+            int32_t m[3];
+            if (!normal) face_normal(lod, f, n), normal = 1;
+            face_normal(lod, MC_HALF_FACE(o), m);
             if (crease_normals(n, m, pm->crease_cos)) put_crease(cr, h, 1), put_crease(cr, o, 1);
         }
     }
-}
-
-/* Face f's normal15 normal at the level. */
-/* (apart: the fans call it from four places, a firmware's flash keeps it once) */
-static MC_NOINLINE void face_normal(const mc_pmesh_lod *lod, uint32_t f, int32_t n[3])
-{
-    int32_t p[3][3];
-    mc_mesh_face_positions(lod, f, p);
-    normal15((const int32_t(*)[3])p, n);
 }
 
 /* The crease bit of edge h, whose face has normal n, and of its opposite o (none: a border, never a
@@ -104,54 +102,65 @@ static void put_rim(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t f, uint32_t k
     put_edge(lod, cr, h, o, n, m);
 }
 
+/* One way round the fan of creases_fan from face g (normal ng) with the vertex at its corner j:
+ * across the spoke that ends at the vertex (way 0) or leaves it (way 1), each face's normal taken
+ * once, the spoke between two faces from their normals, each face's rim from the face across it.
+ * Returns 1 at a border, 2 back at g (way 0 sets that last spoke, between the last face and g), 0
+ * past `limit` faces counted in *count. */
+static int fan_way(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j, const int32_t ng[3], unsigned way,
+                   uint32_t limit, uint32_t *count)
+{
+    int32_t n[3] = {ng[0], ng[1], ng[2]}, m[3];
+    uint32_t f = g, k = j;   /* corner k of f is the vertex: edge k leaves it, edge k + 2 ends there */
+    for (;;) {
+        const uint32_t h = MC_HALF_EDGE(f, way ? k : (k + 2u) % 3u), o = mc_pmesh_lod_opposite(lod, h);
+        if (o == MC_NO_HALF_EDGE) {
+            put_edge(lod, cr, h, o, n, n);
+            return 1;
+        }
+        const uint32_t e = MC_HALF_FACE(o);
+        if (e == g) {
+            if (!way) put_edge(lod, cr, h, o, n, ng);
+            return 2;
+        }
+        if (++*count > limit) return 0;
+        face_normal(lod, e, m);
+        put_edge(lod, cr, h, o, n, m);
+        /* o leaves the vertex (way 0) or ends there (way 1) */
+        f = e, k = way ? (MC_HALF_EDGE_INDEX(o) + 1u) % 3u : MC_HALF_EDGE_INDEX(o);
+        put_rim(lod, cr, f, (k + 1u) % 3u, m);
+        n[0] = m[0], n[1] = m[1], n[2] = m[2];
+    }
+}
+
 /* The crease bits of every edge of every face around corner j of face g (the level's faces at that
  * vertex, turning through the neighbours one way until a border or back at g, then the other way),
- * on both sides: each face's normal taken once, its spokes (the edges at the vertex) from the normals
- * of the faces on either side, its rim edge from the face across it. Returns 0, with some done, past
- * `limit` faces (arrays whose neighbours do not pair up could turn forever). */
+ * on both sides, g's rim too. Returns 0, with some done, past `limit` faces (arrays whose neighbours
+ * do not pair up could turn forever). */
 static int creases_fan(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j, uint32_t limit)
 {
-    int32_t ng[3], n[3], m[3];
+    int32_t ng[3];
+    uint32_t count = 1;
     face_normal(lod, g, ng);
     put_rim(lod, cr, g, (j + 1u) % 3u, ng);
-    /* corner k of f is the vertex: edge k leaves it, edge k + 2 ends there */
-    uint32_t f = g, k = j, count = 1;
-    n[0] = ng[0], n[1] = ng[1], n[2] = ng[2];
-    for (;;) {   /* one way: across the spoke that ends at the vertex */
-        const uint32_t h = MC_HALF_EDGE(f, (k + 2u) % 3u), o = mc_pmesh_lod_opposite(lod, h);
-        if (o == MC_NO_HALF_EDGE) {
-            put_edge(lod, cr, h, o, n, n);
-            break;
-        }
-        const uint32_t e = MC_HALF_FACE(o);
-        if (e == g) {   /* round: the last spoke, between f and g */
-            put_edge(lod, cr, h, o, n, ng);
-            return 1;
-        }
-        if (++count > limit) return 0;
-        face_normal(lod, e, m);
-        put_edge(lod, cr, h, o, n, m);
-        f = e, k = MC_HALF_EDGE_INDEX(o);   /* o leaves the vertex */
-        put_rim(lod, cr, f, (k + 1u) % 3u, m);
-        n[0] = m[0], n[1] = m[1], n[2] = m[2];
-    }
-    f = g, k = j;
-    n[0] = ng[0], n[1] = ng[1], n[2] = ng[2];
-    for (;;) {   /* the other way from g, to the border: across the spoke that leaves the vertex */
-        const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
-        if (o == MC_NO_HALF_EDGE) {
-            put_edge(lod, cr, h, o, n, n);
-            return 1;
-        }
-        const uint32_t e = MC_HALF_FACE(o);
-        if (e == g) return 1;   /* (arrays whose neighbours do not pair up) */
-        if (++count > limit) return 0;
-        face_normal(lod, e, m);
-        put_edge(lod, cr, h, o, n, m);
-        f = e, k = (MC_HALF_EDGE_INDEX(o) + 1u) % 3u;   /* o ends at the vertex */
-        put_rim(lod, cr, f, (k + 1u) % 3u, m);
-        n[0] = m[0], n[1] = m[1], n[2] = m[2];
-    }
+    const int r = fan_way(lod, cr, g, j, ng, 0u, limit, &count);
+    return r == 1 ? fan_way(lod, cr, g, j, ng, 1u, limit, &count) != 0 : r != 0;
+}
+
+/* The vertices whose fans a level step has just recomputed (the last few: a split's faces share
+ * theirs), so that each is taken once. */
+typedef struct recent_fans {
+    uint32_t v[4];
+    uint32_t next;
+} recent_fans;
+
+/* creases_fan around corner j of face g, vertex v at the level, unless v's was among the last few. */
+static int fan_once(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j, uint32_t v, uint32_t limit,
+                    recent_fans *r)
+{
+    if (v == r->v[0] || v == r->v[1] || v == r->v[2] || v == r->v[3]) return 1;
+    r->v[r->next++ & 3u] = v;
+    return creases_fan(lod, cr, g, j, limit);
 }
 
 /* Brings the crease bits of level `from` to the current level by recomputing the faces around the
@@ -164,7 +173,7 @@ static int creases_fan(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_
  * recompute all, when that would cost about as much (the faces changed over a 16th of the level's:
  * a changed face costs some fifteen of the full pass's on bunny00, the fans of its vertices being
  * recomputed whole) or when an edge or a fan cannot be found. Each fan's vertex is taken once among
- * the last few (a split's faces share theirs). */
+ * the last few (fan_once). */
 static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
 {
     const mc_pmesh *pm = lod->pm;
@@ -177,20 +186,18 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
         if (nf > lod->faces / 16u) return 0;
     }
     const uint32_t limit = lod->faces < 1024u ? lod->faces : 1024u;
+    recent_fans r = {{MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE}, 0};
     if (to > from) {   /* the new faces are the level's last nf */
-        uint32_t done[2] = {MC_NO_HALF_EDGE, MC_NO_HALF_EDGE};   /* the last face's fan vertices */
         for (uint32_t f = lod->faces - nf; f < lod->faces; f++) {
             uint32_t c[3];
             mc_pmesh_lod_face(lod, f, c);
             for (uint32_t j = 0; j < 2u; j++)   /* the ends of edge 0: a split's vertex and its parent */
-                if (c[j] != done[0] && c[j] != done[1] && !creases_fan(lod, cr, f, j, limit)) return 0;
-            done[0] = c[0], done[1] = c[1];
+                if (!fan_once(lod, cr, f, j, c[j], limit, &r)) return 0;
         }
         return 1;
     }
     if (lod->faces + nf > pm->faces) return 0;
     for (uint32_t f = lod->faces; f < lod->faces + nf; f++) cr[f >> 1] &= (uint8_t)(f & 1u ? 0x0Fu : 0xF0u);
-    uint32_t done[4] = {MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE}, next = 0;
     for (uint32_t f = lod->faces; f < lod->faces + nf; f++) {
         int found = 0;
         for (uint32_t k = 1; k < 3u; k++) {
@@ -199,12 +206,8 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
             const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
             uint32_t c[3];
             mc_pmesh_lod_face(lod, g, c);
-            for (uint32_t i = 0; i < 2u; i++) {   /* both ends, each vertex once among the last four */
-                const uint32_t e = (j + i) % 3u;
-                if (c[e] == done[0] || c[e] == done[1] || c[e] == done[2] || c[e] == done[3]) continue;
-                if (!creases_fan(lod, cr, g, e, limit)) return 0;
-                done[next++ & 3u] = c[e];
-            }
+            for (uint32_t i = 0; i < 2u; i++)   /* both ends of the merged edge */
+                if (!fan_once(lod, cr, g, (j + i) % 3u, c[(j + i) % 3u], limit, &r)) return 0;
             found = 1;
         }
         if (!found) return 0;

@@ -26,8 +26,7 @@ unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p
     if (m == 0) return MC_MESH_SHADES / 2;
     /* the normal's 15 leading bits: each component divided by 2^s toward zero, s the smallest shift
      * that leaves every one below 2^15; only their squares count, so only their magnitudes */
-    const uint32_t top = (uint32_t)(m >> 15);
-    const unsigned s = top ? 32u - mc_clz32(top) : 0u;
+    const unsigned s = mc_fit_shift(m, 15u);
     const uint64_t x = m0 >> s, y = m1 >> s, z = m2 >> s;
     /* squares below 2^30, so the products below stay in 64 bits */
     const uint64_t len2 = x * x + y * y + z * z, z2 = z * z << 30;

@@ -59,6 +59,7 @@
 #include "modelc/pmesh.h"
 #include "../../runtime/ref/raster_ref.h"
 #include "../../runtime/ref/xform_ref.h"
+#include "../../runtime/src/mesh_creases.h"   /* the line drawings' memory: where its tag and crease bits lie */
 
 extern const mc_pmesh PM;
 
@@ -723,9 +724,9 @@ int main(int argc, char **argv)
         if (i % 8 == 7) {
             memset(lm_f, 0, lbytes);
             mc_mesh_lines(&lod, &view, MC_LINES_ALL, &tiny, lm_f, NULL, NULL);
-            const size_t cb = 4 + MC_MESH_FACING_BYTES(pm->faces);   /* where the crease bits start */
-            if (memcmp(lm_k, lm_f, 4) || memcmp(lm_k + cb, lm_f + cb, lbytes - cb)) PROBLEM("level %u: mc_mesh_lines' crease bits kept through %u levels differ from a fresh memory's", cn, i + 1);
-            else if (memcmp(lm_t, lm_f, 4) || memcmp(lm_t + cb, lm_f + cb, lbytes - cb)) PROBLEM("level %u: mc_mesh_lines' crease bits kept with a neighbour table differ from a fresh memory's", cn);
+            const size_t cb = (size_t)(mc_lines_creases(lm_f, pm->faces) - lm_f), tb = sizeof *mc_lines_tag(lm_f);
+            if (memcmp(lm_k, lm_f, tb) || memcmp(lm_k + cb, lm_f + cb, lbytes - cb)) PROBLEM("level %u: mc_mesh_lines' crease bits kept through %u levels differ from a fresh memory's", cn, i + 1);
+            else if (memcmp(lm_t, lm_f, tb) || memcmp(lm_t + cb, lm_f + cb, lbytes - cb)) PROBLEM("level %u: mc_mesh_lines' crease bits kept with a neighbour table differ from a fresh memory's", cn);
             else crease_levels++;
         }
     }

@@ -13,6 +13,8 @@
  *   mc_ctz(m)         index of the lowest set bit of m; m must not be 0
  *   mc_ctz64(m)       the same for a 64-bit m, as a 64-bit value (ready to index with)
  *   mc_clz32(v)       leading zero bits of a 32-bit word; 32 for 0
+ *   mc_fit_shift(m, b) the least s with m >> s < 2^b, for m < 2^(b + 32): the right shift that keeps
+ *                     a quantity's b leading bits (a normal scaled to fit 32-bit products)
  */
 #ifndef MODELC_BITS_H
 #define MODELC_BITS_H
@@ -126,6 +128,12 @@ MC_ALWAYS_INLINE unsigned mc_clz32(uint32_t v)
     while (!(v & 0x80000000u)) { v <<= 1; n++; }
     return n;
 #endif
+}
+
+MC_ALWAYS_INLINE unsigned mc_fit_shift(uint64_t m, unsigned b)
+{
+    const uint32_t top = (uint32_t)(m >> b);
+    return top ? 32u - mc_clz32(top) : 0u;
 }
 
 #endif
