@@ -4,6 +4,7 @@
 #include "emit_files.hpp"
 #include "runtime_costs.hpp"
 #include "modelc/mesh_lines.h"   // MC_MESH_LINES_BYTES: the line drawings' memory
+#include "modelc/mesh_shade.h"   // mc_mesh_shade_of: the shades stored for the faces
 #include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
 #include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
 #include "modelc/stream.h"  // MC_STREAM_PACKED_BYTES, which pm_packed_bytes restates in 64 bits
@@ -67,13 +68,15 @@ struct Plan {
     mstch::array pm_lists;
     size_t pm_data = 0;                           // every array of the mesh part
     size_t pm_line_data = 0;                      // of which the line drawings' (opposite, edges)
+    size_t pm_shade_data = 0;                     // and the faces' stored shades
     unsigned index_bytes = 0, half_bytes = 0, record_shift = 0;
 };
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const int kPmArrayCount = 6, kPmLineArrays = 4;   // the line drawings' arrays: from index 4 on
-const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "opposite", "edge_order"};
+const int kPmArrayCount = 7, kPmShades = 4, kPmLineArrays = 5;   // the line drawings' arrays: from index 5 on
+const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "shades", "opposite",
+                                               "edge_order"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
 
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
@@ -92,9 +95,17 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
+    // each face's shade with the runtime's own arithmetic (mesh_shade.h), so that a face drawn with
+    // its stored shade looks as one whose shade is worked out
+    for (const auto &f : pm.faces) {
+        int32_t q[3][3];
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 3; i++) q[k][i] = int32_t(pm.positions[f[k]][i]) - 32768;
+        p.pm_bytes[kPmShades].push_back(static_cast<uint8_t>(mc_mesh_shade_of(q[0], q[1], q[2])));
+    }
     for (const auto &f : pm.opposite)
-        for (uint32_t h : f) put(p.pm_bytes[4], h, p.half_bytes);
-    for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, p.half_bytes);
+        for (uint32_t h : f) put(p.pm_bytes[5], h, p.half_bytes);
+    for (uint32_t h : pm.edge_order) put(p.pm_bytes[6], h, p.half_bytes);
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
 }
 
@@ -155,14 +166,16 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         const size_t largest = 3 * std::max(p.index_bytes, p.half_bytes);
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
         const char *whats[kPmArrayCount] = {"vertex positions", "vertex parents and subtree sizes", "splits",
-                                            "face corners", "opposite half-edges", "edges, sharpest first"};
-        const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes,
+                                            "face corners", "face shades", "opposite half-edges",
+                                            "edges, sharpest first"};
+        const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes, 1,
                                               3 * p.half_bytes, p.half_bytes};
         for (int k = 0; k < kPmArrayCount; k++) {
             add_list(p.pm_bytes[k], record[k] << p.record_shift, nullptr, pm_list(name, k),
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
             if (k >= kPmLineArrays) p.pm_line_data += p.pm_bytes[k].size();
+            if (k == kPmShades) p.pm_shade_data += p.pm_bytes[k].size();
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();
@@ -382,8 +395,10 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"record_shift", plan.record_shift},
             {"edges", pm.edge_order.size()},
             {"half_edge_bytes", plan.half_bytes},
-            {"bytes", plan.pm_data - plan.pm_line_data},
-            {"bytes_per_split", splits ? double(plan.pm_data - plan.pm_line_data) / double(splits) : 0.0},
+            {"bytes", plan.pm_data - plan.pm_line_data - plan.pm_shade_data},
+            {"bytes_per_split",
+             splits ? double(plan.pm_data - plan.pm_line_data - plan.pm_shade_data) / double(splits) : 0.0},
+            {"shade_bytes", plan.pm_shade_data},
             {"line_bytes", plan.pm_line_data},
             {"line_bytes_per_face", double(plan.pm_line_data) / double(pm.faces.size())},
             {"lod_ram", bud.pmesh_lod},

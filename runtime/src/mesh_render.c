@@ -3,42 +3,14 @@
  * Per face: its corners (the level's ancestors of the stored ones), their projections (from the
  * frame's vertex cache, or projected here), then a test as cheap as raster.c's first ones (a back
  * face when culling, no pixel centre in the bounding box): only a face that may cover a pixel has its
- * shade worked out and goes to the rasterizer. A face with a corner the projection flags goes to
+ * shade (the stored one when the face is as in the full mesh) and goes to the rasterizer. A face with a corner the projection flags goes to
  * clipped_face instead (xform.h's clipping). */
 #include "modelc/mesh_render.h"
 #include "xform_ortho.h"
 
-/* ((2j - 1) / 62)^2 in Q30, j = 1 .. 31: |n.z| / |n| at least (j - 1/2) / 31 means shade j or more */
-static const uint32_t shade_limit[MC_MESH_SHADES - 1] = {
-    279329, 2513964, 6983232, 13687136, 22625673, 33798845, 47206651, 62849092, 80726167, 100837877,
-    123184221, 147765199, 174580812, 203631059, 234915940, 268435456, 304189606, 342178391, 382401810,
-    424859863, 469552551, 516479873, 565641830, 617038421, 670669646, 726535506, 784636000, 844971128,
-    907540891, 972345289, 1039384320,
-};
-
 unsigned mc_mesh_shade(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3])
 {
-    const int64_t a0 = (int64_t)p1[0] - p0[0], a1 = (int64_t)p1[1] - p0[1], a2 = (int64_t)p1[2] - p0[2];
-    const int64_t b0 = (int64_t)p2[0] - p0[0], b1 = (int64_t)p2[1] - p0[1], b2 = (int64_t)p2[2] - p0[2];
-    /* |a|, |b| < 2^17 a component: |n| < 2^35 */
-    const uint64_t m0 = mc_mag64(a1 * b2 - a2 * b1), m1 = mc_mag64(a2 * b0 - a0 * b2), m2 = mc_mag64(a0 * b1 - a1 * b0);
-    const uint64_t m = m0 | m1 | m2;
-    if (m == 0) return MC_MESH_SHADES / 2;
-    /* the normal's 15 leading bits: each component divided by 2^s toward zero, s the smallest shift
-     * that leaves every one below 2^15; only their squares count, so only their magnitudes */
-    const unsigned s = mc_fit_shift(m, 15u);
-    const uint64_t x = m0 >> s, y = m1 >> s, z = m2 >> s;
-    /* squares below 2^30, so the products below stay in 64 bits */
-    const uint64_t len2 = x * x + y * y + z * z, z2 = z * z << 30;
-    if (len2 == 0) return MC_MESH_SHADES / 2;
-    /* the number of limits z2 / len2 reaches: a binary search over the 31, without branches */
-    unsigned k = 0;
-    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 15] * len2) << 4;
-    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 7] * len2) << 3;
-    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 3] * len2) << 2;
-    k += (unsigned)(z2 >= (uint64_t)shade_limit[k + 1] * len2) << 1;
-    k += (unsigned)(z2 >= (uint64_t)shade_limit[k] * len2);
-    return k;
+    return mc_mesh_shade_of(p0, p1, p2);
 }
 
 /* Vertex v's position, as mc_pmesh_position (inlined: the loop below needs it per face) */
@@ -198,15 +170,20 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
     /* the faces chunk by chunk, each a run of 2^shift records (the last maybe fewer) */
     for (uint32_t f0 = 0; f0 < faces; f0 += chunk) {
         const uint8_t *r = pm->corners[f0 >> shift].data;
+        const uint8_t *shades = pm->shades ? pm->shades[f0 >> shift].data : 0;
         const uint32_t end = faces - f0 < chunk ? faces - f0 : chunk;
         for (uint32_t i = 0; i < end; i++, r += 3u * ib) {
-            uint32_t c[3];
+            uint32_t c[3], moved;   /* moved: 0 when every corner is its own ancestor */
             if (ib == 2) {
                 const uint16_t *anc = (const uint16_t *)lod->anc;
-                c[0] = anc[mc_le16(r)], c[1] = anc[mc_le16(r + 2)], c[2] = anc[mc_le16(r + 4)];
+                const uint32_t s0 = mc_le16(r), s1 = mc_le16(r + 2), s2 = mc_le16(r + 4);
+                c[0] = anc[s0], c[1] = anc[s1], c[2] = anc[s2];
+                moved = (s0 ^ c[0]) | (s1 ^ c[1]) | (s2 ^ c[2]);
             } else {
                 const uint32_t *anc = (const uint32_t *)lod->anc;
-                c[0] = anc[mc_le32(r)], c[1] = anc[mc_le32(r + 4)], c[2] = anc[mc_le32(r + 8)];
+                const uint32_t s0 = mc_le32(r), s1 = mc_le32(r + 4), s2 = mc_le32(r + 8);
+                c[0] = anc[s0], c[1] = anc[s1], c[2] = anc[s2];
+                moved = (s0 ^ c[0]) | (s1 ^ c[1]) | (s2 ^ c[2]);
             }
             int32_t p[3][3];
             mc_raster_vertex v[3];
@@ -228,8 +205,13 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
             }
             if (out) { clipped_face(pm, &x, c, flags, t, &st); continue; }
             if (!may_cover(v, rflags)) continue;
-            if (cache && !paper) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
-            const unsigned color = paper ? MC_MESH_PAPER : mc_mesh_shade(p[0], p[1], p[2]);
+            unsigned color;
+            if (paper) color = MC_MESH_PAPER;
+            else if (shades && !moved) color = shades[i];
+            else {
+                if (cache) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
+                color = mc_mesh_shade(p[0], p[1], p[2]);
+            }
             const uint32_t covered = mc_raster_triangle(t, v, (uint8_t)color, rflags);
             st.drawn += covered > 0;
             st.pixels += covered;

@@ -17,7 +17,8 @@
  *                             (x y z three times), in the format of modelc --dump-pmesh-level
  *   pmesh_check render N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE CULL   (zoom, eye Q16; xform.h)
  *                             level N drawn by mc_mesh_render (runtime/src/mesh_render.c) into a
- *                             W x H target inside guard zones, against the same faces composed in
+ *                             W x H target inside guard zones (the same bytes with a vertex cache,
+ *                             and with the bake's stored shades dropped), against the same faces composed in
  *                             doubles: each face's corners as mc_mesh_face gives them (projected by
  *                             mc_xform_vertex, tested on its own, tests/unit/test_xform.c), covered
  *                             and depth-tested by the double
@@ -195,6 +196,35 @@ static int render_check(mc_pmesh_lod *lod, char **a)
             return 1;
         }
         free(vc), free(cc), free(dc);
+    }
+    {   /* the bake stores every face's shade (pmesh.h shades); without them (a streamed mesh's null)
+         * every shade is worked out: the same bytes and stats */
+        if (!PM.shades) {
+            printf("not ok: the bake stores no shades\n");
+            return 1;
+        }
+        mc_pmesh bare = PM;
+        bare.shades = 0;
+        void *anc = malloc((size_t)PM.vertices * PM.index_bytes + 8);
+        uint8_t *cc = malloc(px);
+        uint16_t *dc = malloc(2 * px);
+        if (!anc || !cc || !dc) return 2;
+        mc_pmesh_lod bl;
+        mc_pmesh_lod_init(&bl, &bare, anc);
+        mc_pmesh_lod_set(&bl, n);
+        mc_target tc = {cc, dc, (uint16_t)w, (uint16_t)h};
+        mc_mesh_stats sc;
+        mc_clear(&tc);
+        const int rcc = mc_mesh_render(&bl, &v, cull ? MC_MESH_CULL_BACK : 0u, &tc, NULL, &sc);
+        size_t differ = 0;
+        for (size_t i = 0; i < px; i++) differ += cc[i] != t.color[i];
+        if (rcc != rc || memcmp(&sc, &st, sizeof st) || differ || memcmp(dc, t.depth, 2 * px)) {
+            printf("not ok: level %u: with its shades worked out mc_mesh_render returns %d (%d with the stored), "
+                   "draws %u faces (%u), %zu pixels of another colour, %s depths\n", n, rcc, rc, sc.drawn, st.drawn,
+                   differ, memcmp(dc, t.depth, 2 * px) ? "other" : "the same");
+            return 1;
+        }
+        free(anc), free(cc), free(dc);
     }
     /* the reference: per pixel the nearest face's depth d1 and its allowance t1 (0 for a face drawn
      * from the runtime's corners), and d2 the least depth another face may have there */

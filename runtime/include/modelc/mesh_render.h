@@ -50,14 +50,10 @@
  * ancestor map for the present vertices: it saves work unless the level keeps fewer than about a
  * fiftieth of the part's vertices (bunny00's 37706: level 800).
  *
- * Shade: as the point renderer's baked colours of uncoloured models (gen/light.hpp), a frontal light
- * fixed to the model: intensity (3 + 17 |n.z| / |n|) / 20 for the face's normal n in the model's frame
- * (+y up, +z towards the viewer at the default view), so the light turns with the model. The face
- * gets palette index k, 0 .. MC_MESH_SHADES - 1, the k whose |n.z| / |n| = k / (MC_MESH_SHADES - 1)
- * is nearest, decided in integers on the normal's 15 leading bits: within 1/100 of a step of the
- * rounding point a face may take either neighbour (the truncation moves |n.z| / |n| by under 2^-13).
- * A face of zero area is index MC_MESH_SHADES / 2. The part's palette (pmesh.h) holds the matching
- * greys.
+ * Shade: mesh_shade.h (a frontal light fixed to the model, MC_MESH_SHADES greys). A face the level
+ * has as the full mesh has it (each corner its own ancestor) takes the shade the generator stored
+ * for it when the part has them (pmesh.h `shades`); any other face's is worked out from its corners.
+ * The same index either way.
  *
  * No heap, no floating point; the stack holds a few words per face, and xform.h's clipping buffers
  * (about 300 bytes) for a face with a flagged corner. No 64-bit division here (the clipper's cuts
@@ -71,8 +67,8 @@
 #include "raster.h"
 #include "target.h"
 #include "xform.h"
+#include "mesh_shade.h"   /* MC_MESH_SHADES */
 
-#define MC_MESH_SHADES 32
 /* palette index of the paper: faces of a lines-only drawing (mesh_lines.h), white */
 #define MC_MESH_PAPER MC_MESH_SHADES
 
