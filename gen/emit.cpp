@@ -4,7 +4,7 @@
 #include "emit_files.hpp"
 #include "runtime_costs.hpp"
 #include "modelc/mesh_lines.h"   // MC_MESH_LINES_BYTES: the line drawings' memory
-#include "modelc/mesh_shade.h"   // mc_mesh_shade_of: the shades stored for the faces
+#include "modelc/mesh_face.h"   // the face bits: shades and crease bits stored for the faces
 #include "modelc/sdepth.h"  // MC_SDEPTH_WORDS: the lines style's sparse depth buffer
 #include "modelc/xform.h"   // mc_xvertex: the vertex cache's entries (16 bytes on every target)
 #include "modelc/stream.h"  // MC_STREAM_PACKED_BYTES, which pm_packed_bytes restates in 64 bits
@@ -68,14 +68,14 @@ struct Plan {
     mstch::array pm_lists;
     size_t pm_data = 0;                           // every array of the mesh part
     size_t pm_line_data = 0;                      // of which the line drawings' (opposite, edges)
-    size_t pm_shade_data = 0;                     // and the faces' stored shades
+    size_t pm_face_data = 0;                      // and the face bits (shades, creases)
     unsigned index_bytes = 0, half_bytes = 0, record_shift = 0;
 };
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const int kPmArrayCount = 7, kPmShades = 4, kPmLineArrays = 5;   // the line drawings' arrays: from index 5 on
-const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "shades", "opposite",
+const int kPmArrayCount = 7, kPmFaceBits = 4, kPmLineArrays = 5;   // the line drawings' arrays: from index 5 on
+const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "face_bits", "opposite",
                                                "edge_order"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
 
@@ -95,13 +95,25 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
-    // each face's shade with the runtime's own arithmetic (mesh_shade.h), so that a face drawn with
-    // its stored shade looks as one whose shade is worked out
-    for (const auto &f : pm.faces) {
+    // each face's shade and crease bits with the runtime's own arithmetic (mesh_face.h), so that a
+    // face drawn with them looks as one whose shade and creases are worked out
+    std::vector<std::array<int32_t, 3>> normals(pm.faces.size());
+    std::vector<uint8_t> shades(pm.faces.size());
+    for (size_t g = 0; g < pm.faces.size(); g++) {
         int32_t q[3][3];
         for (int k = 0; k < 3; k++)
-            for (int i = 0; i < 3; i++) q[k][i] = int32_t(pm.positions[f[k]][i]) - 32768;
-        p.pm_bytes[kPmShades].push_back(static_cast<uint8_t>(mc_mesh_shade_of(q[0], q[1], q[2])));
+            for (int i = 0; i < 3; i++) q[k][i] = int32_t(pm.positions[pm.faces[g][k]][i]) - 32768;
+        shades[g] = static_cast<uint8_t>(mc_mesh_shade_of(q[0], q[1], q[2]));
+        mc_mesh_normal15(q, normals[g].data());
+    }
+    for (size_t g = 0; g < pm.faces.size(); g++) {
+        unsigned bits = shades[g];
+        for (unsigned k = 0; k < 3; k++) {
+            const uint32_t o = pm.opposite[g][k];
+            if (o != kNoHalfEdge && mc_mesh_crease_normals(normals[g].data(), normals[o >> 2].data(), pm.crease_cos))
+                bits |= 1u << (5 + k);
+        }
+        p.pm_bytes[kPmFaceBits].push_back(static_cast<uint8_t>(bits));
     }
     for (const auto &f : pm.opposite)
         for (uint32_t h : f) put(p.pm_bytes[5], h, p.half_bytes);
@@ -166,7 +178,7 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         const size_t largest = 3 * std::max(p.index_bytes, p.half_bytes);
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
         const char *whats[kPmArrayCount] = {"vertex positions", "vertex parents and subtree sizes", "splits",
-                                            "face corners", "face shades", "opposite half-edges",
+                                            "face corners", "face shades and crease bits", "opposite half-edges",
                                             "edges, sharpest first"};
         const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes, 1,
                                               3 * p.half_bytes, p.half_bytes};
@@ -175,7 +187,7 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
             if (k >= kPmLineArrays) p.pm_line_data += p.pm_bytes[k].size();
-            if (k == kPmShades) p.pm_shade_data += p.pm_bytes[k].size();
+            if (k == kPmFaceBits) p.pm_face_data += p.pm_bytes[k].size();
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();
@@ -395,10 +407,10 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"record_shift", plan.record_shift},
             {"edges", pm.edge_order.size()},
             {"half_edge_bytes", plan.half_bytes},
-            {"bytes", plan.pm_data - plan.pm_line_data - plan.pm_shade_data},
+            {"bytes", plan.pm_data - plan.pm_line_data - plan.pm_face_data},
             {"bytes_per_split",
-             splits ? double(plan.pm_data - plan.pm_line_data - plan.pm_shade_data) / double(splits) : 0.0},
-            {"shade_bytes", plan.pm_shade_data},
+             splits ? double(plan.pm_data - plan.pm_line_data - plan.pm_face_data) / double(splits) : 0.0},
+            {"face_bytes", plan.pm_face_data},
             {"line_bytes", plan.pm_line_data},
             {"line_bytes_per_face", double(plan.pm_line_data) / double(pm.faces.size())},
             {"lod_ram", bud.pmesh_lod},

@@ -1,39 +1,11 @@
 /* The line drawings' crease bits: see mesh_creases.h; mc_mesh_crease: mesh_lines.h. */
 #include "mesh_creases.h"
 
-/* The normal of the face with corners p, its components shifted right together (towards zero, signs
- * kept) until each fits 15 bits; all zero for a face with no area. The edges (17 bits) and the
- * components (15 bits) are int32, so that a 32-bit core takes each product in one step. */
-static void normal15(const int32_t p[3][3], int32_t n[3])
-{
-    int32_t a[3], b[3];
-    for (int i = 0; i < 3; i++) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i];
-    int64_t w[3];   /* components below 2^35 (mesh_render.c) */
-    w[0] = (int64_t)a[1] * b[2] - (int64_t)a[2] * b[1];
-    w[1] = (int64_t)a[2] * b[0] - (int64_t)a[0] * b[2];
-    w[2] = (int64_t)a[0] * b[1] - (int64_t)a[1] * b[0];
-    const uint64_t m = mc_mag64(w[0]) | mc_mag64(w[1]) | mc_mag64(w[2]);
-    const unsigned s = mc_fit_shift(m, 15u);   /* (m below 2^35) */
-    /* w / 2^s truncated, as a shift of the magnitude with the sign put back (a 64-bit division is a
-     * library call on a 32-bit core; the sign is a coin toss to a predictor) */
-    for (int i = 0; i < 3; i++) {
-        const uint32_t neg = 0u - (uint32_t)(w[i] < 0);
-        n[i] = (int32_t)((((uint32_t)(mc_mag64(w[i]) >> s)) ^ neg) - neg);
-    }
-}
-
-/* Whether faces with normal15 normals n and m meet at more than the crease angle. */
+/* mesh_face.h's normal and crease test, each kept once (a firmware's flash) for the calls below */
+static void normal15(const int32_t p[3][3], int32_t n[3]) { mc_mesh_normal15(p, n); }
 static int crease_normals(const int32_t n[3], const int32_t m[3], int32_t crease_cos)
 {
-    const int64_t d = (int64_t)n[0] * m[0] + (int64_t)n[1] * m[1] + (int64_t)n[2] * m[2];   /* |d| < 3 * 2^30 */
-    const uint32_t ln = (uint32_t)(n[0] * n[0]) + (uint32_t)(n[1] * n[1]) + (uint32_t)(n[2] * n[2]);   /* < 3 * 2^30 */
-    const uint32_t lm = (uint32_t)(m[0] * m[0]) + (uint32_t)(m[1] * m[1]) + (uint32_t)(m[2] * m[2]);
-    if (ln == 0 || lm == 0) return 0;
-    /* cos = d / sqrt(ln lm) < c = crease_cos / 2^14; squared: d^2 against c^2 ln lm / 2^28, with
-     * ln lm < 9 * 2^60 and (ln lm >> 28) c^2 < 9 * 2^60: no overflow */
-    const uint64_t d2 = mc_mag64(d) * mc_mag64(d), rhs = (((uint64_t)ln * lm) >> 28) * (uint64_t)((int64_t)crease_cos * crease_cos);
-    if (crease_cos >= 0) return d < 0 || d2 < rhs;
-    return d < 0 && d2 > rhs;
+    return mc_mesh_crease_normals(n, m, crease_cos);
 }
 
 int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_cos)
@@ -61,7 +33,22 @@ static MC_NOINLINE void face_normal(const mc_pmesh_lod *lod, uint32_t f, int32_t
     normal15((const int32_t(*)[3])p, n);
 }
 
-/* Every crease bit of the level, each face's normal taken once for its later neighbours. */
+/* Whether face g (present) is as in the full mesh: each corner its own ancestor at the level. */
+static int as_full(const mc_pmesh_lod *lod, uint32_t g)
+{
+    const mc_pmesh *pm = lod->pm;
+    const unsigned ib = pm->index_bytes;
+    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, g);
+    for (unsigned k = 0; k < 3; k++) {
+        const uint32_t c = mc_le_index(r + k * ib, ib);
+        if (mc_pmesh_lod_vertex(lod, c) != c) return 0;
+    }
+    return 1;
+}
+
+/* Every crease bit of the level, each face's normal taken once for its later neighbours. An edge
+ * between two faces as in the full mesh, across the opposite the arrays store, is as in the full
+ * mesh too: its bit is the stored one (pmesh.h face_bits), where the part has them. */
 static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
 {
     const mc_pmesh *pm = lod->pm;
@@ -69,9 +56,18 @@ static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
     for (uint32_t f = 0; f < lod->faces; f++) {
         int32_t n[3];
         int normal = 0;   /* n is f's (taken only for a face with a later neighbour) */
+        /* f's stored bits, with bit 8 set, when they may hold; else 0 */
+        const uint32_t stored = pm->face_bits && as_full(lod, f)
+                                    ? 0x100u | *mc_chunk_record(pm->face_bits, pm->record_shift, 1u, f) : 0u;
+        const uint8_t *across = mc_chunk_record(pm->opposite, pm->record_shift, 3u * pm->half_bytes, f);
         for (uint32_t k = 0; k < 3; k++) {
-            const uint32_t h = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, h);
+            const uint32_t h = MC_HALF_EDGE(f, k), s = mc_pmesh_half(across + k * pm->half_bytes, pm->half_bytes);
+            const uint32_t o = lod->nbr ? mc_pmesh_lod_opposite(lod, h) : mc_pmesh_lod_across(lod, s);
             if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < f) continue;
+            if (stored && o == s && as_full(lod, MC_HALF_FACE(o))) {
+                if (MC_FACE_BITS_CREASE(stored, k)) put_crease(cr, h, 1), put_crease(cr, o, 1);
+                continue;
+            }
             int32_t m[3];
             if (!normal) face_normal(lod, f, n), normal = 1;
             face_normal(lod, MC_HALF_FACE(o), m);

@@ -11,8 +11,9 @@
  * the same bytes however the level was reached and whichever levels the memory saw before (a
  * function of the level, as pmesh.h's ancestor map is). Work: none while the level is unchanged;
  * after a change of under a 16th of the level's faces, the faces around the vertices the splits
- * between moved (the bits brought over); else every edge of the level. Freestanding, no heap,
- * bounded stack.
+ * between moved (the bits brought over); else every edge of the level, where an edge between two
+ * faces as in the full mesh takes the part's stored bit (pmesh.h face_bits: no normals; at the full
+ * level every edge does) and any other its faces' normals. Freestanding, no heap, bounded stack.
  */
 #ifndef MODELC_MESH_CREASES_H
 #define MODELC_MESH_CREASES_H

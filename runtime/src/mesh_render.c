@@ -170,7 +170,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
     /* the faces chunk by chunk, each a run of 2^shift records (the last maybe fewer) */
     for (uint32_t f0 = 0; f0 < faces; f0 += chunk) {
         const uint8_t *r = pm->corners[f0 >> shift].data;
-        const uint8_t *shades = pm->shades ? pm->shades[f0 >> shift].data : 0;
+        const uint8_t *fb = pm->face_bits ? pm->face_bits[f0 >> shift].data : 0;
         const uint32_t end = faces - f0 < chunk ? faces - f0 : chunk;
         for (uint32_t i = 0; i < end; i++, r += 3u * ib) {
             uint32_t c[3], moved;   /* moved: 0 when every corner is its own ancestor */
@@ -207,7 +207,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
             if (!may_cover(v, rflags)) continue;
             unsigned color;
             if (paper) color = MC_MESH_PAPER;
-            else if (shades && !moved) color = shades[i];
+            else if (fb && !moved) color = MC_FACE_BITS_SHADE(fb[i]);
             else {
                 if (cache) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
                 color = mc_mesh_shade(p[0], p[1], p[2]);

@@ -51,7 +51,7 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
     for (uint8_t *z = area(s); z < a; z++) *z = 0;
     if (s->version == 3) mc_stream_packed_start(s, a);
     pm->positions = s->mesh_chunks[0], pm->tree = s->mesh_chunks[1], pm->splits = s->mesh_chunks[2];
-    pm->corners = s->mesh_chunks[3], pm->opposite = 0, pm->edge_order = 0, pm->shades = 0;
+    pm->corners = s->mesh_chunks[3], pm->opposite = 0, pm->edge_order = 0, pm->face_bits = 0;
     s->mesh_state = 1;
     return MC_STREAM_OK;
 }

@@ -36,7 +36,9 @@ slist=$(echo $strip_percents | tr ' ' ',')
 # the runtime, copied once so that every binary is built from the same sources
 runtime_snapshot "$out/src" >/dev/null || { echo "lod_error.sh: cannot copy the runtime" >&2; exit 1; }
 rt=$out/src/runtime
-rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
+# with every runtime header (an inline function or a layout there changes the code as a .c file does)
+rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c "$rt"/front/common/mesh_frame.c \
+    $(ls "$rt"/include/modelc/*.h "$rt"/src/*.h | sort) | sha256sum | cut -c1-12)
 flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
 : >"$out/rows.txt"
@@ -99,7 +101,7 @@ print(f"`tests/bench/lod_error.sh`: each mesh baked by `modelc --as both` (depth
       "Instructions: callgrind, `mc_front_mesh_frame` only (clear and faces, with everything they call; setting the "
       f"level is outside it), per frame over the {views} views, with the vertex cache and without it (each face projects "
       f"its corners). gcc -O2 ({cc}); runtime from the working tree, copied to {out}/src/runtime (mesh_render.c, "
-      f"raster.c, xform_vertex.c, pmesh.c, mesh_frame.c: sha256 {rt_sha}).\n")
+      f"raster.c, xform_vertex.c, pmesh.c, mesh_frame.c and the runtime's headers: sha256 {rt_sha}).\n")
 print("| mesh | level | faces | vertices | PSNR dB | worst view | coverage difference | worst view | ms per frame | "
       "CPU ms | Ir per frame | of the full level's | Ir without the cache |")
 print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")

@@ -39,8 +39,12 @@ run_glob() { cmds+=("$1"); eval "$1"; }
 # the runtime, copied once so that every binary is built from the same sources
 runtime_from=$(runtime_snapshot "$out/src" "$rev") || { echo "mesh.sh: cannot copy the runtime" >&2; exit 1; }
 rt=$out/src/runtime
-rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c | sha256sum | cut -c1-12)
-lines_sha=$(cat "$rt"/src/{mesh_lines,mesh_creases,line,sdepth,raster}.c "$rt"/front/common/mesh_frame.c | sha256sum | cut -c1-12)
+# the sources each table measures, with every runtime header (an inline function or a layout there
+# changes the code as much as one in a .c file)
+headers=$(ls "$rt"/include/modelc/*.h "$rt"/src/*.h | sort)
+rt_sha=$(cat "$rt"/src/{mesh_render,raster,xform_vertex,pmesh}.c $headers | sha256sum | cut -c1-12)
+lines_sha=$(cat "$rt"/src/{mesh_lines,mesh_creases,line,sdepth,raster,mesh_render,xform_vertex,pmesh}.c "$rt"/front/common/mesh_frame.c $headers |
+    sha256sum | cut -c1-12)
 flags=(-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra "-I$rt/include" "-I$rt/front/host" "-I$rt/front/common")
 
 # timed_rounds M STEM [ARGS...]: rounds of the timed turn, modelc's and Mesa's alternately and the
@@ -132,8 +136,8 @@ print("`tests/bench/mesh.sh`: each mesh baked by `modelc --as both` and drawn at
       f"zoom 1, a full turn of yaw in {frames} frames at {size}. Per round, each side times the turn once, alternately "
       f"(the order swapped every round), {rounds} rounds: wall-clock ms per frame, median over the frames of a run and "
       "then over rounds; Mesa's process CPU time likewise; ratio = median over rounds of Mesa's wall ms / modelc's in "
-      f"the same round. gcc -O2 ({cc}); runtime from {rt_from}, copied to {out}/src/runtime (mesh_render.c, raster.c, xform_vertex.c, pmesh.c: "
-      f"sha256 {rt_sha}). Instructions: callgrind, `mc_mesh_render` only (with everything it calls), a turn of "
+      f"the same round. gcc -O2 ({cc}); runtime from {rt_from}, copied to {out}/src/runtime (mesh_render.c, raster.c, xform_vertex.c, pmesh.c and "
+      f"the runtime's headers: sha256 {rt_sha}). Instructions: callgrind, `mc_mesh_render` only (with everything it calls), a turn of "
       f"{cg_frames} frames; per face = per frame / faces of the level (every face, drawn or not). Pixels per frame: "
       "the pixels modelc's drawn faces cover before the depth test (`mc_mesh_stats.pixels`, mean over the turn). "
       "Coverage difference: the frontal frame's pixels covered by one renderer and not the other, as a share of those "
@@ -212,7 +216,7 @@ if lines_rows:
           "and ratio as above (ratio: median over rounds of Mesa's wall ms / modelc's; CPU ratio likewise with both "
           "sides' process CPU time). Instructions: callgrind, `mc_front_mesh_frame` only (with everything it calls: "
           f"paper, lines, faces), a turn of {cg_frames} frames after the untimed one. mesh_lines.c, mesh_creases.c, line.c, sdepth.c, raster.c, "
-          f"mesh_frame.c: sha256 {lines_sha}.\n")
+          f"mesh_render.c, xform_vertex.c, pmesh.c, mesh_frame.c and the runtime's headers: sha256 {lines_sha}.\n")
     print("| mesh | lines per frame | silhouettes / creases / borders | line pixels | modelc ms | modelc CPU ms | "
           "Mesa wall ms | Mesa CPU ms | ratio | CPU ratio | edge list ms | modelc Ir per frame |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")

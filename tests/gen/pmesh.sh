@@ -168,7 +168,7 @@ same_as_openmesh() {
         "$(diff <(canon "$tmp/openmesh.txt") <(canon "$tmp/runtime.txt") | grep -c '^[<>]') faces differ"; fi
 }
 
-# budget_adds_up LABEL: budget.json's mesh figures (the mesh, its shades, its line arrays) agree with the arrays it lists
+# budget_adds_up LABEL: budget.json's mesh figures (the mesh, its face bits, its line arrays) agree with the arrays it lists
 budget_adds_up() {
     local label=$1 problems
     problems=$(python3 - "$bake/budget.json" <<'PY'
@@ -176,13 +176,13 @@ import json, sys
 b = json.load(open(sys.argv[1]))
 pm, arrays = b["pmesh"], b["flash"]["arrays"]
 lines = sum(v for k, v in arrays.items() if "_pm_opposite" in k or "_pm_edge_order" in k)
-shades = sum(v for k, v in arrays.items() if "_pm_shades" in k)
-mesh = sum(v for k, v in arrays.items() if "_pm_" in k) - lines - shades
+faceb = sum(v for k, v in arrays.items() if "_pm_face_bits" in k)
+mesh = sum(v for k, v in arrays.items() if "_pm_" in k) - lines - faceb
 ib, V, F, S, E, hb = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"], pm["edges"], pm["half_edge_bytes"]
 want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib + 3 * 36   # the arrays; the palette: 32 greys, 4 line colours
 p = []
 if mesh != pm["bytes"] or mesh != want: p.append(f"mesh arrays {mesh} bytes, budget says {pm['bytes']}, layout gives {want}")
-if shades != pm["shade_bytes"] or shades != F: p.append(f"shade arrays {shades} bytes, budget says {pm['shade_bytes']}, faces {F}")
+if faceb != pm["face_bytes"] or faceb != F: p.append(f"face bits {faceb} bytes, budget says {pm['face_bytes']}, faces {F}")
 if lines != pm["line_bytes"] or lines != F * 3 * hb + E * hb:
     p.append(f"line arrays {lines} bytes, budget says {pm['line_bytes']}, layout gives {F * 3 * hb + E * hb}")
 if hb != (2 if 4 * F + 3 < 65535 else 4): p.append(f"half_edge_bytes {hb} for {F} faces")

@@ -12,13 +12,16 @@
  *                             (mc_pmesh_lod_opposite) is the face holding the same two corners the other way
  *                             round, found by search in the level's faces, or none where no face
  *                             does; the edge order names every full-mesh edge once, borders first;
+ *                             mc_mesh_lines' crease bits kept through steps and jumps equal a fresh
+ *                             memory's, and those from the stored face bits equal those worked out
+ *                             with none (the full level, near it, halfway, the base);
  *                             one line "ok ..." or "not ok ..."
  *   pmesh_check faces N       the faces of level N, one line each: the corners' quantized positions
  *                             (x y z three times), in the format of modelc --dump-pmesh-level
  *   pmesh_check render N W H PERSPECTIVE YAW PITCH ROLL ZOOM EYE CULL   (zoom, eye Q16; xform.h)
  *                             level N drawn by mc_mesh_render (runtime/src/mesh_render.c) into a
  *                             W x H target inside guard zones (the same bytes with a vertex cache,
- *                             and with the bake's stored shades dropped), against the same faces composed in
+ *                             and with the bake's stored face bits dropped), against the same faces composed in
  *                             doubles: each face's corners as mc_mesh_face gives them (projected by
  *                             mc_xform_vertex, tested on its own, tests/unit/test_xform.c), covered
  *                             and depth-tested by the double
@@ -197,14 +200,14 @@ static int render_check(mc_pmesh_lod *lod, char **a)
         }
         free(vc), free(cc), free(dc);
     }
-    {   /* the bake stores every face's shade (pmesh.h shades); without them (a streamed mesh's null)
-         * every shade is worked out: the same bytes and stats */
-        if (!PM.shades) {
-            printf("not ok: the bake stores no shades\n");
+    {   /* the bake stores every face's shade (pmesh.h face_bits); without them (a streamed mesh's
+         * null) every shade is worked out: the same bytes and stats */
+        if (!PM.face_bits) {
+            printf("not ok: the bake stores no face bits\n");
             return 1;
         }
         mc_pmesh bare = PM;
-        bare.shades = 0;
+        bare.face_bits = 0;
         void *anc = malloc((size_t)PM.vertices * PM.index_bytes + 8);
         uint8_t *cc = malloc(px);
         uint16_t *dc = malloc(2 * px);
@@ -760,6 +763,29 @@ int main(int argc, char **argv)
             else crease_levels++;
         }
     }
+    /* the stored face bits (pmesh.h: the full mesh's crease bits, which a level's edge between two
+     * faces as in the full mesh keeps) against every crease worked out (a streamed mesh's null): the
+     * same memory at the full level, near it, halfway and at the base */
+    {
+        mc_pmesh bare = *pm;
+        bare.face_bits = 0;
+        mc_pmesh_lod bl;
+        void *anc_b = malloc((size_t)V * ib + 8);
+        if (!anc_b) return 2;
+        mc_pmesh_lod_init(&bl, &bare, anc_b);
+        const uint32_t at[5] = {V, V - 1u, V - (V - V0) / 100u, V0 + (V - V0) / 2u, V0};
+        for (unsigned i = 0; i < 5 && !problems; i++) {
+            mc_pmesh_lod_set(&lod, at[i]), mc_pmesh_lod_set(&bl, at[i]);
+            memset(lm_f, 0, lbytes), memset(lm_k, 0, lbytes);
+            mc_mesh_lines(&lod, &view, MC_LINES_ALL, &tiny, lm_f, NULL, NULL);
+            mc_mesh_lines(&bl, &view, MC_LINES_ALL, &tiny, lm_k, NULL, NULL);
+            const size_t cb = (size_t)(mc_lines_creases(lm_f, pm->faces) - lm_f), tb = sizeof *mc_lines_tag(lm_f);
+            if (!pm->face_bits) PROBLEM("the bake stores no face bits");
+            else if (memcmp(lm_k, lm_f, tb) || memcmp(lm_k + cb, lm_f + cb, lbytes - cb))
+                PROBLEM("level %u: the crease bits from the stored face bits differ from those worked out", at[i]);
+        }
+        free(anc_b);
+    }
     free(lm_k), free(lm_t), free(lm_f);
     /* dropping the table: the walks again */
     mc_pmesh_lod_neighbours(&tl, 0);
@@ -770,7 +796,8 @@ int main(int argc, char **argv)
     else
         printf("ok: %u vertices (%u base), %u faces (%u base), %u levels, %llu faces checked, neighbours at %u levels "
                "(a neighbour table's kept through the levels at %u, the same bytes as one set there), %u edges ordered, "
-               "crease bits kept through steps and jumps the same as fresh at %u levels\n",
+               "crease bits kept through steps and jumps the same as fresh at %u levels, and from the stored face bits the same as "
+               "worked out at 5\n",
                V, V0, pm->faces, pm->base_faces, nl, (unsigned long long)faces_checked, adjacency_levels, table_levels,
                pm->edges, crease_levels);
     free(levels), free(anc), free(rank), free(fcount), free(anc_t), free(anc_f), free(nbr_t), free(nbr_f);

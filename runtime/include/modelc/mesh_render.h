@@ -50,10 +50,10 @@
  * ancestor map for the present vertices: it saves work unless the level keeps fewer than about a
  * fiftieth of the part's vertices (bunny00's 37706: level 800).
  *
- * Shade: mesh_shade.h (a frontal light fixed to the model, MC_MESH_SHADES greys). A face the level
+ * Shade: mesh_face.h (a frontal light fixed to the model, MC_MESH_SHADES greys). A face the level
  * has as the full mesh has it (each corner its own ancestor) takes the shade the generator stored
- * for it when the part has them (pmesh.h `shades`); any other face's is worked out from its corners.
- * The same index either way.
+ * for it when the part has them (pmesh.h face_bits); any other face's is worked out from its
+ * corners. The same index either way.
  *
  * No heap, no floating point; the stack holds a few words per face, and xform.h's clipping buffers
  * (about 300 bytes) for a face with a flagged corner. No 64-bit division here (the clipper's cuts
@@ -67,7 +67,7 @@
 #include "raster.h"
 #include "target.h"
 #include "xform.h"
-#include "mesh_shade.h"   /* MC_MESH_SHADES */
+#include "mesh_face.h"   /* MC_MESH_SHADES, the stored face bits */
 
 /* palette index of the paper: faces of a lines-only drawing (mesh_lines.h), white */
 #define MC_MESH_PAPER MC_MESH_SHADES

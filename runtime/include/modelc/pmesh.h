@@ -35,9 +35,10 @@
  *   edge_order per edge of the full mesh, one half-edge (of the face created first): borders first,
  *              then by decreasing angle between the normals of its two faces, where the silhouette
  *              search starts (mesh_lines.h)
- *   shades     per face: one byte, its palette index in the full mesh (mesh_shade.h mc_mesh_shade_of
- *              of its stored corners), which a face of any level whose corners are their own
- *              ancestors keeps; may be null (a streamed mesh: then every shade is worked out)
+ *   face_bits  per face: one byte, its shade and its edges' crease bits in the full mesh (mesh_face.h),
+ *              which a face of any level whose corners are their own ancestors keeps (and an edge
+ *              whose faces both do, across the stored opposite); may be null (a streamed mesh: then
+ *              every shade and crease is worked out)
  * and, not chunked, the palette (mesh_render.h): MC_MESH_SHADES greys, then the line colours.
  *
  * Neighbours at level n (mc_pmesh_lod_opposite): a face g missing at n was removed by the collapse
@@ -71,7 +72,7 @@ typedef struct mc_pmesh {
     const mc_chunk *opposite;    /* F records of 3 * half_bytes */
     const mc_chunk *edge_order;  /* E records of half_bytes: the edges */
     const uint8_t *palette;      /* RGB triplets: the shades and line colours mesh drawings use */
-    const mc_chunk *shades;      /* F records of 1 byte, or null */
+    const mc_chunk *face_bits;   /* F records of 1 byte, or null */
 } mc_pmesh;
 
 /* A half-edge: edge k (corner k to corner k+1 mod 3) of face f is 4 f + k. */
