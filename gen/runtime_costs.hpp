@@ -52,7 +52,7 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"sdepth", 828, 828, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 3840, 3840, "flat-shaded faces of the current level in their stored shades or worked-out ones, clipped where needed (mesh_render.c)"},
     {"mesh_lines", 6452, 6452, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
-    {"mesh_creases", 3312, 3312, "the level's crease bits, brought over after a small level change, or from the stored ones (mesh_creases.c)"},
+    {"mesh_creases", 3632, 3632, "the level's crease bits, brought over after a small level change, or from the stored ones (mesh_creases.c)"},
     {"silhouette", 1196, 1196, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 // The edge part's own modules (--as edges): a tracker links them with fixed, raster, line and sdepth

@@ -1,5 +1,6 @@
 /* The line drawings' crease bits: see mesh_creases.h; mc_mesh_crease: mesh_lines.h. */
 #include "mesh_creases.h"
+#include "modelc/bytes.h"
 
 /* mesh_face.h's normal and crease test, each kept once (a firmware's flash) for the calls below */
 static void normal15(const int32_t p[3][3], int32_t n[3]) { mc_mesh_normal15(p, n); }
@@ -37,22 +38,34 @@ static MC_NOINLINE void face_normal(const mc_pmesh_lod *lod, uint32_t f, int32_t
 static int as_full(const mc_pmesh_lod *lod, uint32_t g)
 {
     const mc_pmesh *pm = lod->pm;
-    const unsigned ib = pm->index_bytes;
-    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, g);
-    for (unsigned k = 0; k < 3; k++) {
-        const uint32_t c = mc_le_index(r + k * ib, ib);
-        if (mc_pmesh_lod_vertex(lod, c) != c) return 0;
+    if (pm->index_bytes == 2) {
+        const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 6u, g);
+        const uint16_t *anc = (const uint16_t *)lod->anc;
+        const uint32_t a = mc_le16(r), b = mc_le16(r + 2), c = mc_le16(r + 4);
+        return ((anc[a] ^ a) | (anc[b] ^ b) | (anc[c] ^ c)) == 0;
     }
-    return 1;
+    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 12u, g);
+    const uint32_t *anc = (const uint32_t *)lod->anc;
+    const uint32_t a = mc_le32(r), b = mc_le32(r + 4), c = mc_le32(r + 8);
+    return ((anc[a] ^ a) | (anc[b] ^ b) | (anc[c] ^ c)) == 0;
 }
 
 /* Every crease bit of the level, each face's normal taken once for its later neighbours. An edge
  * between two faces as in the full mesh, across the opposite the arrays store, is as in the full
- * mesh too: its bit is the stored one (pmesh.h face_bits), where the part has them. */
+ * mesh too: its bit is the stored one (pmesh.h face_bits), where the part has them; at the full
+ * level every bit is, read in order. */
 static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
 {
     const mc_pmesh *pm = lod->pm;
-    for (uint32_t i = 0; i < (pm->faces + 1u) / 2u; i++) cr[i] = 0;
+    mc_bytes_zero(cr, (pm->faces + 1u) / 2u);
+    if (pm->face_bits && lod->level == pm->vertices) {
+        const unsigned shift = pm->record_shift;
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            const uint32_t b = pm->face_bits[f >> shift].data[f & ((UINT32_C(1) << shift) - 1u)];
+            cr[f >> 1] = (uint8_t)(cr[f >> 1] | (b >> 5) << ((f & 1u) * 4u));
+        }
+        return;
+    }
     for (uint32_t f = 0; f < lod->faces; f++) {
         int32_t n[3];
         int normal = 0;   /* n is f's (taken only for a face with a later neighbour) */
@@ -212,16 +225,17 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
 }
 
 /* Kept while the level is unchanged, brought over from the last level by creases_step when that is
- * near, else recomputed; then the tag. */
+ * near (but for the full level of a part with stored bits), else recomputed; then the tag. */
 void mc_mesh_creases_update(const mc_pmesh_lod *lod, uint8_t *mem)
 {
     const mc_pmesh *pm = lod->pm;
     const uint32_t tag = *mc_lines_tag(mem) & 0x7FFFFFFFu;
     if (tag == lod->level + 1u) return;
     uint8_t *cr = mc_lines_creases(mem, pm->faces);
-    if (!tag || !creases_step(lod, cr, tag - 1u)) creases_all(lod, cr);
-    uint32_t any = 0;
-    for (uint32_t i = 0; i < (lod->faces + 1u) / 2u; i++) any |= cr[i];
-    *mc_lines_tag(mem) = (lod->level + 1u) | (uint32_t)(any != 0) << 31;
+    /* (the full level from its stored bits costs less than any step to it) */
+    const int full = pm->face_bits && lod->level == pm->vertices;
+    if (!tag || full || !creases_step(lod, cr, tag - 1u)) creases_all(lod, cr);
+    const uint32_t any = (uint32_t)mc_bytes_any(cr, (lod->faces + 1u) / 2u);
+    *mc_lines_tag(mem) = (lod->level + 1u) | any << 31;
 }
 

@@ -64,7 +64,7 @@ done
 mv "$out/lod.txt.$$" "$out/lod.txt"
 cmds+=("$out/lod 1; $out/lod --neighbours 1   # $rounds rounds")
 # the crease bits after a level change of S splits (mesh_frames --step): the first frame's level has
-# them from the warm-up (every edge tested), each of the next 20 brings them over from the last
+# them from the warm-up (every edge taken), each of the next 20 brings them over from the last
 crease_levels="$V $(python3 -c "print(round(0.2 * $V))")"
 for n in $crease_levels; do
     for st in $steps; do
@@ -122,12 +122,15 @@ print(f"\nA level change (`tests/bench/pmesh_lod.c`: the base to the full level 
 print("\n### The crease bits after a level change\n")
 print("The line drawings keep each level's crease bits (`mc_mesh_lines`' memory, mesh_lines.h) and, when the level "
       "changed by under a 16th of its faces, bring them over from the last one by testing only the faces around the "
-      "vertices the splits between moved; else every edge is tested again. Instructions of `mc_mesh_creases_update` "
+      "vertices the splits between moved; else every edge is taken again (an edge between two faces the level has as "
+      "the full mesh has them, across the stored neighbour, from the bake's stored bits, pmesh.h face_bits; any other "
+      "from its faces' normals; at the full level every bit is the stored one, read in order, and a change to it is "
+      "never brought over). Instructions of `mc_mesh_creases_update` "
       "(callgrind `--toggle-collect=mc_mesh_creases_update`): `mesh_frames --style lines --vertices N --step S` at 64x48, "
-      "whose first frame's bits come from the warm-up frame (every edge tested) and whose next 20 frames alternate "
+      "whose first frame's bits come from the warm-up frame (every edge taken) and whose next 20 frames alternate "
       "between the level and the one S splits finer (coarser at the full level): a change brought over = (the run of "
       "21 frames - the run of 1) / 20.\n")
-print("| level (vertices) | faces | splits changed | Ir, every edge tested | Ir a change | times fewer |")
+print("| level (vertices) | faces | splits changed | Ir, every edge taken | Ir a change | times fewer |")
 print("|---:|---:|---:|---:|---:|---:|")
 def summary(n, st, k):
     return int(re.search(r"^summary: (\d+)", open(f"{out}/crease-{n}-{st}-{k}.cg").read(), re.M).group(1))

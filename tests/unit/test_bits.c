@@ -177,7 +177,7 @@ static void test_cursor(void **state)
     }
 }
 
-/* mc_bytes_copy, mc_bytes_or, mc_bytes_zero and mc_words_load_part against byte loops: every
+/* mc_bytes_copy, mc_bytes_or, mc_bytes_zero, mc_bytes_any and mc_words_load_part against byte loops: every
  * offset of both runs within a word, every length up to four words and a bit, in buffers whose bytes
  * outside the run must keep their values */
 static void test_bytes(void **state)
@@ -201,6 +201,17 @@ static void test_bytes(void **state)
                     for (unsigned i = 0; i < SIZE; i++)
                         if (d[i] != want[i]) fail_msg("op %u, offsets %u %u, length %u: byte %u is %02x, want %02x", op, od, os, n, i, d[i], want[i]);
                 }
+    /* mc_bytes_any: a run of zeros, then one byte set anywhere in it, or just outside either end */
+    for (unsigned o = 0; o < 8; o++)
+        for (unsigned n = 0; n <= 4 * MC_WORD_BYTES + 3; n++)
+            for (int at = -1; at <= (int)n; at++) {
+                for (unsigned i = 0; i < SIZE; i++) s[i] = 0xFF;
+                for (unsigned i = 0; i < n; i++) s[o + 16 + i] = 0;
+                const int inside = at >= 0 && at < (int)n;
+                if (inside) s[o + 16 + (unsigned)at] = (uint8_t)(1u << (mc_rng_next(&r) & 7u));
+                if (mc_bytes_any(s + o + 16, n) != inside)
+                    fail_msg("mc_bytes_any: offset %u, length %u, byte %d set: %d", o, n, at, mc_bytes_any(s + o + 16, n));
+            }
     for (unsigned o = 0; o < 8; o++)
         for (unsigned k = 0; k < MC_WORD_BYTES; k++) {
             for (unsigned i = 0; i < SIZE; i++) s[i] = (uint8_t)mc_rng_next(&r);

@@ -1,9 +1,9 @@
 /* Runs of bytes a machine word at a time: for the passes over whole image rows (imgedge.c, the
  * tracker's frame buffers) that would otherwise touch every byte on its own.
  *
- * Promise: mc_bytes_copy, mc_bytes_or and mc_bytes_zero do what their byte loops would, on any
- * alignment and any length, reading and writing only the n bytes given (copy and or: the two runs
- * must not overlap); mc_words_load_part reads only the bytes it is given. With GCC or Clang on a little-endian target they move MC_WORD_BYTES bytes per step
+ * Promise: mc_bytes_copy, mc_bytes_or, mc_bytes_zero and mc_bytes_any do what their byte loops
+ * would, on any alignment and any length, reading and writing only the n bytes given (copy and or:
+ * the two runs must not overlap); mc_words_load_part reads only the bytes it is given. With GCC or Clang on a little-endian target they move MC_WORD_BYTES bytes per step
  * (8 where pointers are 64-bit, else 4) through a may_alias, byte-aligned word type, which is
  * neither an aliasing violation nor an unaligned-access fault (the compiler splits the access where
  * the target cannot do it unaligned); elsewhere (MC_WORDS 0) through the plain byte loops. No
@@ -69,6 +69,18 @@ MC_ALWAYS_INLINE void mc_bytes_zero(uint8_t *d, uint32_t n)
     for (; i + MC_WORD_BYTES <= n; i += MC_WORD_BYTES) mc_words_store(d + i, 0);
 #endif
     for (; i < n; i++) d[i] = 0;
+}
+
+/* 1 when any of the n bytes at p is not zero, else 0 */
+MC_ALWAYS_INLINE int mc_bytes_any(const uint8_t *p, uint32_t n)
+{
+    mc_word any = 0;
+    uint32_t i = 0;
+#if MC_WORDS
+    for (; i + MC_WORD_BYTES <= n; i += MC_WORD_BYTES) any |= mc_words_load(p + i);
+#endif
+    for (; i < n; i++) any |= p[i];
+    return any != 0;
 }
 
 #endif
