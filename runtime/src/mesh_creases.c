@@ -179,11 +179,12 @@ static int fan_once(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j
  * has a new face across, all of whose edges are taken; the third corner moved nothing), a vertex
  * once for a split's two faces; coarsened, the faces they made cleared and the faces around both ends of
  * each edge they merged (the faces now across those faces' edges 1 and 2, pmesh.h). Returns 0, to
- * recompute all, when that would cost about as much (the faces changed over a 16th of the level's:
- * a changed face costs some fifteen of the full pass's on bunny00, the fans of its vertices being
- * recomputed whole) or when an edge or a fan cannot be found. Each fan's vertex is taken once among
+ * recompute all, when that would cost about as much (the faces changed over a `share`th of the
+ * level's: a changed face costs some fifteen of the full pass's on bunny00, the fans of its vertices
+ * being recomputed whole, so 16; some 250 of the full level's read from stored bits, so 256 there)
+ * or when an edge or a fan cannot be found. Each fan's vertex is taken once among
  * the last few (fan_once). */
-static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
+static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from, uint32_t share)
 {
     const mc_pmesh *pm = lod->pm;
     const unsigned ib = pm->index_bytes, shift = pm->record_shift;
@@ -192,7 +193,7 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
     uint32_t nf = 0;
     for (uint32_t s = lo - pm->base_vertices; s < hi - pm->base_vertices; s++) {
         nf += mc_chunk_record(pm->splits, shift, ib + 1u, s)[ib];
-        if (nf > lod->faces / 16u) return 0;
+        if (nf > lod->faces / share) return 0;
     }
     const uint32_t limit = lod->faces < 1024u ? lod->faces : 1024u;
     recent_fans r = {{MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE, MC_NO_HALF_EDGE}, 0};
@@ -225,16 +226,16 @@ static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from)
 }
 
 /* Kept while the level is unchanged, brought over from the last level by creases_step when that is
- * near (but for the full level of a part with stored bits), else recomputed; then the tag. */
+ * near, else recomputed; then the tag. */
 void mc_mesh_creases_update(const mc_pmesh_lod *lod, uint8_t *mem)
 {
     const mc_pmesh *pm = lod->pm;
     const uint32_t tag = *mc_lines_tag(mem) & 0x7FFFFFFFu;
     if (tag == lod->level + 1u) return;
     uint8_t *cr = mc_lines_creases(mem, pm->faces);
-    /* (the full level from its stored bits costs less than any step to it) */
-    const int full = pm->face_bits && lod->level == pm->vertices;
-    if (!tag || full || !creases_step(lod, cr, tag - 1u)) creases_all(lod, cr);
+    /* (the full level from stored bits costs a few instructions a face: only small steps beat it) */
+    const uint32_t share = pm->face_bits && lod->level == pm->vertices ? 256u : 16u;
+    if (!tag || !creases_step(lod, cr, tag - 1u, share)) creases_all(lod, cr);
     const uint32_t any = (uint32_t)mc_bytes_any(cr, (lod->faces + 1u) / 2u);
     *mc_lines_tag(mem) = (lod->level + 1u) | any << 31;
 }

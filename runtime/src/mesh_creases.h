@@ -10,10 +10,11 @@
  * Promise: after mc_mesh_creases_update the tag and the crease bits are those of the current level,
  * the same bytes however the level was reached and whichever levels the memory saw before (a
  * function of the level, as pmesh.h's ancestor map is). Work: none while the level is unchanged;
- * after a change of under a 16th of the level's faces, the faces around the vertices the splits
- * between moved (the bits brought over); else every edge of the level, where an edge between two
- * faces as in the full mesh takes the part's stored bit (pmesh.h face_bits: no normals; at the full
- * level every edge does) and any other its faces' normals. Freestanding, no heap, bounded stack.
+ * after a change of under a 16th of the level's faces (a 256th to the full level of a part with
+ * stored bits), the faces around the vertices the splits between moved (the bits brought over);
+ * else every edge of the level, where an edge between two faces as in the full mesh takes the
+ * part's stored bit (pmesh.h face_bits: no normals; at the full level every bit is read in order)
+ * and any other its faces' normals. Freestanding, no heap, bounded stack.
  */
 #ifndef MODELC_MESH_CREASES_H
 #define MODELC_MESH_CREASES_H

@@ -124,8 +124,10 @@ int mc_mesh_crease(const int32_t a[3][3], const int32_t b[3][3], int32_t crease_
  * MC_MESH_LINES_BYTES(lod->pm->faces) bytes for this part, zeroed before the first call; the crease
  * bits it keeps (creases do not depend on the view) are kept while the level is unchanged, so a
  * frame at an unchanged level tests no crease, and brought over from the last call's level when it
- * is near (under a 16th of the faces changed: only the faces around the vertices the splits between
- * moved are tested), else tested anew; either way the same bits, a function of the level. cache:
+ * is near (under a 16th of the faces changed, a 256th to the full level of a part with stored face
+ * bits: only the faces around the vertices the splits between moved are tested), else taken anew
+ * (from the stored bits where a face and its neighbour are as in the full mesh, pmesh.h face_bits);
+ * either way the same bits, a function of the level. cache:
  * null, or the vertex cache mc_mesh_render filled drawing this level through the same view onto a
  * target of the same size (mesh_render.h; the same lines either way). Returns MC_OK, MC_ERR_ARG (a
  * null argument) or MC_ERR_SIZE (a side over MC_TARGET_MAX; nothing drawn). stats may be null. */
