@@ -343,7 +343,8 @@ if any(r for _, _, r, _ in mesh_rows):
       "`mc_pmesh_lod_fit` gives for a face budget of F0 + (F - F0) k / 8. Columns: lod = `mc_pmesh_lod_fit` from the "
       "previous frame's level; frame = `mc_front_mesh_frame` (clear, faces with back faces culled, lines, paper); "
       "shaded only = the same view and level drawn shaded (bench runs only, not checked), so lines = frame - shaded only "
-      "(for the lines style that includes the paper fill of the empty pixels); drawn = faces that covered a pixel; "
+      "for shaded+lines; for the lines style, which draws no face (the sparse depth buffer: the lines first, then the "
+      "faces only empty the line pixels they hide, and paper), lines = the whole frame; drawn = faces that covered a pixel; "
       "line pixels = pixels of the drawn lines before the depth test.")
     A("")
 for b, cpu, co, head in mesh_rows:
@@ -360,7 +361,8 @@ for b, cpu, co, head in mesh_rows:
     agg = dict(sd=0, sdrawn=0, sfaces=0, ld=0, lpix=0, ledges=0)
     for i in sorted(co):
         c = co[i]
-        lines = c["draw"] - c["shaded"] if c["style"] != "shaded" else 0
+        # a lines frame that drew no face took the sparse depth buffer's way: all of it is the line drawing
+        lines = 0 if c["style"] == "shaded" else c["draw"] if c["style"] == "lines" and c["drawn"] == 0 else c["draw"] - c["shaded"]
         if c["style"] == "shaded":
             agg["sd"] += c["draw"]; agg["sdrawn"] += c["drawn"]; agg["sfaces"] += c["faces"]
         elif c["faces"] == head.get("faces"):
@@ -376,8 +378,9 @@ for b, cpu, co, head in mesh_rows:
       f"the level, culled or not, clear included). Lines at the full level (frames 1 and 5): "
       f"**{agg['ld'] / max(agg['lpix'], 1):,.0f} instructions per line pixel**, {agg['ld'] / max(agg['ledges'], 1):,.0f} per "
       "edge of the level: the line drawing's cost is its scan of every edge of the level (each face's facing, each "
-      "edge's neighbour and kind, and here every edge's crease test: frame 1 is the first line drawing and frame 5 "
-      "follows one at the base level, too far to bring the crease bits over, mesh_lines.h), not its pixels, so the figure per "
+      "edge's neighbour and kind, and here the crease bits taken anew: frame 1 is the first line drawing and frame 5 "
+      "follows one at the base level, too far to bring them over, mesh_lines.h; at the full level they are read from the "
+      "bake's stored face bits), not its pixels, so the figure per "
       "pixel falls as the screen grows and the one per edge is the one that carries over.")
     A("")
 A("### Against the source paper")
