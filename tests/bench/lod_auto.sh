@@ -4,8 +4,8 @@
 # moved in one change to the face budget a power law through the last two levels' times predicts
 # meets it; the change timed apart from the frame) over a full turn, per
 # style and target: the median frame time and the frames within 10 % of the target after the first
-# 20. A target is a share of the style's full-level median time in the same run (a target above
-# that is met by drawing everything, and holds nothing). The line style's targets are run twice, one
+# 20. A target is a share of the style's full-level median time in the same run, the least of three
+# runs' (a target above that is met by drawing everything, and holds nothing). The line style's targets are run twice, one
 # after the other: by the viewer of a plain bake and by that of a bake keeping the level's neighbour
 # table (--mesh-neighbours), whose coarse levels cost less and whose level changes cost more.
 # Writes a marked section of RESULTS.md.
@@ -28,12 +28,19 @@ src=build/models/$model.off
 run make -s view MODEL="$src" NAME="$name" BAKE_OPTS="--as both" >"$out/build.log"
 run make -s view MODEL="$src" NAME="${name}_nbr" BAKE_OPTS="--as both --mesh-neighbours" >>"$out/build.log"
 : >"$out/rows.txt"
-rm -f "$out"/*-full.txt
+rm -f "$out"/*-full.txt "$out"/*-full-[123].txt
 for st in $targets; do
     style=${st%%:*} share=${st#*:}
     view=build/$name/$name-view
-    # the style's full level first (once), whose median time the targets are shares of
-    [ -f "$out/$style-full.txt" ] || run "$view" --mode "$style" --bench "$frames" >"$out/$style-full.txt"
+    # the style's full level first (once), whose median time the targets are shares of: the least of
+    # three runs' medians (one slow run would put 0.9 of it above what the full level takes, a
+    # target no level holds)
+    if [ ! -f "$out/$style-full.txt" ]; then
+        for k in 1 2 3; do run "$view" --mode "$style" --bench "$frames" >"$out/$style-full-$k.txt"; done
+        least=$(for k in 1 2 3; do echo "$(sed -n 's/^ms per frame (median): //p' "$out/$style-full-$k.txt") $k"; done |
+            sort -g | head -n 1 | cut -d' ' -f2)
+        cp "$out/$style-full-$least.txt" "$out/$style-full.txt"
+    fi
     full=$(sed -n 's/^ms per frame (median): //p' "$out/$style-full.txt")
     t=$(python3 -c "print(round($share * $full, 3))")
     bakes=plain
@@ -58,7 +65,8 @@ print(f"`tests/bench/lod_auto.sh` (`make bench`, `make bench-lod-auto`): {model}
       "levels change): a level change in the line styles costs far more than its splits (the crease bits brought over "
       "or recomputed), so it is made seldom, and it is timed apart from the frames, which teach the level's time. "
       "Held: frames after the first 20 whose time is within 10 % of the target. Each target is a share of the style's "
-      "full-level median time in the same run (a target above that is met by drawing everything). The lines targets "
+      "full-level median time in the same run, the least of three runs' (a target above that is met by drawing "
+      "everything, and holds nothing). The lines targets "
       "twice, one run after the other: the plain bake's viewer, and that of the same bake with `--mesh-neighbours` "
       "(neighbour table: the level's neighbours kept in RAM, so coarse levels draw their lines without walking across "
       "removed faces, and every level change keeps the table).\n")
