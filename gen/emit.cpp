@@ -74,9 +74,9 @@ struct Plan {
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const int kPmArrayCount = 7, kPmFaceBits = 4, kPmLineArrays = 5;   // the line drawings' arrays: from index 5 on
-const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "face_bits", "opposite",
-                                               "edge_order"};
+const int kPmArrayCount = 7, kPmLineArrays = 4, kPmFaceBits = 6;   // the line drawings': 4 and 5
+const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "opposite", "edge_order",
+                                               "face_bits"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
 
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
@@ -116,8 +116,8 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
         p.pm_bytes[kPmFaceBits].push_back(static_cast<uint8_t>(bits));
     }
     for (const auto &f : pm.opposite)
-        for (uint32_t h : f) put(p.pm_bytes[5], h, p.half_bytes);
-    for (uint32_t h : pm.edge_order) put(p.pm_bytes[6], h, p.half_bytes);
+        for (uint32_t h : f) put(p.pm_bytes[4], h, p.half_bytes);
+    for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, p.half_bytes);
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
 }
 
@@ -178,16 +178,16 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         const size_t largest = 3 * std::max(p.index_bytes, p.half_bytes);
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
         const char *whats[kPmArrayCount] = {"vertex positions", "vertex parents and subtree sizes", "splits",
-                                            "face corners", "face shades and crease bits", "opposite half-edges",
-                                            "edges, sharpest first"};
-        const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes, 1,
-                                              3 * p.half_bytes, p.half_bytes};
+                                            "face corners", "opposite half-edges", "edges, sharpest first",
+                                            "face shades and crease bits"};
+        const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes,
+                                              3 * p.half_bytes, p.half_bytes, 1};
         for (int k = 0; k < kPmArrayCount; k++) {
             add_list(p.pm_bytes[k], record[k] << p.record_shift, nullptr, pm_list(name, k),
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
-            if (k >= kPmLineArrays) p.pm_line_data += p.pm_bytes[k].size();
             if (k == kPmFaceBits) p.pm_face_data += p.pm_bytes[k].size();
+            else if (k >= kPmLineArrays) p.pm_line_data += p.pm_bytes[k].size();
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();

@@ -34,22 +34,6 @@ static MC_NOINLINE void face_normal(const mc_pmesh_lod *lod, uint32_t f, int32_t
     normal15((const int32_t(*)[3])p, n);
 }
 
-/* Whether face g (present) is as in the full mesh: each corner its own ancestor at the level. */
-static int as_full(const mc_pmesh_lod *lod, uint32_t g)
-{
-    const mc_pmesh *pm = lod->pm;
-    if (pm->index_bytes == 2) {
-        const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 6u, g);
-        const uint16_t *anc = (const uint16_t *)lod->anc;
-        const uint32_t a = mc_le16(r), b = mc_le16(r + 2), c = mc_le16(r + 4);
-        return ((anc[a] ^ a) | (anc[b] ^ b) | (anc[c] ^ c)) == 0;
-    }
-    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 12u, g);
-    const uint32_t *anc = (const uint32_t *)lod->anc;
-    const uint32_t a = mc_le32(r), b = mc_le32(r + 4), c = mc_le32(r + 8);
-    return ((anc[a] ^ a) | (anc[b] ^ b) | (anc[c] ^ c)) == 0;
-}
-
 /* Every crease bit of the level, each face's normal taken once for its later neighbours. An edge
  * between two faces as in the full mesh, across the opposite the arrays store, is as in the full
  * mesh too: its bit is the stored one (pmesh.h face_bits), where the part has them; at the full
@@ -70,14 +54,14 @@ static void creases_all(const mc_pmesh_lod *lod, uint8_t *cr)
         int32_t n[3];
         int normal = 0;   /* n is f's (taken only for a face with a later neighbour) */
         /* f's stored bits, with bit 8 set, when they may hold; else 0 */
-        const uint32_t stored = pm->face_bits && as_full(lod, f)
+        const uint32_t stored = pm->face_bits && mc_pmesh_lod_face_as_full(lod, f)
                                     ? 0x100u | *mc_chunk_record(pm->face_bits, pm->record_shift, 1u, f) : 0u;
         const uint8_t *across = mc_chunk_record(pm->opposite, pm->record_shift, 3u * pm->half_bytes, f);
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t h = MC_HALF_EDGE(f, k), s = mc_pmesh_half(across + k * pm->half_bytes, pm->half_bytes);
             const uint32_t o = lod->nbr ? mc_pmesh_lod_opposite(lod, h) : mc_pmesh_lod_across(lod, s);
             if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) < f) continue;
-            if (stored && o == s && as_full(lod, MC_HALF_FACE(o))) {
+            if (stored && o == s && mc_pmesh_lod_face_as_full(lod, MC_HALF_FACE(o))) {
                 if (MC_FACE_BITS_CREASE(stored, k)) put_crease(cr, h, 1), put_crease(cr, o, 1);
                 continue;
             }

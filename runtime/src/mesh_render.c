@@ -173,17 +173,13 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
         const uint8_t *fb = pm->face_bits ? pm->face_bits[f0 >> shift].data : 0;
         const uint32_t end = faces - f0 < chunk ? faces - f0 : chunk;
         for (uint32_t i = 0; i < end; i++, r += 3u * ib) {
-            uint32_t c[3], moved;   /* moved: 0 when every corner is its own ancestor */
+            uint32_t c[3];
             if (ib == 2) {
                 const uint16_t *anc = (const uint16_t *)lod->anc;
-                const uint32_t s0 = mc_le16(r), s1 = mc_le16(r + 2), s2 = mc_le16(r + 4);
-                c[0] = anc[s0], c[1] = anc[s1], c[2] = anc[s2];
-                moved = (s0 ^ c[0]) | (s1 ^ c[1]) | (s2 ^ c[2]);
+                c[0] = anc[mc_le16(r)], c[1] = anc[mc_le16(r + 2)], c[2] = anc[mc_le16(r + 4)];
             } else {
                 const uint32_t *anc = (const uint32_t *)lod->anc;
-                const uint32_t s0 = mc_le32(r), s1 = mc_le32(r + 4), s2 = mc_le32(r + 8);
-                c[0] = anc[s0], c[1] = anc[s1], c[2] = anc[s2];
-                moved = (s0 ^ c[0]) | (s1 ^ c[1]) | (s2 ^ c[2]);
+                c[0] = anc[mc_le32(r)], c[1] = anc[mc_le32(r + 4)], c[2] = anc[mc_le32(r + 8)];
             }
             int32_t p[3][3];
             mc_raster_vertex v[3];
@@ -207,7 +203,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
             if (!may_cover(v, rflags)) continue;
             unsigned color;
             if (paper) color = MC_MESH_PAPER;
-            else if (fb && !moved) color = MC_FACE_BITS_SHADE(fb[i]);
+            else if (fb && mc_pmesh_lod_face_as_full(lod, f0 + i)) color = MC_FACE_BITS_SHADE(fb[i]);
             else {
                 if (cache) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
                 color = mc_mesh_shade(p[0], p[1], p[2]);
