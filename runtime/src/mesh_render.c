@@ -203,7 +203,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
             if (!may_cover(v, rflags)) continue;
             unsigned color;
             if (paper) color = MC_MESH_PAPER;
-            else if (fb && mc_pmesh_lod_face_as_full(lod, f0 + i)) color = MC_FACE_BITS_SHADE(fb[i]);
+            else if (fb && mc_pmesh_corners_as_full(r, ib, c)) color = MC_FACE_BITS_SHADE(fb[i]);
             else {
                 if (cache) position(pm, c[0], p[0]), position(pm, c[1], p[1]), position(pm, c[2], p[2]);
                 color = mc_mesh_shade(p[0], p[1], p[2]);

@@ -156,20 +156,23 @@ MC_ALWAYS_INLINE void mc_pmesh_lod_face(const mc_pmesh_lod *lod, uint32_t f, uin
     }
 }
 
-/* 1 when face f (0 .. lod->faces-1) is as in the full mesh at the current level: each stored corner
- * its own ancestor. Such a face keeps what the full mesh gives it (its face_bits). */
+/* 1 when the face whose corner record is r (index width ib) has the corners c at the current level
+ * (their ancestors) that it has in the full mesh: each stored corner its own ancestor. Such a face
+ * keeps what the full mesh gives it (its face_bits). For a pass that has mapped the corners already. */
+MC_ALWAYS_INLINE int mc_pmesh_corners_as_full(const uint8_t *r, unsigned ib, const uint32_t c[3])
+{
+    if (ib == 2) return ((mc_le16(r) ^ c[0]) | (mc_le16(r + 2) ^ c[1]) | (mc_le16(r + 4) ^ c[2])) == 0;
+    return ((mc_le32(r) ^ c[0]) | (mc_le32(r + 4) ^ c[1]) | (mc_le32(r + 8) ^ c[2])) == 0;
+}
+
+/* mc_pmesh_corners_as_full of face f (0 .. lod->faces-1) at the current level. */
 MC_ALWAYS_INLINE int mc_pmesh_lod_face_as_full(const mc_pmesh_lod *lod, uint32_t f)
 {
     const mc_pmesh *pm = lod->pm;
-    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * pm->index_bytes, f);
-    if (pm->index_bytes == 2) {
-        const uint16_t *anc = (const uint16_t *)lod->anc;
-        const uint32_t a = mc_le16(r), b = mc_le16(r + 2), c = mc_le16(r + 4);
-        return ((anc[a] ^ a) | (anc[b] ^ b) | (anc[c] ^ c)) == 0;
-    }
-    const uint32_t *anc = (const uint32_t *)lod->anc;
-    const uint32_t a = mc_le32(r), b = mc_le32(r + 4), c = mc_le32(r + 8);
-    return ((anc[a] ^ a) | (anc[b] ^ b) | (anc[c] ^ c)) == 0;
+    uint32_t c[3];
+    mc_pmesh_lod_face(lod, f, c);
+    return mc_pmesh_corners_as_full(mc_chunk_record(pm->corners, pm->record_shift, 3u * pm->index_bytes, f),
+                                    pm->index_bytes, c);
 }
 
 /* mc_pmesh_lod_opposite's walk across removed faces from o, the stored opposite of a half-edge, whose
