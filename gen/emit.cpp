@@ -50,7 +50,7 @@ static_assert(pm_packed_bytes(37706, 75408) == MC_STREAM_PACKED_BYTES(37706, 754
 
 uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F) {
     const uint64_t ib = pm_widths(V, F).index_bytes;   // the record sizes of pmesh_arrays below
-    return 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F;
+    return 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F + F;   // and the face bits the reader works out
 }
 
 namespace {

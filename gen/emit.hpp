@@ -59,9 +59,9 @@ struct PmWidths {
     unsigned index_bytes, half_bytes;
 };
 PmWidths pm_widths(uint64_t vertices, uint64_t faces);
-// The bytes of the arrays the shaded style reads (positions, tree, splits, corners) for V vertices,
-// V0 of them in the base, and F faces: what a stream's receive buffer holds after the stream
-// (stream.h MC_STREAM_MESH_BYTES).
+// The bytes of the arrays the shaded style reads (positions, tree, splits, corners, face bits) for V
+// vertices, V0 of them in the base, and F faces: what a stream's receive buffer holds after the
+// stream (stream.h MC_STREAM_MESH_BYTES).
 uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F);
 // What a packed stream's reader needs after them to decode (stream.h MC_STREAM_PACKED_BYTES, here in 64
 // bits so that the caller can see a buffer past 4 GiB).

@@ -1,6 +1,7 @@
 /* A version-2 or -3 stream's mesh records (modelc/stream.h): the progressive mesh, base first, then its
  * splits, then its adjacency, placed into pmesh.h's arrays in the caller's buffer. */
 #include "stream_mesh.h"
+#include "modelc/mesh_face.h"
 
 #define SHIFT 30   /* one chunk per array: every index fits below 2^30 (checked with the header) */
 #define LIMIT (UINT32_C(1) << SHIFT)
@@ -29,7 +30,7 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
         hb != (4u * F + 3u < 65535u ? 2u : 4u) || closed > 1 || p[23] != 0 || palette < 1 || palette > 256)
         return mc_stream_fail(s, MC_STREAM_ERR_MESH, at_record + 8);
     const uint64_t need = (uint64_t)((s->total + 3u) & ~3u) + 6u * (uint64_t)V + 2u * ib * (uint64_t)V +
-                          (ib + 1u) * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F +
+                          (ib + 1u) * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F + F +
                           (s->version == 3 ? 24u * (uint64_t)F + 12u * (uint64_t)V + 4u : 0u);   /* MC_STREAM_PACKED_BYTES */
     if (need > s->cap) return mc_stream_fail(s, MC_STREAM_ERR_SIZE, at_record + 8);
     pm->vertices = V, pm->base_vertices = V0, pm->faces = F, pm->base_faces = F0, pm->edges = E;
@@ -38,14 +39,15 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
     pm->crease_cos = (int16_t)le(p + 24, 2);
     pm->palette_size = (uint16_t)palette;
     pm->palette = p + 28;
-    const uint32_t bytes[4] = {6u * V, 2u * ib * V, (ib + 1u) * (V - V0), 3u * ib * F};
+    /* in the buffer: positions, tree, splits, corners, face bits; the adjacency stays where it lies */
+    const uint32_t bytes[7] = {6u * V, 2u * ib * V, (ib + 1u) * (V - V0), 3u * ib * F, 0, 0, F};
     uint8_t *a = area(s);
-    for (unsigned k = 0; k < 6; k++) {
-        s->mesh_chunks[k][0].data = k < 4 ? a : 0;
-        s->mesh_chunks[k][0].size = k < 4 ? bytes[k] : 0;
+    for (unsigned k = 0; k < 7; k++) {
+        s->mesh_chunks[k][0].data = bytes[k] ? a : 0;
+        s->mesh_chunks[k][0].size = bytes[k];
         s->mesh_chunks[k][1].data = 0;
         s->mesh_chunks[k][1].size = 0;
-        if (k < 4) a += bytes[k];
+        a += bytes[k];
     }
     /* absent vertices have subtree size 0: what the base and the splits check against */
     for (uint8_t *z = area(s); z < a; z++) *z = 0;
@@ -165,6 +167,9 @@ int mc_stream_adjacency(mc_stream *s, const uint8_t *opposite, const uint8_t *or
     s->mesh_chunks[5][0].data = order, s->mesh_chunks[5][0].size = hb * pm->edges;
     pm->opposite = s->mesh_chunks[4];
     pm->edge_order = s->mesh_chunks[5];
+    /* the mesh is whole: its faces' shades and crease bits, as a bake stores them */
+    mc_mesh_face_bits(pm, (uint8_t *)s->mesh_chunks[6][0].data);
+    pm->face_bits = s->mesh_chunks[6];
     s->mesh_state = 3;
     return MC_STREAM_OK;
 }

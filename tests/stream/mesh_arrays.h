@@ -7,7 +7,7 @@
 #include <string.h>
 #include <modelc/pmesh.h>
 
-/* NULL when positions, tree, splits, corners, opposites and edge order hold the same bytes (*bytes:
+/* NULL when positions, tree, splits, corners, opposites, edge order and face bits hold the same bytes (*bytes:
  * how many were compared); else the name of the first array that differs, its record in *record. */
 static const char *mesh_arrays_differ(const mc_pmesh *a, const mc_pmesh *b, uint32_t *record, uint64_t *bytes)
 {
@@ -16,15 +16,21 @@ static const char *mesh_arrays_differ(const mc_pmesh *a, const mc_pmesh *b, uint
     const struct { const char *name; const mc_chunk *a, *b; uint32_t n, size; } list[] = {
         {"positions", a->positions, b->positions, V, 6},  {"tree", a->tree, b->tree, V, 2 * ib},
         {"splits", a->splits, b->splits, S, ib + 1},      {"corners", a->corners, b->corners, F, 3 * ib},
-        {"opposite", a->opposite, b->opposite, F, 3 * hb}, {"edge order", a->edge_order, b->edge_order, a->edges, hb}};
+        {"opposite", a->opposite, b->opposite, F, 3 * hb}, {"edge order", a->edge_order, b->edge_order, a->edges, hb},
+        {"face bits", a->face_bits, b->face_bits, F, 1}};
     *bytes = 0;
-    for (unsigned k = 0; k < sizeof list / sizeof list[0]; k++)
+    for (unsigned k = 0; k < sizeof list / sizeof list[0]; k++) {
+        if (!list[k].a || !list[k].b) {   /* (one has no such array) */
+            *record = 0;
+            return list[k].name;
+        }
         for (uint32_t i = 0; i < list[k].n; i++, *bytes += list[k].size)
             if (memcmp(mc_chunk_record(list[k].a, a->record_shift, list[k].size, i),
                        mc_chunk_record(list[k].b, b->record_shift, list[k].size, i), list[k].size)) {
                 *record = i;
                 return list[k].name;
             }
+    }
     return NULL;
 }
 

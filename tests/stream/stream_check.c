@@ -19,7 +19,8 @@
  *       mesh level the bytes allow, and its frames equal the baked mesh's at that level (--lod):
  *       shaded at two views, and once the adjacency is in, lines at one
  *   stream_check arrays FILE.mcs            (a version-2 or -3 stream) the whole stream read: the mesh
- *       arrays it fills (positions, tree, splits, corners, adjacency) equal the bake's byte for byte;
+ *       arrays it fills (positions, tree, splits, corners, adjacency) and the face bits it works out
+ *       equal the bake's byte for byte;
  *       prints the base's and splits' bytes per split
  *   stream_check first FILE.mcs             prints the bytes before the first drawable level and each
  *       further level, as shares of the stream (and the mesh's first level and lines, if any)
@@ -424,7 +425,7 @@ static int arrays(void)
         printf("FAIL arrays: %s record %u differs from the bake's\n", differs, record);
         return -1;
     }
-    printf("ok arrays: version %u, the reader's mesh arrays (positions, tree, splits, corners, opposites, edge order: "
+    printf("ok arrays: version %u, the reader's mesh arrays (positions, tree, splits, corners, opposites, edge order, face bits: "
            "%llu bytes) equal the bake's; base and splits %.2f bytes per split in the stream (%llu bytes, %u splits)\n",
            file[4], (unsigned long long)bytes, S ? (double)level_bytes / S : 0.0, (unsigned long long)level_bytes, S);
     return 0;

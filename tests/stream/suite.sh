@@ -3,8 +3,8 @@
 # at depth 8 (cones, 218 colours), kitten at depth 6 with one palette entry (a point set: no cones, no
 # colours), and bunny00 --as both (version 2: the progressive mesh too, 6,000 faces; every mesh prefix
 # draws its level as the bake's --lod, shaded, and lines once the adjacency is in), and the same with
-# --stream-splits packed (version 3); the mesh arrays a whole stream fills equal the bake's byte for
-# byte. budget.json's
+# --stream-splits packed (version 3); the mesh arrays a whole stream fills, and the face bits its reader
+# works out, equal the bake's byte for byte. budget.json's
 # stream figures against the file; every prefix draws its deepest complete level exactly as the bake
 # does; damaged streams (10^4 of kitten's, 2,000 of bunny00's) refused without a fault; forged streams (valid CRCs) refused by the
 # reader's checks or drawn without a fault; the first picture's share of the bytes; the fuzzer's
@@ -70,7 +70,7 @@ bud = json.load(open(sys.argv[1]))
 if 'pmesh' in bud:   # the buffer: the stream, then the mesh arrays (stream.h MC_STREAM_MESH_BYTES)
     m = bud['pmesh']
     V, V0, F, ib = m['vertices'], m['base_vertices'], m['faces'], m['index_bytes']
-    want = (size + 3) // 4 * 4 + 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F
+    want = (size + 3) // 4 * 4 + 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F + F   # and the face bits
     if open(sys.argv[2], 'rb').read(6)[4] == 3:   # packed splits: the decoder's state (MC_STREAM_PACKED_BYTES)
         want += 24 * F + 12 * V + 4
     first = [k for k in ends if k.startswith('mesh')]

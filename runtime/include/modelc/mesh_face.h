@@ -17,6 +17,9 @@
  * Face bits (pmesh.h face_bits): bits 0-4 the face's shade, bit 5 + k set when its edge k is a crease
  * in the full mesh (a border edge never is).
  *
+ * mc_mesh_face_bits works the byte out for every face of a whole progressive mesh, for a mesh that came
+ * without them (a stream: stream.h); the same bytes the generator stores.
+ *
  * Promise: every function here is a function of its arguments alone (the shade and a normal's
  * magnitude do not depend on the corners' order), in integers, the same on every target and in C++:
  * the generator includes this header to store the face bits, so a drawing that reads them and one
@@ -103,5 +106,12 @@ MC_ALWAYS_INLINE int mc_mesh_crease_normals(const int32_t n[3], const int32_t m[
     if (crease_cos >= 0) return d < 0 || d2 < rhs;
     return d < 0 && d2 > rhs;
 }
+
+struct mc_pmesh;
+
+/* The face bits of each face of pm (pmesh.h, its corners, positions and opposites whole) into
+ * bits[0 .. pm->faces - 1]: what the generator stores for the same arrays. Work: the faces and the
+ * edges, each edge's two normals once. */
+void mc_mesh_face_bits(const struct mc_pmesh *pm, uint8_t *bits);
 
 #endif

@@ -37,8 +37,9 @@
  *              search starts (mesh_lines.h)
  *   face_bits  per face: one byte, its shade and its edges' crease bits in the full mesh (mesh_face.h),
  *              which a face of any level whose corners are their own ancestors keeps (and an edge
- *              whose faces both do, across the stored opposite); may be null (a streamed mesh: then
- *              every shade and crease is worked out)
+ *              whose faces both do, across the stored opposite); may be null (then every shade and
+ *              crease is worked out; a stream's reader works them out once its mesh is whole:
+ *              mc_mesh_face_bits)
  * and, not chunked, the palette (mesh_render.h): MC_MESH_SHADES greys, then the line colours.
  *
  * Neighbours at level n (mc_pmesh_lod_opposite): a face g missing at n was removed by the collapse

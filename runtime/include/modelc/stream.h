@@ -12,7 +12,8 @@
  * splits in order: mc_stream_pmesh describes it as soon as the base has come, and every level from
  * the base to mc_stream_mesh_level is the baked mesh's level, vertex for vertex and face for face
  * (so the shaded style draws the same pixels as the bake at that --lod); the line styles also need
- * the adjacency, which comes last. The mesh's records are checked for what the level of detail and
+ * the adjacency, which comes last, and with it the reader works out the face bits the bake stores
+ * (mesh_face.h mc_mesh_face_bits: the same bytes), so the whole mesh draws as the bake does. The mesh's records are checked for what the level of detail and
  * the renderers index with (every index in range, a split's vertex new and inside its parent's
  * subtree, the parent already present, face counts, opposites that pair up), so a forged stream
  * can draw wrong but never out of bounds.
@@ -100,10 +101,11 @@
 
 /* A version-2 stream's mesh arrays in the buffer, after the stream's bytes (rounded up to 4):
  * positions, tree records, splits and corners of a mesh of V vertices (V0 in the base), F faces,
- * index width ib. The adjacency is read where it lies in the stream. */
+ * index width ib, and the face bits (pmesh.h), worked out once the adjacency has come. The
+ * adjacency is read where it lies in the stream. */
 #define MC_STREAM_MESH_BYTES(V, V0, F, ib) \
     (6u * (uint32_t)(V) + 2u * (ib) * (uint32_t)(V) + ((ib) + 1u) * ((uint32_t)(V) - (uint32_t)(V0)) + \
-     3u * (ib) * (uint32_t)(F))
+     3u * (ib) * (uint32_t)(F) + (uint32_t)(F))
 
 /* What a version-3 stream's reader needs in the buffer after the mesh arrays to decode packed
  * splits: per corner of the F faces its vertex at the decoded level and the next corner of that
@@ -152,7 +154,7 @@ typedef struct mc_stream {
     uint8_t mesh_state;            /* 0 none yet, 1 header, 2 base, 3 adjacency (complete) */
     uint32_t splits_read, faces_read;
     mc_pmesh pmesh;
-    mc_chunk mesh_chunks[6][2];    /* positions, tree, splits, corners, opposite, edge order */
+    mc_chunk mesh_chunks[7][2];    /* positions, tree, splits, corners, opposite, edge order, face bits */
     /* a version-3 stream's decoder (stream_packed.c), in the buffer after the mesh arrays: per
      * corner its vertex at the decoded level and the next corner of that vertex; per vertex its
      * first corner, its next child, a mark; the last mark given */
@@ -178,8 +180,8 @@ const mc_octree *mc_stream_octree(const mc_stream *s);
 
 /* A version-2 stream's mesh part: NULL before its base has come. Its levels from the base to
  * mc_stream_mesh_level are drawable (mc_pmesh_lod_init, then mc_pmesh_lod_set up to that level: the
- * descriptor's vertices is the full mesh's, so a front end clamps); its opposite and edge_order
- * are NULL until the adjacency has come, and the line styles need them. Valid while s and its
+ * descriptor's vertices is the full mesh's, so a front end clamps); its opposite, edge_order and
+ * face_bits are NULL until the adjacency has come, and the line styles need the first two. Valid while s and its
  * buffer live; feeding more raises the level. */
 const mc_pmesh *mc_stream_pmesh(const mc_stream *s);
 uint32_t mc_stream_mesh_level(const mc_stream *s);
