@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Unit tests of the runtime: fixed point, sine table and rotation, bits, rng and chunk cursors, the
-# progressive mesh's level of detail (pmesh) and the host viewer's automatic choice of it (lod auto),
+# progressive mesh's level of detail (pmesh), a face's shade and crease bits (mesh face) and the host viewer's automatic choice of it (lod auto),
 # clipped lines (line), the sparse depth buffer and its
 # line and face passes (sdepth), and against their double-precision references image edges
 # (imgedge), the pinhole camera and pose (camera), filled triangles (raster), vertex projection
@@ -190,6 +190,7 @@ build_and_run "unit: bits, child lists in nibbles: " test_bits-n4 "@-DMC_CHILD_B
 build_and_run "unit: bits, portable C99: " test_bits-c99 "@-DMC_BITS_BUILTINS=0"
 build_and_run "unit: bits, builtins without assembly: " test_bits-noasm "@-DMC_BITS_ASM=0"
 build_and_run "unit: pmesh: " test_pmesh
+build_and_run "unit: mesh face: " test_mesh_face
 # the host viewer's automatic level of detail (host code: doubles, libm), in a simulated loop
 build_and_run "unit: lod auto: " test_lod_auto runtime/front/host/lod_auto.c
 # test_line counts the walk's steps (MC_LINE_STEP_HOOK) to check work follows on-target pixels: its

@@ -12,7 +12,8 @@
  * greys.
  *
  * Crease: the angle between the two faces' normals exceeds the part's crease angle, decided on each
- * normal's 15 leading bits (mc_mesh_normal15) with the cosine's square compared in 64 bits.
+ * normal's 15 leading bits (mc_mesh_normal15: a small face's normal scaled up to them) with the
+ * cosine's square compared in 64 bits: within 1/1000 of the crease angle's cosine either answer.
  *
  * Face bits (pmesh.h face_bits): bits 0-4 the face's shade, bit 5 + k set when its edge k is a crease
  * in the full mesh (a border edge never is).
@@ -38,8 +39,10 @@
 #define MC_FACE_BITS_SHADE(b) ((unsigned)(b) & 31u)
 #define MC_FACE_BITS_CREASE(b, k) (((unsigned)(b) >> (5u + (k))) & 1u)
 
-/* The palette index of a face with corners p0, p1, p2 (unit-cube Q16, pmesh.h). */
-MC_ALWAYS_INLINE unsigned mc_mesh_shade_of(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3])
+/* The palette index of a face whose normal's 15 leading bits have magnitudes x, y, z (each below
+ * 2^15: the components divided by 2^s toward zero, s the smallest shift that leaves every one below
+ * 2^15; only their squares count, so only their magnitudes). */
+MC_ALWAYS_INLINE unsigned mc_mesh_shade_xyz(uint64_t x, uint64_t y, uint64_t z)
 {
     /* ((2j - 1) / 62)^2 in Q30, j = 1 .. 31: |n.z| / |n| at least (j - 1/2) / 31 means shade j or more */
     static const uint32_t limit[MC_MESH_SHADES - 1] = {
@@ -48,16 +51,6 @@ MC_ALWAYS_INLINE unsigned mc_mesh_shade_of(const int32_t p0[3], const int32_t p1
         424859863, 469552551, 516479873, 565641830, 617038421, 670669646, 726535506, 784636000, 844971128,
         907540891, 972345289, 1039384320,
     };
-    const int64_t a0 = (int64_t)p1[0] - p0[0], a1 = (int64_t)p1[1] - p0[1], a2 = (int64_t)p1[2] - p0[2];
-    const int64_t b0 = (int64_t)p2[0] - p0[0], b1 = (int64_t)p2[1] - p0[1], b2 = (int64_t)p2[2] - p0[2];
-    /* |a|, |b| < 2^17 a component: |n| < 2^35 */
-    const uint64_t m0 = mc_mag64(a1 * b2 - a2 * b1), m1 = mc_mag64(a2 * b0 - a0 * b2), m2 = mc_mag64(a0 * b1 - a1 * b0);
-    const uint64_t m = m0 | m1 | m2;
-    if (m == 0) return MC_MESH_SHADES / 2;
-    /* the normal's 15 leading bits: each component divided by 2^s toward zero, s the smallest shift
-     * that leaves every one below 2^15; only their squares count, so only their magnitudes */
-    const unsigned s = mc_fit_shift(m, 15u);
-    const uint64_t x = m0 >> s, y = m1 >> s, z = m2 >> s;
     /* squares below 2^30, so the products below stay in 64 bits */
     const uint64_t len2 = x * x + y * y + z * z, z2 = z * z << 30;
     if (len2 == 0) return MC_MESH_SHADES / 2;
@@ -71,9 +64,25 @@ MC_ALWAYS_INLINE unsigned mc_mesh_shade_of(const int32_t p0[3], const int32_t p1
     return k;
 }
 
-/* The normal of the face with corners p, its components shifted right together (towards zero, signs
- * kept) until each fits 15 bits; all zero for a face with no area. The edges (17 bits) and the
- * components (15 bits) are int32, so that a 32-bit core takes each product in one step. */
+/* The palette index of a face with corners p0, p1, p2 (unit-cube Q16, pmesh.h). */
+MC_ALWAYS_INLINE unsigned mc_mesh_shade_of(const int32_t p0[3], const int32_t p1[3], const int32_t p2[3])
+{
+    const int64_t a0 = (int64_t)p1[0] - p0[0], a1 = (int64_t)p1[1] - p0[1], a2 = (int64_t)p1[2] - p0[2];
+    const int64_t b0 = (int64_t)p2[0] - p0[0], b1 = (int64_t)p2[1] - p0[1], b2 = (int64_t)p2[2] - p0[2];
+    /* |a|, |b| < 2^17 a component: |n| < 2^35 */
+    const uint64_t m0 = mc_mag64(a1 * b2 - a2 * b1), m1 = mc_mag64(a2 * b0 - a0 * b2), m2 = mc_mag64(a0 * b1 - a1 * b0);
+    const uint64_t m = m0 | m1 | m2;
+    if (m == 0) return MC_MESH_SHADES / 2;
+    const unsigned s = mc_fit_shift(m, 15u);
+    return mc_mesh_shade_xyz(m0 >> s, m1 >> s, m2 >> s);
+}
+
+/* The normal of the face with corners p, its components scaled together by a power of two so that
+ * the largest magnitude has 15 bits (2^14 .. 2^15 - 1): shifted right (towards zero, signs kept)
+ * when larger, left (exactly) when smaller; all zero for a face with no area. A small face's normal
+ * is scaled up so that the crease test's products keep their precision (without it a face a few
+ * units across lost every crease under 90 degrees). The edges (17 bits) and the components (15
+ * bits) are int32, so that a 32-bit core takes each product in one step. */
 MC_ALWAYS_INLINE void mc_mesh_normal15(const int32_t p[3][3], int32_t n[3])
 {
     int32_t a[3], b[3];
@@ -84,12 +93,21 @@ MC_ALWAYS_INLINE void mc_mesh_normal15(const int32_t p[3][3], int32_t n[3])
     w[2] = (int64_t)a[0] * b[1] - (int64_t)a[1] * b[0];
     const uint64_t m = mc_mag64(w[0]) | mc_mag64(w[1]) | mc_mag64(w[2]);
     const unsigned s = mc_fit_shift(m, 15u);   /* (m below 2^35) */
+    /* m below 2^15 (s 0): the left shift that brings its top bit to bit 14 (none for 0) */
+    const unsigned up = s || m == 0 ? 0u : mc_clz32((uint32_t)m) - 17u;
     /* w / 2^s truncated, as a shift of the magnitude with the sign put back (a 64-bit division is a
-     * library call on a 32-bit core; the sign is a coin toss to a predictor) */
+     * library call on a 32-bit core; the sign is a coin toss to a predictor), or w 2^up */
     for (int i = 0; i < 3; i++) {
         const uint32_t neg = 0u - (uint32_t)(w[i] < 0);
-        n[i] = (int32_t)((((uint32_t)(mc_mag64(w[i]) >> s)) ^ neg) - neg);
+        n[i] = (int32_t)(((((uint32_t)(mc_mag64(w[i]) >> s)) << up) ^ neg) - neg);
     }
+}
+
+/* mc_mesh_shade_of of the face whose mc_mesh_normal15 normal is n: its components' magnitudes are
+ * the 15 leading bits mc_mesh_shade_of takes, so the same index. */
+MC_ALWAYS_INLINE unsigned mc_mesh_shade_normal15(const int32_t n[3])
+{
+    return mc_mesh_shade_xyz(mc_mag64(n[0]), mc_mag64(n[1]), mc_mag64(n[2]));
 }
 
 /* Whether faces with mc_mesh_normal15 normals n and m meet at more than the crease angle whose
