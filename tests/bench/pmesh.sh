@@ -111,7 +111,7 @@ print("The same mesh as a stream (`--emit stream --as both --depth 1`), its spli
       "ones (tests/stream/suite.sh checks them byte for byte against the bake), keeping the level's mesh in the "
       "receive buffer while it does (`MC_STREAM_PACKED_BYTES`: 24 B a face and 12 B a vertex more). Bytes per split: "
       "the base and split records, framing included, over the splits; the adjacency's record likewise. Read: `mc_stream_feed` of the whole file in "
-      "one piece, every record checked (CRC-32 included), over the splits (tests/bench/stream_decode.c; per round "
+      "one piece, every record checked (CRC-32 included) and, once the adjacency is in, the face bits worked out (`mc_mesh_face_bits`: the bake's stored shades and crease bits), over the splits (tests/bench/stream_decode.c; per round "
       "plain then packed, median over rounds). Level change: `mc_pmesh_lod_set` from the base to the full level "
       "and back on the arrays the stream filled. Ir: callgrind, `mc_stream_packed_splits` only, per split.\n")
 print("| mesh | plain B per split | packed B per split | .pm B per split | adjacency B per split, plain / packed | "
