@@ -312,10 +312,18 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
         uint32_t bits = m == 32u ? 0xFFFFFFFFu : (UINT32_C(1) << m) - 1u;
         if (skip) bits &= facing_window(facing, f0 + i0, lod->faces) | (any_crease ? crease_window(cr, f0 + i0, m) : 0u);
         while (bits) {
-            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i;
+            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i, fc = mc_lines_face_creases(cr, f);
+            const uint8_t *q = r + i * 3u * hb;
             bits &= bits - 1u;
-            edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, front(facing, f), mc_lines_face_creases(cr, f),
-                      r + i * 3u * hb, hb, walk);
+            if (skip && !walk && fc == 0) {   /* (then f faces front) */
+                /* most such faces have three front neighbours and offer nothing: three reads and no
+                 * branch an edge for them (a border, which a closed part has none of, goes the long way) */
+                const uint32_t o0 = mc_pmesh_half(q, hb), o1 = mc_pmesh_half(q + hb, hb), o2 = mc_pmesh_half(q + 2u * hb, hb);
+                if (((o0 + 1u) && (o1 + 1u) && (o2 + 1u)) &&
+                    (front(facing, MC_HALF_FACE(o0)) & front(facing, MC_HALF_FACE(o1)) & front(facing, MC_HALF_FACE(o2))))
+                    continue;
+            }
+            edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, front(facing, f), fc, q, hb, walk);
         }
     }
 #else
