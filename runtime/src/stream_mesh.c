@@ -43,7 +43,7 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
     const uint32_t bytes[7] = {6u * V, 2u * ib * V, (ib + 1u) * (V - V0), 3u * ib * F, 0, 0, F};
     uint8_t *a = area(s);
     for (unsigned k = 0; k < 7; k++) {
-        s->mesh_chunks[k][0].data = bytes[k] ? a : 0;
+        s->mesh_chunks[k][0].data = k < 4 || k == 6 ? a : 0;   /* (the adjacency's: where it lies, later) */
         s->mesh_chunks[k][0].size = bytes[k];
         s->mesh_chunks[k][1].data = 0;
         s->mesh_chunks[k][1].size = 0;
