@@ -234,5 +234,7 @@ step "the automatic level of detail against frame-time targets: section appended
 tests/bench/lod_auto.sh tests/bench/RESULTS.md >"$RES/lod_auto.log"
 step "the level of detail's neighbour table in line drawings: section appended"
 tests/bench/neighbours.sh tests/bench/RESULTS.md >"$RES/neighbours.log"
+step "face groups' normal cones, what a hierarchy could spare the line drawings: section appended"
+tests/bench/cone_groups.sh tests/bench/RESULTS.md >"$RES/cone_groups.log"
 step "wrote tests/bench/RESULTS.md"
 sed -n '/^## Summary/,/^## Commands/p' tests/bench/RESULTS.md | sed '$d'
