@@ -7,7 +7,7 @@
  *   - crease: mc_mesh_crease_normals of random faces' normals is "the angle between them exceeds the
  *     crease angle" in doubles, at several crease angles, except within 1/1000 of the cosine;
  *   - face bits: a cube of twelve triangles, closed and with two faces left out (a border), in chunks
- *     of two records: each face's shade (31 facing +-z, 0 otherwise), every cube edge a crease at 60
+ *     of two records, with 2- and 4-byte index and half-edge fields: each face's shade (31 facing +-z, 0 otherwise), every cube edge a crease at 60
  *     degrees, no diagonal and no border edge one; the bits written over whatever the buffer held.
  * PCG32 with fixed seeds: runs are deterministic.
  */
@@ -153,7 +153,10 @@ static const int32_t cube_v[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1,
 static const uint32_t cube_f[12][3] = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                                        {2, 3, 7}, {2, 7, 6}, {1, 2, 6}, {1, 6, 5}, {0, 4, 7}, {0, 7, 3}};
 
-static void put16(uint8_t *p, uint32_t v) { p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8); }
+static void put_le(uint8_t *p, uint32_t v, unsigned bytes)
+{
+    for (unsigned k = 0; k < bytes; k++) p[k] = (uint8_t)(v >> (8 * k));
+}
 
 /* Records of `size` bytes in chunks of two records (record_shift 1), each chunk its own allocation. */
 static mc_chunk *chunks(const uint8_t *bytes, uint32_t records, uint32_t size)
@@ -178,31 +181,32 @@ static void free_chunks(mc_chunk *c, uint32_t records)
 }
 
 /* The cube with faces [0, F) (F 12: closed; 10: the last two, the -x side, left out, whose edges
- * become borders), its bits checked. */
-static void cube(uint32_t F)
+ * become borders), with index and half-edge fields ib and hb bytes wide, its bits checked. */
+static void cube(uint32_t F, unsigned ib, unsigned hb)
 {
-    uint8_t pos[8 * 6], cor[12 * 6], opp[12 * 6];
+    uint8_t pos[8 * 6], cor[12 * 12], opp[12 * 12];
+    const uint32_t none = hb == 2 ? 0xFFFFu : 0xFFFFFFFFu;
     for (uint32_t v = 0; v < 8; v++)
-        for (int i = 0; i < 3; i++) put16(pos + 6 * v + 2 * i, (uint32_t)(32768 + 16384 * cube_v[v][i]));
+        for (int i = 0; i < 3; i++) put_le(pos + 6 * v + 2 * i, (uint32_t)(32768 + 16384 * cube_v[v][i]), 2);
     uint32_t edges = 0;
     for (uint32_t f = 0; f < F; f++)
         for (uint32_t k = 0; k < 3; k++) {
-            put16(cor + 6 * f + 2 * k, cube_f[f][k]);
+            put_le(cor + 3 * ib * f + ib * k, cube_f[f][k], ib);
             /* across edge k (a to b): the face with edge b to a */
             const uint32_t a = cube_f[f][k], b = cube_f[f][(k + 1) % 3];
-            uint32_t o = 0xFFFFu;
+            uint32_t o = none;
             for (uint32_t g = 0; g < F; g++)
                 for (uint32_t j = 0; j < 3; j++)
                     if (cube_f[g][j] == b && cube_f[g][(j + 1) % 3] == a) o = MC_HALF_EDGE(g, j);
-            put16(opp + 6 * f + 2 * k, o);
-            edges += o == 0xFFFFu || MC_HALF_FACE(o) > f;
+            put_le(opp + 3 * hb * f + hb * k, o, hb);
+            edges += o == none || MC_HALF_FACE(o) > f;
         }
     mc_pmesh pm;
     memset(&pm, 0, sizeof pm);
     pm.vertices = pm.base_vertices = 8, pm.faces = pm.base_faces = F, pm.edges = edges;
-    pm.index_bytes = 2, pm.half_bytes = 2, pm.record_shift = 1, pm.closed = F == 12;
+    pm.index_bytes = (uint8_t)ib, pm.half_bytes = (uint8_t)hb, pm.record_shift = 1, pm.closed = F == 12;
     pm.crease_cos = 8192;   /* 60 degrees */
-    pm.positions = chunks(pos, 8, 6), pm.corners = chunks(cor, F, 6), pm.opposite = chunks(opp, F, 6);
+    pm.positions = chunks(pos, 8, 6), pm.corners = chunks(cor, F, 3 * ib), pm.opposite = chunks(opp, F, 3 * hb);
     uint8_t bits[12];
     memset(bits, 0xFF, sizeof bits);
     mc_mesh_face_bits(&pm, bits);
@@ -217,18 +221,19 @@ static void cube(uint32_t F)
             const uint32_t a = cube_f[f][k], b = cube_f[f][(k + 1) % 3];
             int differ = 0;   /* a cube edge: its ends differ in one coordinate; a diagonal: in two */
             for (int i = 0; i < 3; i++) differ += cube_v[a][i] != cube_v[b][i];
-            const uint32_t o = (uint32_t)opp[6 * f + 2 * k] | (uint32_t)opp[6 * f + 2 * k + 1] << 8;
-            const unsigned want = o != 0xFFFFu && differ == 1;
+            const uint32_t o = mc_le_index(opp + 3 * hb * f + hb * k, hb);
+            const unsigned want = o != none && differ == 1;
             if (MC_FACE_BITS_CREASE(bits[f], k) != want)
-                fail_msg("%u faces: face %u edge %u (%u-%u) crease bit %u, want %u", F, f, k, a, b,
+                fail_msg("%u faces, widths %u/%u: face %u edge %u (%u-%u) crease bit %u, want %u", F, ib, hb, f, k, a, b,
                          MC_FACE_BITS_CREASE(bits[f], k), want);
         }
     }
     free_chunks((mc_chunk *)pm.positions, 8), free_chunks((mc_chunk *)pm.corners, F), free_chunks((mc_chunk *)pm.opposite, F);
 }
 
-static void test_face_bits_closed(void **state) { (void)state; cube(12); }
-static void test_face_bits_border(void **state) { (void)state; cube(10); }
+/* both field widths (pmesh.h: 4-byte indices past 65,535 vertices, 4-byte half-edges past 16,383 faces) */
+static void test_face_bits_closed(void **state) { (void)state; cube(12, 2, 2), cube(12, 4, 4), cube(12, 2, 4); }
+static void test_face_bits_border(void **state) { (void)state; cube(10, 2, 2), cube(10, 4, 4), cube(10, 2, 4); }
 
 int main(void)
 {
