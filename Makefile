@@ -89,9 +89,12 @@ gen: $(MODELC)
 $(MODELC): $(GEN_OBJ)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) -o $@ $^ $(GEN_LIBS)
+# -MMD: each object also depends on the runtime headers it includes (mesh_face.h's code, the layouts'
+# macros), which GEN_HDR does not list
 $(BUILD)/gen/%.o: gen/%.cpp $(GEN_HDR)
 	@mkdir -p $(@D)
-	$(CXX) $(CXXFLAGS) $(GEN_CXXFLAGS) -c -o $@ $<
+	$(CXX) $(CXXFLAGS) $(GEN_CXXFLAGS) -MMD -MP -c -o $@ $<
+-include $(GEN_OBJ:.o=.d)
 # the templates are compiled into the generator, so build/bin/modelc runs from anywhere
 $(BUILD)/gen/templates.cpp: $(TEMPLATES) Makefile
 	@mkdir -p $(@D)

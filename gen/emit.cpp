@@ -95,29 +95,22 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
-    // each face's shade and crease bits with the runtime's own arithmetic (mesh_face.h), so that a
-    // face drawn with them looks as one whose shade and creases are worked out
-    std::vector<std::array<int32_t, 3>> normals(pm.faces.size());
-    std::vector<uint8_t> shades(pm.faces.size());
-    for (size_t g = 0; g < pm.faces.size(); g++) {
-        int32_t q[3][3];
-        for (int k = 0; k < 3; k++)
-            for (int i = 0; i < 3; i++) q[k][i] = int32_t(pm.positions[pm.faces[g][k]][i]) - 32768;
-        shades[g] = static_cast<uint8_t>(mc_mesh_shade_of(q[0], q[1], q[2]));
-        mc_mesh_normal15(q, normals[g].data());
-    }
-    for (size_t g = 0; g < pm.faces.size(); g++) {
-        unsigned bits = shades[g];
-        for (unsigned k = 0; k < 3; k++) {
-            const uint32_t o = pm.opposite[g][k];
-            if (o != kNoHalfEdge && mc_mesh_crease_normals(normals[g].data(), normals[o >> 2].data(), pm.crease_cos))
-                bits |= 1u << (5 + k);
-        }
-        p.pm_bytes[kPmFaceBits].push_back(static_cast<uint8_t>(bits));
-    }
     for (const auto &f : pm.opposite)
         for (uint32_t h : f) put(p.pm_bytes[4], h, p.half_bytes);
     for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, p.half_bytes);
+    // each face's shade and crease bits by the runtime's own code (mesh_face.h mc_mesh_face_bits, which
+    // a stream's reader calls too) over the arrays just laid out, one chunk each
+    const auto whole = [&](int k) { return mc_chunk{p.pm_bytes[k].data(), static_cast<uint32_t>(p.pm_bytes[k].size())}; };
+    const mc_chunk positions = whole(0), corners = whole(3), opposite = whole(4);
+    mc_pmesh view{};
+    view.faces = static_cast<uint32_t>(pm.faces.size());
+    view.index_bytes = static_cast<uint8_t>(ib);
+    view.half_bytes = static_cast<uint8_t>(p.half_bytes);
+    view.record_shift = 30;   // one chunk: far more records than any bake has
+    view.crease_cos = pm.crease_cos;
+    view.positions = &positions, view.corners = &corners, view.opposite = &opposite;
+    p.pm_bytes[kPmFaceBits].resize(pm.faces.size());
+    mc_mesh_face_bits(&view, p.pm_bytes[kPmFaceBits].data());
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
 }
 

@@ -361,8 +361,8 @@ for b, cpu, co, head in mesh_rows:
     agg = dict(sd=0, sdrawn=0, sfaces=0, ld=0, lpix=0, ledges=0)
     for i in sorted(co):
         c = co[i]
-        # a lines frame that drew no face took the sparse depth buffer's way: all of it is the line drawing
-        lines = 0 if c["style"] == "shaded" else c["draw"] if c["style"] == "lines" and c["drawn"] == 0 else c["draw"] - c["shaded"]
+        # a lines frame takes the sparse depth buffer's way (it draws no face): all of it is the line drawing
+        lines = 0 if c["style"] == "shaded" else c["draw"] if c["style"] == "lines" else c["draw"] - c["shaded"]
         if c["style"] == "shaded":
             agg["sd"] += c["draw"]; agg["sdrawn"] += c["drawn"]; agg["sfaces"] += c["faces"]
         elif c["faces"] == head.get("faces"):

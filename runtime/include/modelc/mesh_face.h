@@ -18,8 +18,8 @@
  * Face bits (pmesh.h face_bits): bits 0-4 the face's shade, bit 5 + k set when its edge k is a crease
  * in the full mesh (a border edge never is).
  *
- * mc_mesh_face_bits works the byte out for every face of a whole progressive mesh, for a mesh that came
- * without them (a stream: stream.h); the same bytes the generator stores.
+ * mc_mesh_face_bits works the byte out for every face of a whole progressive mesh: the generator
+ * stores what it gives, and a stream's reader (stream.h) calls it once its mesh is whole.
  *
  * Promise: every function here is a function of its arguments alone (the shade and a normal's
  * magnitude do not depend on the corners' order), in integers, the same on every target and in C++:
@@ -33,6 +33,7 @@
 #include <stdint.h>
 #include "bits.h"    /* mc_fit_shift */
 #include "fixed.h"   /* mc_mag64 */
+#include "pmesh.h"   /* mc_mesh_face_bits: the part's arrays */
 
 #define MC_MESH_SHADES 32   /* a shade fits the face bits' low 5 bits */
 
@@ -125,11 +126,43 @@ MC_ALWAYS_INLINE int mc_mesh_crease_normals(const int32_t n[3], const int32_t m[
     return d < 0 && d2 > rhs;
 }
 
-struct mc_pmesh;
+/* Face f's mc_mesh_normal15 normal in the full mesh of pm. */
+static inline void mc_mesh_face_normal15(const mc_pmesh *pm, uint32_t f, int32_t n[3])
+{
+    const unsigned ib = pm->index_bytes;
+    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, f);
+    int32_t p[3][3];
+    for (unsigned k = 0; k < 3; k++)
+        mc_pmesh_position_at(mc_chunk_record(pm->positions, pm->record_shift, 6u, mc_le_index(r + k * ib, ib)), p[k]);
+    mc_mesh_normal15((const int32_t(*)[3])p, n);
+}
 
-/* The face bits of each face of pm (pmesh.h, its corners, positions and opposites whole) into
- * bits[0 .. pm->faces - 1]: what the generator stores for the same arrays. Work: the faces and the
- * edges, each edge's two normals once. */
-void mc_mesh_face_bits(const struct mc_pmesh *pm, uint8_t *bits);
+/* The face bits of each face of pm (pmesh.h: its corners, positions and opposites whole) into
+ * bits[0 .. pm->faces - 1]: what a bake stores (the generator calls this on its own arrays) and what
+ * a stream's reader works out once its mesh is whole. Each face's normal once, its shade from it;
+ * each edge once, from its face of the lower number, with the normal of the face across. Inline here
+ * so that the generator (C++) and the reader share it; the one runtime file that calls it,
+ * stream_mesh.c, holds its code. */
+static inline void mc_mesh_face_bits(const mc_pmesh *pm, uint8_t *bits)
+{
+    const unsigned hb = pm->half_bytes;
+    for (uint32_t f = 0; f < pm->faces; f++) bits[f] = 0;
+    for (uint32_t f = 0; f < pm->faces; f++) {
+        int32_t n[3];
+        mc_mesh_face_normal15(pm, f, n);
+        bits[f] = (uint8_t)(bits[f] | mc_mesh_shade_normal15(n));
+        const uint8_t *r = mc_chunk_record(pm->opposite, pm->record_shift, 3u * hb, f);
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t o = mc_pmesh_half(r + k * hb, hb);
+            if (o == MC_NO_HALF_EDGE || MC_HALF_FACE(o) <= f) continue;
+            int32_t m[3];
+            mc_mesh_face_normal15(pm, MC_HALF_FACE(o), m);
+            if (mc_mesh_crease_normals(n, m, pm->crease_cos)) {
+                bits[f] = (uint8_t)(bits[f] | 1u << (5u + k));
+                bits[MC_HALF_FACE(o)] = (uint8_t)(bits[MC_HALF_FACE(o)] | 1u << (5u + MC_HALF_EDGE_INDEX(o)));
+            }
+        }
+    }
+}
 
 #endif

@@ -13,10 +13,10 @@
  * the base to mc_stream_mesh_level is the baked mesh's level, vertex for vertex and face for face
  * (so the shaded style draws the same pixels as the bake at that --lod); the line styles also need
  * the adjacency, which comes last, and with it the reader works out the face bits the bake stores
- * (mesh_face.h mc_mesh_face_bits: the same bytes), so the whole mesh draws as the bake does. The mesh's records are checked for what the level of detail and
- * the renderers index with (every index in range, a split's vertex new and inside its parent's
- * subtree, the parent already present, face counts, opposites that pair up), so a forged stream
- * can draw wrong but never out of bounds.
+ * (mesh_face.h mc_mesh_face_bits: the same bytes), so the whole mesh draws as the bake does. The
+ * mesh's records are checked for what the level of detail and the renderers index with (every
+ * index in range, a split's vertex new and inside its parent's subtree, the parent already present,
+ * face counts, opposites that pair up), so a forged stream can draw wrong but never out of bounds.
  * A stream that turns out truncated, corrupted, of another version or larger than the buffer stops
  * the reader with an error (sticky, with the byte offset where it was found); what was drawable
  * before stays drawable, so a front end keeps its last good frame. No heap: the caller owns the
@@ -181,8 +181,8 @@ const mc_octree *mc_stream_octree(const mc_stream *s);
 /* A version-2 stream's mesh part: NULL before its base has come. Its levels from the base to
  * mc_stream_mesh_level are drawable (mc_pmesh_lod_init, then mc_pmesh_lod_set up to that level: the
  * descriptor's vertices is the full mesh's, so a front end clamps); its opposite, edge_order and
- * face_bits are NULL until the adjacency has come, and the line styles need the first two. Valid while s and its
- * buffer live; feeding more raises the level. */
+ * face_bits are NULL until the adjacency has come, and the line styles need the first two. Valid
+ * while s and its buffer live; feeding more raises the level. */
 const mc_pmesh *mc_stream_pmesh(const mc_stream *s);
 uint32_t mc_stream_mesh_level(const mc_stream *s);
 
