@@ -50,7 +50,8 @@ static_assert(pm_packed_bytes(37706, 75408) == MC_STREAM_PACKED_BYTES(37706, 754
 
 uint64_t pm_draw_bytes(uint64_t V, uint64_t V0, uint64_t F) {
     const uint64_t ib = pm_widths(V, F).index_bytes;   // the record sizes of pmesh_arrays below
-    return 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F + F;   // and the face bits the reader works out
+    // and the face bits the reader works out, and the splits' face-count bits
+    return 6 * V + ib * V + ib * (V - V0) + 3 * ib * F + F + (V - V0 + 7) / 8;
 }
 
 namespace {
@@ -74,12 +75,13 @@ struct Plan {
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const int kPmArrayCount = 7, kPmLineArrays = 4, kPmFaceBits = 6;   // the line drawings': 4 and 5
+const int kPmArrayCount = 8, kPmLineArrays = 4, kPmFaceBits = 6, kPmSplitFaces = 7;   // the line drawings': 4 and 5
 const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "opposite", "edge_order",
-                                               "face_bits"};
+                                               "face_bits", "split_faces"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
 
-// The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide.
+// The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide;
+// all but the split faces' bits, whose layout follows the chunks' record_shift (split_face_bits).
 void pmesh_arrays(const PMesh &pm, Plan &p) {
     const PmWidths wd = pm_widths(pm.vertices(), pm.faces.size());
     const unsigned ib = wd.index_bytes;
@@ -91,8 +93,8 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     };
     for (const auto &q : pm.positions)
         for (uint16_t c : q) put(p.pm_bytes[0], c, 2);
-    for (size_t v = 0; v < pm.vertices(); v++) put(p.pm_bytes[1], pm.parent[v], ib), put(p.pm_bytes[1], pm.size[v], ib);
-    for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib), put(p.pm_bytes[2], pm.split_faces[s], 1);
+    for (size_t v = 0; v < pm.vertices(); v++) put(p.pm_bytes[1], pm.size[v], ib);
+    for (size_t s = 0; s < pm.split_vertex.size(); s++) put(p.pm_bytes[2], pm.split_vertex[s], ib);
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
     for (const auto &f : pm.opposite)
@@ -112,6 +114,18 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     p.pm_bytes[kPmFaceBits].resize(pm.faces.size());
     mc_mesh_face_bits(&view, p.pm_bytes[kPmFaceBits].data());
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
+}
+
+// The split faces' bits (pmesh.h split_faces): a chunk's 2^shift splits in (2^shift + 7) / 8 bytes.
+std::vector<uint8_t> split_face_bits(const PMesh &pm, unsigned shift) {
+    const size_t per = (size_t(1) << shift), chunk_bytes = (per + 7) / 8, S = pm.split_faces.size();
+    std::vector<uint8_t> b((S + per - 1) / per * chunk_bytes, 0);
+    for (size_t s = 0; s < S; s++) {
+        const size_t i = s & (per - 1);
+        if (pm.split_faces[s] == 2) b[s / per * chunk_bytes + i / 8] |= static_cast<uint8_t>(1u << (i & 7));
+    }
+    if (S % per) b.resize(S / per * chunk_bytes + (S % per + 7) / 8);   // the last chunk: its splits' bytes
+    return b;
 }
 
 // A monochrome octree (one palette entry) stores no colours: every level's colour list is NULL and
@@ -170,17 +184,19 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         pmesh_arrays(*opt.pmesh, p);
         const size_t largest = 3 * std::max(p.index_bytes, p.half_bytes);
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
-        const char *whats[kPmArrayCount] = {"vertex positions", "vertex parents and subtree sizes", "splits",
+        p.pm_bytes[kPmSplitFaces] = split_face_bits(*opt.pmesh, p.record_shift);
+        const char *whats[kPmArrayCount] = {"vertex positions", "vertex subtree sizes", "split vertices",
                                             "face corners", "opposite half-edges", "edges, sharpest first",
-                                            "face shades and crease bits"};
-        const size_t record[kPmArrayCount] = {6, 2 * p.index_bytes, p.index_bytes + 1, 3 * p.index_bytes,
-                                              3 * p.half_bytes, p.half_bytes, 1};
+                                            "face shades and crease bits", "split face counts"};
+        const size_t per = size_t(1) << p.record_shift;
+        const size_t chunk[kPmArrayCount] = {6 * per, p.index_bytes * per, p.index_bytes * per, 3 * p.index_bytes * per,
+                                             3 * p.half_bytes * per, p.half_bytes * per, per, (per + 7) / 8};
         for (int k = 0; k < kPmArrayCount; k++) {
-            add_list(p.pm_bytes[k], record[k] << p.record_shift, nullptr, pm_list(name, k),
+            add_list(p.pm_bytes[k], chunk[k], nullptr, pm_list(name, k),
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
             if (k == kPmFaceBits) p.pm_face_data += p.pm_bytes[k].size();
-            else if (k >= kPmLineArrays) p.pm_line_data += p.pm_bytes[k].size();
+            else if (k == kPmLineArrays || k == kPmLineArrays + 1) p.pm_line_data += p.pm_bytes[k].size();
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();

@@ -171,12 +171,11 @@ static int fan_once(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t g, uint32_t j
 static int creases_step(const mc_pmesh_lod *lod, uint8_t *cr, uint32_t from, uint32_t share)
 {
     const mc_pmesh *pm = lod->pm;
-    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
     const uint32_t to = lod->level, lo = from < to ? from : to, hi = from < to ? to : from;
     if (lo < pm->base_vertices || hi > pm->vertices) return 0;
     uint32_t nf = 0;
     for (uint32_t s = lo - pm->base_vertices; s < hi - pm->base_vertices; s++) {
-        nf += mc_chunk_record(pm->splits, shift, ib + 1u, s)[ib];
+        nf += mc_pmesh_split_faces(pm, s);
         if (nf > lod->faces / share) return 0;
     }
     const uint32_t limit = lod->faces < 1024u ? lod->faces : 1024u;

@@ -1,10 +1,20 @@
 /* Level of detail of a progressive mesh (pmesh.h): the ancestor map, refined and coarsened. */
 #include "modelc/pmesh.h"
 
-static uint32_t tree_field(const mc_pmesh *pm, uint32_t v, unsigned k)
+/* The size of vertex v's subtree (its tree record). */
+static uint32_t subtree_size(const mc_pmesh *pm, uint32_t v)
 {
     const unsigned ib = pm->index_bytes;
-    return mc_le_index(mc_chunk_record(pm->tree, pm->record_shift, 2u * ib, v) + k * ib, ib);
+    return mc_le_index(mc_chunk_record(pm->tree, pm->record_shift, ib, v), ib);
+}
+
+/* The parent of v, the vertex of the split whose first face is f0, at a level where v is present and
+ * its children are not: f0's corners 0 and 1 stand for v and its parent there (pmesh.h, corners). */
+static uint32_t split_parent(const mc_pmesh_lod *lod, uint32_t v, uint32_t f0)
+{
+    uint32_t c[3];
+    mc_pmesh_lod_face(lod, f0, c);
+    return c[0] == v ? c[1] : c[0];
 }
 
 /* anc[v .. v+n) = a */
@@ -44,21 +54,21 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
     if (level < pm->base_vertices) level = pm->base_vertices;
     if (level > pm->vertices) level = pm->vertices;
     while (lod->level < level) {   /* split: the vertex's subtree now stands for it */
-        const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
-        uint32_t v = mc_le_index(r, ib);
-        anc_fill(lod, v, tree_field(pm, v, 1), v);
-        lod->faces += r[ib];
+        const uint32_t s = lod->level - pm->base_vertices, nf = mc_pmesh_split_faces(pm, s);
+        const uint32_t v = mc_le_index(mc_chunk_record(pm->splits, shift, ib, s), ib);
+        anc_fill(lod, v, subtree_size(pm, v), v);
+        lod->faces += nf;
         lod->level++;
-        if (lod->nbr) nbr_added(lod, lod->faces - r[ib]);
+        if (lod->nbr) nbr_added(lod, lod->faces - nf);
     }
     while (lod->level > level) {   /* collapse: the subtree goes back to the parent, which split
                                     * earlier and so is present */
+        const uint32_t s = lod->level - 1u - pm->base_vertices, nf = mc_pmesh_split_faces(pm, s);
+        const uint32_t v = mc_le_index(mc_chunk_record(pm->splits, shift, ib, s), ib);
+        anc_fill(lod, v, subtree_size(pm, v), split_parent(lod, v, lod->faces - nf));
         lod->level--;
-        const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
-        uint32_t v = mc_le_index(r, ib);
-        anc_fill(lod, v, tree_field(pm, v, 1), tree_field(pm, v, 0));
-        if (lod->nbr) nbr_removed(lod, lod->faces - r[ib], lod->faces);
-        lod->faces -= r[ib];
+        if (lod->nbr) nbr_removed(lod, lod->faces - nf, lod->faces);
+        lod->faces -= nf;
     }
     return level;
 }
@@ -68,13 +78,11 @@ uint32_t mc_pmesh_lod_fit(mc_pmesh_lod *lod, uint32_t max_faces) { return mc_pme
 uint32_t mc_pmesh_lod_fit_to(mc_pmesh_lod *lod, uint32_t max_faces, uint32_t max_level)
 {
     const mc_pmesh *pm = lod->pm;
-    const unsigned ib = pm->index_bytes, shift = pm->record_shift;
     if (max_level > pm->vertices) max_level = pm->vertices;
     if (lod->level > max_level) mc_pmesh_lod_set(lod, max_level);
     while (lod->faces > max_faces && lod->level > pm->base_vertices) mc_pmesh_lod_set(lod, lod->level - 1u);
     while (lod->level < max_level) {
-        const uint8_t *r = mc_chunk_record(pm->splits, shift, ib + 1u, lod->level - pm->base_vertices);
-        if (lod->faces + r[ib] > max_faces) break;
+        if (lod->faces + mc_pmesh_split_faces(pm, lod->level - pm->base_vertices) > max_faces) break;
         mc_pmesh_lod_set(lod, lod->level + 1u);
     }
     return lod->level;
@@ -83,12 +91,12 @@ uint32_t mc_pmesh_lod_fit_to(mc_pmesh_lod *lod, uint32_t max_faces, uint32_t max
 uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s)
 {
     const unsigned ib = pm->index_bytes;
-    return mc_le_index(mc_chunk_record(pm->splits, pm->record_shift, ib + 1u, s), ib);
+    return mc_le_index(mc_chunk_record(pm->splits, pm->record_shift, ib, s), ib);
 }
 
 uint32_t mc_pmesh_root_span(const mc_pmesh *pm, uint32_t v)
 {
-    const uint32_t size = tree_field(pm, v, 1);
+    const uint32_t size = subtree_size(pm, v);
     return size < 1 || size > pm->vertices - v ? pm->vertices - v : size;   /* never with the generator's arrays */
 }
 

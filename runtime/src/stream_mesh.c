@@ -29,8 +29,8 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
         F - F0 < V - V0 || F - F0 > 2u * (V - V0) || ib != (V <= 65535u ? 2u : 4u) ||
         hb != (4u * F + 3u < 65535u ? 2u : 4u) || closed > 1 || p[23] != 0 || palette < 1 || palette > 256)
         return mc_stream_fail(s, MC_STREAM_ERR_MESH, at_record + 8);
-    const uint64_t need = (uint64_t)((s->total + 3u) & ~3u) + 6u * (uint64_t)V + 2u * ib * (uint64_t)V +
-                          (ib + 1u) * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F + F +
+    const uint64_t need = (uint64_t)((s->total + 3u) & ~3u) + 6u * (uint64_t)V + ib * (uint64_t)V +
+                          ib * (uint64_t)(V - V0) + 3u * ib * (uint64_t)F + F + (V - V0 + 7u) / 8u +
                           (s->version == 3 ? 24u * (uint64_t)F + 12u * (uint64_t)V + 4u : 0u);   /* MC_STREAM_PACKED_BYTES */
     if (need > s->cap) return mc_stream_fail(s, MC_STREAM_ERR_SIZE, at_record + 8);
     pm->vertices = V, pm->base_vertices = V0, pm->faces = F, pm->base_faces = F0, pm->edges = E;
@@ -39,11 +39,12 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
     pm->crease_cos = (int16_t)le(p + 24, 2);
     pm->palette_size = (uint16_t)palette;
     pm->palette = p + 28;
-    /* in the buffer: positions, tree, splits, corners, face bits; the adjacency stays where it lies */
-    const uint32_t bytes[7] = {6u * V, 2u * ib * V, (ib + 1u) * (V - V0), 3u * ib * F, 0, 0, F};
+    /* in the buffer: positions, tree, splits, corners, face bits, split faces; the adjacency stays
+     * where it lies */
+    const uint32_t bytes[8] = {6u * V, ib * V, ib * (V - V0), 3u * ib * F, 0, 0, F, (V - V0 + 7u) / 8u};
     uint8_t *a = area(s);
-    for (unsigned k = 0; k < 7; k++) {
-        s->mesh_chunks[k][0].data = k < 4 || k == 6 ? a : 0;   /* (the adjacency's: where it lies, later) */
+    for (unsigned k = 0; k < 8; k++) {
+        s->mesh_chunks[k][0].data = k < 4 || k >= 6 ? a : 0;   /* (the adjacency's: where it lies, later) */
         s->mesh_chunks[k][0].size = bytes[k];
         s->mesh_chunks[k][1].data = 0;
         s->mesh_chunks[k][1].size = 0;
@@ -54,6 +55,7 @@ static int mesh_header(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at_r
     if (s->version == 3) mc_stream_packed_start(s, a);
     pm->positions = s->mesh_chunks[0], pm->tree = s->mesh_chunks[1], pm->splits = s->mesh_chunks[2];
     pm->corners = s->mesh_chunks[3], pm->opposite = 0, pm->edge_order = 0, pm->face_bits = 0;
+    pm->split_faces = s->mesh_chunks[7];
     s->mesh_state = 1;
     return MC_STREAM_OK;
 }
@@ -80,8 +82,7 @@ static int base(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
         const uint32_t v = le(p, ib), size = le(p + ib + 6, ib);
         if (v != next || size < 1 || size > pm->vertices - v) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
         copy(mc_stream_array(s, 0) + 6u * v, p + ib, 6);
-        mc_stream_put(mc_stream_tree(s, v), v, ib);
-        mc_stream_put(mc_stream_tree(s, v) + ib, size, ib);
+        mc_stream_put(mc_stream_tree(s, v), size, ib);
         next = v + size;
     }
     if (next != pm->vertices) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at - per);
@@ -112,17 +113,14 @@ static int splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
         const uint32_t v = le(p, ib), nf = p[ib], parent = le(p + ib + 7, ib), size = le(p + 2u * ib + 7, ib);
         if (v >= pm->vertices || parent >= pm->vertices || nf < 1 || nf > 2 || nf > pm->faces - faces)
             return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
-        const uint32_t psize = le(mc_stream_tree(s, parent) + ib, ib);
-        if (le(mc_stream_tree(s, v) + ib, ib) != 0 || psize == 0 || v <= parent || v - parent >= psize || size < 1 ||
+        const uint32_t psize = le(mc_stream_tree(s, parent), ib);
+        if (le(mc_stream_tree(s, v), ib) != 0 || psize == 0 || v <= parent || v - parent >= psize || size < 1 ||
             size > psize - (v - parent))
             return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
         if ((uint32_t)(end - p) - per < 3u * ib * nf) return mc_stream_fail(s, MC_STREAM_ERR_RECORD, at);
-        uint8_t *split = mc_stream_array(s, 2) + (first + i) * (ib + 1u);
-        mc_stream_put(split, v, ib);
-        split[ib] = (uint8_t)nf;
+        mc_stream_put_split(s, first + i, v, nf);
         copy(mc_stream_array(s, 0) + 6u * v, p + ib + 1, 6);
-        mc_stream_put(mc_stream_tree(s, v), parent, ib);
-        mc_stream_put(mc_stream_tree(s, v) + ib, size, ib);
+        mc_stream_put(mc_stream_tree(s, v), size, ib);
         p += per, at += per;
         for (uint32_t j = 0; j < nf; j++, faces++, p += 3u * ib, at += 3u * ib)
             if (corners(s, p, faces, at)) return s->error;

@@ -27,17 +27,25 @@ static inline int mc_stream_fail(mc_stream *s, int error, uint32_t at)
     return s->error;
 }
 
-/* The buffer's mesh arrays, as mesh_header lays them out (k: 0 positions, 1 tree, 2 splits, 3 corners),
- * a vertex's tree record in them (its parent, then its subtree size: 0 until it came), and a
- * little-endian field written. */
+/* The buffer's mesh arrays, as mesh_header lays them out (k: 0 positions, 1 tree, 2 splits, 3 corners,
+ * 6 face bits, 7 split faces), a vertex's tree record in them (its subtree size: 0 until it came),
+ * and a little-endian field written. */
 static inline uint8_t *mc_stream_array(mc_stream *s, unsigned k) { return (uint8_t *)s->mesh_chunks[k][0].data; }
 static inline uint8_t *mc_stream_tree(mc_stream *s, uint32_t v)
 {
-    return mc_stream_array(s, 1) + v * 2u * s->pmesh.index_bytes;
+    return mc_stream_array(s, 1) + v * s->pmesh.index_bytes;
 }
 static inline void mc_stream_put(uint8_t *p, uint32_t v, unsigned bytes)
 {
     for (unsigned i = 0; i < bytes; i++) p[i] = (uint8_t)(v >> (8 * i));
+}
+/* Split i's records: the vertex v it brings back and its split_faces bit (nf: 1 or 2 faces; the bits
+ * start cleared). */
+static inline void mc_stream_put_split(mc_stream *s, uint32_t i, uint32_t v, uint32_t nf)
+{
+    const unsigned ib = s->pmesh.index_bytes;
+    mc_stream_put(mc_stream_array(s, 2) + i * ib, v, ib);
+    if (nf == 2u) mc_stream_array(s, 7)[i >> 3] |= (uint8_t)(1u << (i & 7u));
 }
 
 /* A checked record of a mesh kind (payload of n bytes at offset at in buf; the record at at_record):

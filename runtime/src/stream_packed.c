@@ -60,7 +60,7 @@ static uint32_t exp_golomb(bit_reader *b, unsigned k)
 
 /* The mesh arrays' fields (stream_mesh.h). */
 static uint8_t *positions(mc_stream *s) { return mc_stream_array(s, 0); }
-static uint32_t size_of(mc_stream *s, uint32_t v) { return le(mc_stream_tree(s, v) + s->pmesh.index_bytes, s->pmesh.index_bytes); }
+static uint32_t size_of(mc_stream *s, uint32_t v) { return le(mc_stream_tree(s, v), s->pmesh.index_bytes); }
 static uint8_t *corner_at(mc_stream *s, uint32_t c)
 {
     return mc_stream_array(s, 3) + c * s->pmesh.index_bytes;   /* c = 3 f + k */
@@ -174,8 +174,7 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             return FAIL_AT();
         uint32_t list[RING_LIST];
         const uint32_t around = ring(s, parent, 0, list);
-        mc_stream_put(mc_stream_tree(s, v), parent, ib);
-        mc_stream_put(mc_stream_tree(s, v) + ib, size, ib);
+        mc_stream_put(mc_stream_tree(s, v), size, ib);
         /* the new faces: v, the parent and a neighbour of the parent at the split's level, each corner
          * then the full mesh's vertex at that offset in its subtree */
         uint32_t at_level[2][3];
@@ -213,9 +212,7 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             mc_stream_put(positions(s) + 6u * v + 2u * a, (uint32_t)q, 2);
         }
         s->pk_slot[parent] = v + size;
-        uint8_t *split = mc_stream_array(s, 2) + (first + i) * (ib + 1u);
-        mc_stream_put(split, v, ib);
-        split[ib] = (uint8_t)nf;
+        mc_stream_put_split(s, first + i, v, nf);
     }
     /* the record ends within a byte of the last split, its padding zero */
     if (b.bits - b.at >= 8u || (b.at < b.bits && get(&b, b.bits - b.at) != 0)) return FAIL_AT();

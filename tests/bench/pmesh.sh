@@ -102,8 +102,8 @@ for m in open(f"{out}/rows.txt").read().split():
 print()
 print("Per round (modelc / OpenMesh ns): " + "; ".join(per_round) + ".")
 print()
-print("The same mesh as a stream (`--emit stream --as both --depth 1`), its splits plain (version 2: the records "
-      "above, 25 bytes a split) and packed (`--stream-splits packed`, version 3, runtime/include/modelc/stream.h: "
+print("The same mesh as a stream (`--emit stream --as both --depth 1`), its splits plain (version 2: a split's vertex, "
+      "face count, position, parent, subtree size and faces' corners, 25 bytes a split) and packed (`--stream-splits packed`, version 3, runtime/include/modelc/stream.h: "
       "the split vertex implied by the depth-first order, each new face's third corner a rank among the parent's "
       "neighbours, each corner an offset in its vertex's subtree, positions Exp-Golomb coded as differences to the "
       "mean of the new vertex's neighbours; the adjacency the edge order alone, the opposites found by the reader). "

@@ -179,7 +179,9 @@ lines = sum(v for k, v in arrays.items() if "_pm_opposite" in k or "_pm_edge_ord
 faceb = sum(v for k, v in arrays.items() if "_pm_face_bits" in k)
 mesh = sum(v for k, v in arrays.items() if "_pm_" in k) - lines - faceb
 ib, V, F, S, E, hb = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"], pm["edges"], pm["half_edge_bytes"]
-want = V * 6 + V * 2 * ib + S * (ib + 1) + F * 3 * ib + 3 * 36   # the arrays; the palette: 32 greys, 4 line colours
+per = 1 << pm["record_shift"]   # the split faces' bits: a chunk's splits in (per + 7) // 8 bytes
+bits = S // per * ((per + 7) // 8) + (S % per + 7) // 8
+want = V * 6 + V * ib + S * ib + bits + F * 3 * ib + 3 * 36   # the arrays; the palette: 32 greys, 4 line colours
 p = []
 if mesh != pm["bytes"] or mesh != want: p.append(f"mesh arrays {mesh} bytes, budget says {pm['bytes']}, layout gives {want}")
 if faceb != pm["face_bytes"] or faceb != F: p.append(f"face bits {faceb} bytes, budget says {pm['face_bytes']}, faces {F}")

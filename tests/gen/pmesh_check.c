@@ -656,29 +656,47 @@ int main(int argc, char **argv)
     for (uint32_t v = 0; v < V; v++) rank[v] = UINT32_MAX;
     fcount[V0] = pm->base_faces;
     for (uint32_t s = 0; s < V - V0; s++) {
-        uint32_t v = field(pm->splits, ib + 1, s, 0, ib);
-        uint32_t nf = mc_chunk_record(pm->splits, pm->record_shift, ib + 1, s)[ib];
+        uint32_t v = field(pm->splits, ib, s, 0, ib);
+        uint32_t nf = mc_pmesh_split_faces(pm, s);
         if (v >= V || rank[v] != UINT32_MAX) { PROBLEM("split %u brings back vertex %u twice or out of range", s, v); break; }
         rank[v] = V0 + s;
         if (nf < 1 || nf > 2) PROBLEM("split %u adds %u faces", s, nf);
         fcount[V0 + s + 1] = fcount[V0 + s] + nf;
     }
     if (fcount[V] != pm->faces) PROBLEM("the splits add up to %u faces, the descriptor says %u", fcount[V], pm->faces);
-    uint32_t roots = 0;
+    /* the forest from the subtree sizes alone (depth-first order: v's parent is the nearest vertex
+     * before it whose subtree holds it; none for a root) */
+    uint32_t roots = 0, *parent = malloc(sizeof(uint32_t) * V), *open = malloc(sizeof(uint32_t) * V), top = 0;
+    if (!parent || !open) return 2;
     for (uint32_t v = 0; v < V && !problems; v++) {
-        uint32_t parent = field(pm->tree, 2 * ib, v, 0, ib), size = field(pm->tree, 2 * ib, v, ib, ib);
+        const uint32_t size = field(pm->tree, ib, v, 0, ib);
         if (size < 1 || v + size > V) PROBLEM("vertex %u: subtree size %u", v, size);
-        if (parent == v) {
+        while (top && v >= open[top - 1] + field(pm->tree, ib, open[top - 1], 0, ib)) top--;
+        parent[v] = top ? open[top - 1] : v;
+        if (top && v + size > parent[v] + field(pm->tree, ib, parent[v], 0, ib))
+            PROBLEM("vertex %u's subtree runs past its parent %u's", v, parent[v]);
+        open[top++] = v;
+        if (parent[v] == v) {
             roots++;
             if (rank[v] != UINT32_MAX) PROBLEM("root %u is also split", v);
             rank[v] = 0;
-        } else {
-            uint32_t psize = field(pm->tree, 2 * ib, parent, ib, ib);
-            if (parent > v || v >= parent + psize) PROBLEM("vertex %u lies outside its parent %u's subtree", v, parent);
-            if (rank[v] == UINT32_MAX || rank[parent] >= rank[v]) PROBLEM("vertex %u splits before its parent %u", v, parent);
-        }
+        } else if (rank[v] == UINT32_MAX || rank[parent[v]] >= rank[v])
+            PROBLEM("vertex %u splits before its parent %u", v, parent[v]);
     }
     if (roots != V0) PROBLEM("%u roots, the descriptor says %u base vertices", roots, V0);
+    /* what a collapse reads the parent from: a split's first face's corners 0 and 1 stand for its
+     * vertex and the parent at the split's level (each corner's nearest ancestor present there) */
+    for (uint32_t s = 0, f = pm->base_faces; s < V - V0 && !problems; f += fcount[V0 + s + 1] - fcount[V0 + s], s++) {
+        const uint32_t v = field(pm->splits, ib, s, 0, ib);
+        uint32_t c[2];
+        for (int k = 0; k < 2; k++)
+            for (c[k] = field(pm->corners, 3 * ib, f, (unsigned)k * ib, ib); rank[c[k]] > V0 + s;) c[k] = parent[c[k]];
+        if (!((c[0] == v && c[1] == parent[v]) || (c[1] == v && c[0] == parent[v])))
+            PROBLEM("split %u: its first face's edge 0 is %u %u at its level, not vertex %u and its parent %u", s, c[0],
+                    c[1], v, parent[v]);
+    }
+    free(open);
+    free(parent);
     /* the levels, shuffled */
     uint32_t *levels = malloc(sizeof(uint32_t) * (V - V0 + 1)), nl = 0;
     if (!levels) return 2;

@@ -70,7 +70,7 @@ bud = json.load(open(sys.argv[1]))
 if 'pmesh' in bud:   # the buffer: the stream, then the mesh arrays (stream.h MC_STREAM_MESH_BYTES)
     m = bud['pmesh']
     V, V0, F, ib = m['vertices'], m['base_vertices'], m['faces'], m['index_bytes']
-    want = (size + 3) // 4 * 4 + 6 * V + 2 * ib * V + (ib + 1) * (V - V0) + 3 * ib * F + F   # and the face bits
+    want = (size + 3) // 4 * 4 + 6 * V + ib * V + ib * (V - V0) + 3 * ib * F + F + (V - V0 + 7) // 8   # face bits, split faces
     if open(sys.argv[2], 'rb').read(6)[4] == 3:   # packed splits: the decoder's state (MC_STREAM_PACKED_BYTES)
         want += 24 * F + 12 * V + 4
     first = [k for k in ends if k.startswith('mesh')]

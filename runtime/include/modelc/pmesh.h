@@ -24,12 +24,18 @@
  * 2^record_shift records; multi-byte fields little-endian; an index field is index_bytes wide):
  *   positions  per vertex: x, y, z as uint16; the unit-cube coordinate is (q - 32768) / 65536
  *              (model.h: the cube the model was normalized into; +y up)
- *   tree       per vertex: parent index (a base vertex is its own parent), subtree size
- *   splits     per split s = 0 .. V-V0-1: the index of the vertex it brings back, then one byte: the
- *              number of faces it adds (1 or 2)
+ *   tree       per vertex: its subtree size (its parent is not stored: a split's first face names
+ *              it, below)
+ *   splits     per split s = 0 .. V-V0-1: the index of the vertex it brings back
+ *   split_faces per split, one bit: set when it adds two faces, clear when one (a border); a chunk
+ *              holds the bits of 2^record_shift splits, split i of the chunk at bit i & 7 of its
+ *              byte i >> 3, in (2^record_shift + 7) / 8 bytes
  *   corners    per face, in creation order: three corner indices, counter-clockwise seen from outside;
  *              a split's faces start at the split vertex or its parent (as they are at the split's
- *              level), so edge 0 is the edge its collapse removes and edges 1 and 2 the two it merges
+ *              level), so edge 0 is the edge its collapse removes and edges 1 and 2 the two it merges;
+ *              so at any level where a split's vertex is present and its later splits are not made,
+ *              its first face's corners 0 and 1 stand for that vertex and its parent, which is how a
+ *              collapse finds the parent
  *   opposite   per face: for each edge k (corner k to corner k+1 mod 3), the half-edge across it in
  *              the full mesh, 4 g + j for edge j of face g, or all ones (a border); half_bytes wide
  *   edge_order per edge of the full mesh, one half-edge (of the face created first): borders first,
@@ -67,13 +73,14 @@ typedef struct mc_pmesh {
     uint16_t palette_size;       /* entries of palette */
     int16_t crease_cos;          /* Q14 cosine of the crease angle (mesh_lines.h) */
     const mc_chunk *positions;   /* V records of 6 bytes */
-    const mc_chunk *tree;        /* V records of 2 * index_bytes */
-    const mc_chunk *splits;      /* V - V0 records of index_bytes + 1 */
+    const mc_chunk *tree;        /* V records of index_bytes: subtree sizes */
+    const mc_chunk *splits;      /* V - V0 records of index_bytes: split vertices */
     const mc_chunk *corners;     /* F records of 3 * index_bytes: the faces */
     const mc_chunk *opposite;    /* F records of 3 * half_bytes */
     const mc_chunk *edge_order;  /* E records of half_bytes: the edges */
     const uint8_t *palette;      /* RGB triplets: the shades and line colours mesh drawings use */
     const mc_chunk *face_bits;   /* F records of 1 byte, or null */
+    const mc_chunk *split_faces; /* V - V0 bits: the faces each split adds */
 } mc_pmesh;
 
 /* A half-edge: edge k (corner k to corner k+1 mod 3) of face f is 4 f + k. */
@@ -209,6 +216,13 @@ uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i);
 
 /* The vertex split s (0 .. V-V0-1) brings back. */
 uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s);
+
+/* The faces split s (0 .. V-V0-1) adds: 1 or 2 (its split_faces bit). */
+MC_ALWAYS_INLINE uint32_t mc_pmesh_split_faces(const mc_pmesh *pm, uint32_t s)
+{
+    const uint32_t i = s & ((UINT32_C(1) << pm->record_shift) - 1u);
+    return 1u + ((pm->split_faces[s >> pm->record_shift].data[i >> 3] >> (i & 7u)) & 1u);
+}
 
 /* The vertices of root v's subtree, v .. v + n - 1 (its descendants follow it in depth-first order):
  * the roots are 0 and each root plus its n. n is at least 1 and at most V - v whatever the arrays

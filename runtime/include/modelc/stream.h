@@ -79,8 +79,9 @@
  *                      (none: a border), which the generator checks holds before it packs.
  *   kind 3, end:       no payload; last, and the stream's total is where it ends
  * The mesh records hold pmesh.h's arrays in split order: the base and each batch of splits bring
- * their vertices' position and tree records (placed at their indices in the buffer's mesh arrays)
- * and their faces (appended). A prefix that holds the header, the palette and the levels 0..d is a
+ * their vertices' position and subtree size (placed at their indices in the buffer's mesh arrays)
+ * and their faces (appended); a split's parent is checked as it comes and not kept, since the
+ * arrays imply it (pmesh.h). A prefix that holds the header, the palette and the levels 0..d is a
  * drawable octree of depth d: each level costs about four times the one above it, so the first
  * picture comes after a small part of the bytes. The generator (--emit stream, gen/emit_stream.cpp;
  * version 2 for bakes --as both) puts the mesh header and base right after the palette and then
@@ -101,11 +102,11 @@
 
 /* A version-2 stream's mesh arrays in the buffer, after the stream's bytes (rounded up to 4):
  * positions, tree records, splits and corners of a mesh of V vertices (V0 in the base), F faces,
- * index width ib, and the face bits (pmesh.h), worked out once the adjacency has come. The
- * adjacency is read where it lies in the stream. */
+ * index width ib, the face bits (pmesh.h), worked out once the adjacency has come, and the splits'
+ * face-count bits. The adjacency is read where it lies in the stream. */
 #define MC_STREAM_MESH_BYTES(V, V0, F, ib) \
-    (6u * (uint32_t)(V) + 2u * (ib) * (uint32_t)(V) + ((ib) + 1u) * ((uint32_t)(V) - (uint32_t)(V0)) + \
-     3u * (ib) * (uint32_t)(F) + (uint32_t)(F))
+    (6u * (uint32_t)(V) + (ib) * (uint32_t)(V) + (ib) * ((uint32_t)(V) - (uint32_t)(V0)) + \
+     3u * (ib) * (uint32_t)(F) + (uint32_t)(F) + ((uint32_t)(V) - (uint32_t)(V0) + 7u) / 8u)
 
 /* What a version-3 stream's reader needs in the buffer after the mesh arrays to decode packed
  * splits: per corner of the F faces its vertex at the decoded level and the next corner of that
@@ -154,7 +155,8 @@ typedef struct mc_stream {
     uint8_t mesh_state;            /* 0 none yet, 1 header, 2 base, 3 adjacency (complete) */
     uint32_t splits_read, faces_read;
     mc_pmesh pmesh;
-    mc_chunk mesh_chunks[7][2];    /* positions, tree, splits, corners, opposite, edge order, face bits */
+    mc_chunk mesh_chunks[8][2];    /* positions, tree, splits, corners, opposite, edge order, face bits,
+                                      split faces */
     /* a version-3 stream's decoder (stream_packed.c), in the buffer after the mesh arrays: per
      * corner its vertex at the decoded level and the next corner of that vertex; per vertex its
      * first corner, its next child, a mark; the last mark given */
