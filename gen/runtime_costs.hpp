@@ -45,7 +45,7 @@ inline constexpr ModuleCode kModules[] = {
 };
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
-    {"pmesh", 2488, 2488, "progressive-mesh level of detail, neighbours and their table (pmesh.c)"},
+    {"pmesh", 2408, 2408, "progressive-mesh level of detail, neighbours and their table (pmesh.c)"},
     {"xform_vertex", 3924, 3924, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
     {"raster", 7060, 7060, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},

@@ -2,7 +2,7 @@
 #include "modelc/pmesh.h"
 
 /* The size of vertex v's subtree (its tree record). */
-static uint32_t subtree_size(const mc_pmesh *pm, uint32_t v)
+MC_ALWAYS_INLINE uint32_t subtree_size(const mc_pmesh *pm, uint32_t v)
 {
     const unsigned ib = pm->index_bytes;
     return mc_le_index(mc_chunk_record(pm->tree, pm->record_shift, ib, v), ib);
@@ -12,9 +12,12 @@ static uint32_t subtree_size(const mc_pmesh *pm, uint32_t v)
  * its children are not: f0's corners 0 and 1 stand for v and its parent there (pmesh.h, corners). */
 static uint32_t split_parent(const mc_pmesh_lod *lod, uint32_t v, uint32_t f0)
 {
-    uint32_t c[3];
-    mc_pmesh_lod_face(lod, f0, c);
-    return c[0] == v ? c[1] : c[0];
+    const mc_pmesh *pm = lod->pm;
+    const unsigned ib = pm->index_bytes;
+    const uint8_t *r = mc_chunk_record(pm->corners, pm->record_shift, 3u * ib, f0);
+    const uint32_t c0 = mc_le_index(r, ib);
+    if (mc_pmesh_lod_vertex(lod, c0) != v) return mc_pmesh_lod_vertex(lod, c0);
+    return mc_pmesh_lod_vertex(lod, mc_le_index(r + ib, ib));
 }
 
 /* anc[v .. v+n) = a */
@@ -50,22 +53,25 @@ static void nbr_removed(mc_pmesh_lod *lod, uint32_t f0, uint32_t f1);
 uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
 {
     const mc_pmesh *pm = lod->pm;
+    /* the fields in locals: the map's stores could alias the byte-wide ones */
     const unsigned ib = pm->index_bytes, shift = pm->record_shift;
-    if (level < pm->base_vertices) level = pm->base_vertices;
+    const mc_chunk *splits = pm->splits, *tree = pm->tree, *bits = pm->split_faces;
+    const uint32_t base = pm->base_vertices;
+    if (level < base) level = base;
     if (level > pm->vertices) level = pm->vertices;
     while (lod->level < level) {   /* split: the vertex's subtree now stands for it */
-        const uint32_t s = lod->level - pm->base_vertices, nf = mc_pmesh_split_faces(pm, s);
-        const uint32_t v = mc_le_index(mc_chunk_record(pm->splits, shift, ib, s), ib);
-        anc_fill(lod, v, subtree_size(pm, v), v);
+        const uint32_t s = lod->level - base, nf = mc_pmesh_split_faces_in(bits, shift, s);
+        const uint32_t v = mc_le_index(mc_chunk_record(splits, shift, ib, s), ib);
+        anc_fill(lod, v, mc_le_index(mc_chunk_record(tree, shift, ib, v), ib), v);
         lod->faces += nf;
         lod->level++;
         if (lod->nbr) nbr_added(lod, lod->faces - nf);
     }
     while (lod->level > level) {   /* collapse: the subtree goes back to the parent, which split
                                     * earlier and so is present */
-        const uint32_t s = lod->level - 1u - pm->base_vertices, nf = mc_pmesh_split_faces(pm, s);
-        const uint32_t v = mc_le_index(mc_chunk_record(pm->splits, shift, ib, s), ib);
-        anc_fill(lod, v, subtree_size(pm, v), split_parent(lod, v, lod->faces - nf));
+        const uint32_t s = lod->level - 1u - base, nf = mc_pmesh_split_faces_in(bits, shift, s);
+        const uint32_t v = mc_le_index(mc_chunk_record(splits, shift, ib, s), ib);
+        anc_fill(lod, v, mc_le_index(mc_chunk_record(tree, shift, ib, v), ib), split_parent(lod, v, lod->faces - nf));
         lod->level--;
         if (lod->nbr) nbr_removed(lod, lod->faces - nf, lod->faces);
         lod->faces -= nf;

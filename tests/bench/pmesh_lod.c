@@ -47,10 +47,9 @@ int main(int argc, char **argv)
     }
     if (argc != 2) { fprintf(stderr, "usage: pmesh_lod [--neighbours] ROUNDS | --sweeps N\n"); return 2; }
     uint64_t work = 0;
-    for (uint32_t v = 0; v < PM.vertices; v++)
-        if (mc_le_index(mc_chunk_record(PM.tree, PM.record_shift, 2u * PM.index_bytes, v), PM.index_bytes) != v)
-            work += mc_le_index(mc_chunk_record(PM.tree, PM.record_shift, 2u * PM.index_bytes, v) + PM.index_bytes,
-                                PM.index_bytes);
+    for (uint32_t s = 0; s < PM.vertices - PM.base_vertices; s++)   /* each split vertex's subtree size */
+        work += mc_le_index(mc_chunk_record(PM.tree, PM.record_shift, PM.index_bytes, mc_pmesh_split_vertex(&PM, s)),
+                            PM.index_bytes);
     printf("mean subtree size %.2f\n", (double)work / (PM.vertices - PM.base_vertices));
     for (int r = atoi(argv[1]); r > 0; r--) {
         double t0 = now_ns();

@@ -217,11 +217,17 @@ uint32_t mc_pmesh_edge(const mc_pmesh *pm, uint32_t i);
 /* The vertex split s (0 .. V-V0-1) brings back. */
 uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s);
 
+/* The faces split s adds, 1 or 2, from split_faces bits chunked 2^shift to a chunk. */
+MC_ALWAYS_INLINE uint32_t mc_pmesh_split_faces_in(const mc_chunk *bits, unsigned shift, uint32_t s)
+{
+    const uint32_t i = s & ((UINT32_C(1) << shift) - 1u);
+    return 1u + ((bits[s >> shift].data[i >> 3] >> (i & 7u)) & 1u);
+}
+
 /* The faces split s (0 .. V-V0-1) adds: 1 or 2 (its split_faces bit). */
 MC_ALWAYS_INLINE uint32_t mc_pmesh_split_faces(const mc_pmesh *pm, uint32_t s)
 {
-    const uint32_t i = s & ((UINT32_C(1) << pm->record_shift) - 1u);
-    return 1u + ((pm->split_faces[s >> pm->record_shift].data[i >> 3] >> (i & 7u)) & 1u);
+    return mc_pmesh_split_faces_in(pm->split_faces, pm->record_shift, s);
 }
 
 /* The vertices of root v's subtree, v .. v + n - 1 (its descendants follow it in depth-first order):
