@@ -281,15 +281,16 @@ MC_ALWAYS_INLINE void edge_face(const mc_pmesh_lod *lod, const mc_xform *x, cons
 #endif
 }
 
-/* Whether the faces across the three edges whose opposites are at q (hb bytes each) all face front:
- * then a front face with no crease edge offers no line, in a closed part at a level whose opposites
- * need no walk. Most front faces are such: three reads and one test instead of three edge tests (a
- * border, which a closed part has none of, answers 0: the long way). */
-MC_ALWAYS_INLINE int quiet_face(const uint8_t *facing, const uint8_t *q, unsigned hb)
+/* Whether the faces across the three edges whose opposites are at q (hb bytes each) all face as fr
+ * says (1 front, 0 back): then a face so facing with no crease edge offers no line, in a closed part
+ * at a level whose opposites need no walk. Most faces are such: three reads and one test instead of
+ * three edge tests (a border, which a closed part has none of, answers 0: the long way). */
+MC_ALWAYS_INLINE int quiet_face(const uint8_t *facing, const uint8_t *q, unsigned hb, uint32_t fr)
 {
     const uint32_t o0 = mc_pmesh_half(q, hb), o1 = mc_pmesh_half(q + hb, hb), o2 = mc_pmesh_half(q + 2u * hb, hb);
-    return (o0 + 1u) && (o1 + 1u) && (o2 + 1u) &&
-           (front(facing, MC_HALF_FACE(o0)) & front(facing, MC_HALF_FACE(o1)) & front(facing, MC_HALF_FACE(o2)));
+    if (!((o0 + 1u) && (o1 + 1u) && (o2 + 1u))) return 0;
+    const uint32_t a = front(facing, MC_HALF_FACE(o0)), b = front(facing, MC_HALF_FACE(o1)), c = front(facing, MC_HALF_FACE(o2));
+    return fr ? (a & b & c) != 0 : (a | b | c) == 0;
 }
 
 #if MC_MESH_SELECT
@@ -309,7 +310,8 @@ MC_ALWAYS_INLINE uint32_t crease_window(const uint8_t *cr, uint32_t f, uint32_t 
  * crease, about half, are passed over, and so are the front faces without a crease whose three
  * neighbours face front (quiet_face), where no opposite walks; with MC_MESH_SELECT the faces to visit
  * are taken 32 at a time from their bits (whether a face is one is a coin toss to a predictor). Drawn
- * into a target, every face is visited. */
+ * into a target, every face is visited, but with MC_MESH_SELECT (a firmware keeps the flash) where no
+ * opposite walks in a closed part, a face without a crease whose neighbours face as it does. */
 MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, const uint8_t *facing,
                                const uint8_t *cr, unsigned flags, mc_line_style *style, const mc_target *t, mc_sdepth *sd,
                                mc_lines_stats *st, uint32_t f0, uint32_t n, const uint8_t *r, unsigned hb, int walk,
@@ -318,8 +320,9 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
     edge_counts c;   /* zeroed field by field: clang -O0 clears an aggregate initializer with memset */
     c.sil = c.crease = c.border = 0;
     const int skip = sd && lod->pm->closed;   /* (sd: a constant where called) */
-    /* and every opposite read is the level's (none walks: the full level, or a neighbour table) */
-    const int quiet = skip && (lod->nbr || lod->faces >= lod->pm->faces);
+    /* a closed part whose every opposite read is the level's (none walks: the full level, or a
+     * neighbour table): a sparse buffer's front faces and a target's faces may be quiet */
+    const int quiet = lod->pm->closed && (lod->nbr || lod->faces >= lod->pm->faces);
 #if MC_MESH_SELECT
     for (uint32_t i0 = 0; i0 < n; i0 += 32u) {
         const uint32_t m = n - i0 < 32u ? n - i0 : 32u;
@@ -329,7 +332,8 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
             const uint32_t i = i0 + mc_ctz(bits), f = f0 + i, fc = mc_lines_face_creases(cr, f);
             const uint8_t *q = r + i * 3u * hb;
             bits &= bits - 1u;
-            if (quiet && fc == 0 && quiet_face(facing, q, hb)) continue;   /* (f faces front) */
+            /* (a sparse buffer's face without a crease faces front) */
+            if (quiet && fc == 0 && quiet_face(facing, q, hb, sd ? 1u : front(facing, f))) continue;
             edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, front(facing, f), fc, q, hb, walk);
         }
     }
@@ -337,7 +341,7 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
     (void)any_crease;   /* (a face's crease bits are at hand) */
     for (uint32_t f = f0; f < f0 + n; f++, r += 3u * hb) {
         const uint32_t fr = front(facing, f), fc = mc_lines_face_creases(cr, f);
-        if (skip && !fc && (!fr || (quiet && quiet_face(facing, r, hb)))) continue;
+        if (skip && !fc && (!fr || (quiet && quiet_face(facing, r, hb, 1u)))) continue;
         edge_face(lod, x, cache, facing, flags, style, t, sd, st, &c, f, fr, fc, r, hb, walk);
     }
 #endif
