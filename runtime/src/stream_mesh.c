@@ -96,7 +96,9 @@ static int base(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
 
 /* A batch of splits. What the level of detail indexes with is checked: the vertex is new, its parent
  * present (so it split earlier), the vertex's subtree lies inside the parent's, every corner is a
- * vertex; then a split moves only runs of the ancestor map inside 0 .. V-1. */
+ * vertex; then a split moves only runs of the ancestor map inside 0 .. V-1. And what a collapse reads
+ * the parent from (pmesh.h): the first face's corners 0 and 1 lie one in the vertex's subtree, the
+ * other in the parent's outside it. */
 static int splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
 {
     const mc_pmesh *pm = &s->pmesh;
@@ -122,6 +124,9 @@ static int splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
         copy(mc_stream_array(s, 0) + 6u * v, p + ib + 1, 6);
         mc_stream_put(mc_stream_tree(s, v), size, ib);
         p += per, at += per;
+        const uint32_t c0 = le(p, ib), c1 = le(p + ib, ib);
+        const int v0 = c0 - v < size, v1 = c1 - v < size, p0 = c0 - parent < psize, p1 = c1 - parent < psize;
+        if (!((v0 && p1 && !v1) || (v1 && p0 && !v0))) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at);
         for (uint32_t j = 0; j < nf; j++, faces++, p += 3u * ib, at += 3u * ib)
             if (corners(s, p, faces, at)) return s->error;
     }

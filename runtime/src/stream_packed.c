@@ -176,7 +176,8 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
         const uint32_t around = ring(s, parent, 0, list);
         mc_stream_put(mc_stream_tree(s, v), size, ib);
         /* the new faces: v, the parent and a neighbour of the parent at the split's level, each corner
-         * then the full mesh's vertex at that offset in its subtree */
+         * then the full mesh's vertex at that offset in its subtree (the parent's outside v's, which
+         * is what a collapse reads the parent from: pmesh.h) */
         uint32_t at_level[2][3];
         for (uint32_t j = 0; j < nf; j++) {
             const uint32_t parent_first = get(&b, 1), rank = get(&b, width(around));
@@ -185,7 +186,7 @@ int mc_stream_packed_splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t
             a[0] = parent_first ? parent : v, a[1] = parent_first ? v : parent, a[2] = around <= RING_LIST ? list[rank] : neighbour(s, parent, rank);
             for (unsigned c = 0; c < 3; c++) {
                 const uint32_t sz = size_of(s, a[c]), off = get(&b, width(sz));
-                if (b.bad || off >= sz) return FAIL_AT();
+                if (b.bad || off >= sz || (a[c] == parent && a[c] + off - v < size)) return FAIL_AT();
                 mc_stream_put(corner_at(s, 3u * (faces + j) + c), a[c] + off, ib);
             }
         }

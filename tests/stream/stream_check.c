@@ -12,14 +12,15 @@
  *       draws equals the baked octree's frame at that depth (every 8th case, at one view)
  *   stream_check forged FILE.mcs N SEED     N streams with a byte changed and every CRC made valid
  *       again (what CRCs cannot catch): each is refused by a check of what the renderer relies on, or
- *       taken and drawn at every depth it offers without a fault (ASan + UBSan); prints how many each
- *       check refused
+ *       taken and drawn at every depth it offers (a mesh also coarsened) without a fault (ASan +
+ *       UBSan); prints how many each check refused. A version-2 stream also with its first split's
+ *       first face made to start at the split vertex twice: refused in that record
  *   stream_check mesh FILE.mcs N SEED       (a version-2 or -3 stream, bake --as both) N random cuts in its
  *       mesh part, and every mesh record's end and a byte either side: the prefix draws exactly the
  *       mesh level the bytes allow, and its frames equal the baked mesh's at that level (--lod):
  *       shaded at two views, and once the adjacency is in, lines at one
  *   stream_check arrays FILE.mcs            (a version-2 or -3 stream) the whole stream read: the mesh
- *       arrays it fills (positions, tree, splits, corners, adjacency) and the face bits it works out
+ *       arrays it fills (positions, tree, splits, split faces, corners, adjacency) and the face bits it works out
  *       equal the bake's byte for byte;
  *       prints the base's and splits' bytes per split
  *   stream_check first FILE.mcs             prints the bytes before the first drawable level and each
@@ -353,9 +354,41 @@ static int corrupt(int n)
     return 0;
 }
 
+/* A version-2 stream whose first split's first face has its vertex as corners 0 and 1, CRCs made
+ * valid: refused (MC_STREAM_ERR_MESH, in that record), for a collapse reads the parent from them.
+ * 1: so refused; 0: not a version-2 stream; -1: taken (printed). */
+static int forged_first_face(void)
+{
+    if (file[4] != 2) return 0;
+    unsigned ib = 0;
+    for (uint32_t at = MC_STREAM_HEADER_BYTES; at + 8 <= file_len; at += 12 + le32(file + at + 4)) {
+        const uint8_t *p = file + at + 8;
+        if (file[at] == 4) ib = p[20];
+        if (file[at] != 6 || !ib) continue;
+        memcpy(work, file, file_len);
+        uint8_t *split = work + at + 8 + 8, *face = split + 3u * ib + 7u;
+        memcpy(face, split, ib);
+        memcpy(face + ib, split, ib);
+        forge_crcs(work, file_len);
+        mc_stream s;
+        mc_stream_init(&s, buf, mc_app_model.stream_cap + 2000);
+        feed_pieces(&s, work, file_len);
+        if (mc_stream_end(&s) != MC_STREAM_ERR_MESH || s.error_at < at || s.error_at >= at + 12 + le32(file + at + 4)) {
+            printf("FAIL forged: a split whose first face does not start with its vertex and its parent taken (%s at %u, "
+                   "its record at %u)\n", mc_stream_error_name(mc_stream_end(&s)), s.error_at, at);
+            return -1;
+        }
+        return 1;
+    }
+    printf("FAIL forged: no split record in a version-2 stream\n");
+    return -1;
+}
+
 static int forged(int n)
 {
     int refused[16] = {0}, taken = 0;
+    const int first_face = forged_first_face();
+    if (first_face < 0) return -1;
     for (int i = 0; i < n; i++) {
         memcpy(work, file, file_len);
         const uint32_t at = rnd(file_len);
@@ -380,6 +413,12 @@ static int forged(int n)
                     printf("FAIL forged case %d (byte %u): its mesh does not render in style %d\n", i, at, style);
                     return -1;
                 }
+            /* and coarsened (each collapse reads its parent through the map, pmesh.h), drawn again */
+            mc_pmesh_lod_set(&lod, pm->base_vertices + rnd(lod.level - pm->base_vertices + 1u));
+            if (mc_front_mesh_frame(&lod, facing_stream, NULL, NULL, &v, MC_FRONT_SHADED, &t, NULL) != MC_OK) {
+                printf("FAIL forged case %d (byte %u): its mesh coarsened does not render\n", i, at);
+                return -1;
+            }
         }
         const mc_octree *o = mc_stream_octree(&s);
         for (unsigned d = 1; o && d <= o->depth; d++) {   /* whatever was taken draws without a fault */
@@ -394,9 +433,10 @@ static int forged(int n)
         }
     }
     printf("ok forged: %d streams with a byte changed and valid CRCs: %d taken (a colour, cone axis, vertex position or "
-           "corner changed, or the change undone) and drawn at every depth (and a mesh part at its level in every style it offers) without a fault; refused:", n, taken);
+           "corner changed, or the change undone) and drawn at every depth (and a mesh part at its level in every style it offers, and coarsened) without a fault; refused:", n, taken);
     for (int e = 1; e < 16; e++)
         if (refused[e]) printf(" %s %d", mc_stream_error_name(-e), refused[e]);
+    if (first_face) printf("; and a split whose first face does not start at its vertex and its parent, refused in its record");
     printf("\n");
     return 0;
 }

@@ -16,7 +16,7 @@
  * (mesh_face.h mc_mesh_face_bits: the same bytes), so the whole mesh draws as the bake does. The
  * mesh's records are checked for what the level of detail and the renderers index with (every
  * index in range, a split's vertex new and inside its parent's subtree, the parent already present,
- * face counts, opposites that pair up), so a forged stream can draw wrong but never out of bounds.
+ * its first face starting at the vertex and the parent, face counts, opposites that pair up), so a forged stream can draw wrong but never out of bounds.
  * A stream that turns out truncated, corrupted, of another version or larger than the buffer stops
  * the reader with an error (sticky, with the byte offset where it was found); what was drawable
  * before stays drawable, so a front end keeps its last good frame. No heap: the caller owns the
