@@ -292,6 +292,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         m.emplace("crease_cos", std::to_string(pm.crease_cos));
         m.emplace("closed", std::string(pm.closed() ? "1" : "0"));
         m.emplace("record_shift", std::to_string(plan.record_shift));
+        m.emplace("layout", std::to_string(MC_PMESH_LAYOUT));   // the arrays' layout: pmesh.h's, which this generator includes
         m.emplace("palette_size", std::to_string(pm.palette.size()));
         m.emplace("palette_bytes", std::to_string(plan.pm_palette.size()));
         m.emplace("palette_lines", byte_lines(plan.pm_palette.data(), plan.pm_palette.size()));

@@ -356,6 +356,23 @@ for args in "--as points" "--as both --emit lib"; do
     check_problems "fandisk $args --mesh-neighbours: one modelc: line, exit 2, no output" "$problems"
 done
 
+# ---- the arrays' layout: a bake states it, and a runtime that reads another stops the build ----------
+problems=""
+pmc="$out/fandisk/fandisk_pmesh.c"
+if ! cc -std=c99 -Wall -Werror -Iruntime/include -c "$pmc" -o "$tmp/layout.o" 2>"$tmp/layout.log"; then
+    problems+="it does not compile: $(oneline <"$tmp/layout.log"); "
+fi
+want=$(sed -n 's/^#define MC_PMESH_LAYOUT \([0-9]*\).*/\1/p' runtime/include/modelc/pmesh.h)
+grep -q "MC_PMESH_LAYOUT != $want\b" "$pmc" || problems+="it does not state layout $want (pmesh.h's); "
+sed "s/MC_PMESH_LAYOUT != $want\b/MC_PMESH_LAYOUT != $((want + 1))/" "$pmc" >"$tmp/layout_other.c"
+if cc -std=c99 -Iruntime/include -I"$out/fandisk" -c "$tmp/layout_other.c" -o "$tmp/layout_other.o" 2>"$tmp/layout_other.log"; then
+    problems+="arrays of layout $((want + 1)) compiled against layout $want; "
+else
+    grep -q "error: #error.*MC_PMESH_LAYOUT" "$tmp/layout_other.log" ||
+        problems+="another layout stopped the build without naming MC_PMESH_LAYOUT: $(oneline <"$tmp/layout_other.log"); "
+fi
+check_problems "fandisk: its pmesh.c states the arrays' layout (pmesh.h MC_PMESH_LAYOUT $want); another layout stops the build with that name" "$problems"
+
 # ---- points-only bakes untouched -----------------------------------------------------------------
 src=$(model_file fandisk)
 "$modelc" "$src" -o "$tmp/a" --name fandisk --depth 5 -q && "$modelc" "$src" -o "$tmp/b" --name fandisk --depth 5 --as points -q

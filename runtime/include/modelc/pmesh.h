@@ -60,6 +60,11 @@
 #include <stdint.h>
 #include "chunk.h"
 
+/* The layout of the arrays below that this runtime reads. A bake's NAME_pmesh.c states the layout it
+ * wrote and stops the build when the two differ, so that arrays from another modelc are never read
+ * as this layout (layout 1 stored each vertex's parent and each split's face count as a byte). */
+#define MC_PMESH_LAYOUT 2
+
 typedef struct mc_pmesh {
     uint32_t vertices;           /* V: vertices of the full mesh */
     uint32_t base_vertices;      /* V0: vertices of the base mesh (>= 1) */
