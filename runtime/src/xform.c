@@ -25,8 +25,9 @@ mc_view mc_view_clamp(const mc_view *v, uint32_t width, uint32_t height)
     uint32_t side = width < height ? width : height;
     if (side == 0) side = 1;
     /* the cube's screen extent is zoom * side; its bounding sphere (extent * sqrt(3)/2) plus half the
-     * screen plus the translation must stay below MC_COORD_LIMIT: cap the extent at MC_COORD_LIMIT/2 */
-    int64_t zmax = ((int64_t)MC_COORD_LIMIT / 2 * MC_ZOOM_ONE) / side;
+     * screen plus the translation must stay below MC_COORD_LIMIT, and a mesh vertex's projection
+     * below 2^62: cap the extent at MC_VIEW_EXTENT_MAX */
+    int64_t zmax = ((int64_t)MC_VIEW_EXTENT_MAX * MC_ZOOM_ONE) / side;
     if (zmax > MC_ZOOM_MAX) zmax = MC_ZOOM_MAX;
     if (zmax < 1) zmax = 1;
     c.zoom = clamp32(v->zoom, zmax < MC_ZOOM_MIN ? (int32_t)zmax : MC_ZOOM_MIN, (int32_t)zmax);

@@ -23,18 +23,10 @@ MC_ALWAYS_INLINE int32_t ortho_band(int64_t v, uint32_t *flags)
     return (int32_t)(v > 0 ? lim : -lim);
 }
 
-/* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) without a branch (the vertices'
- * signs are a coin toss to a predictor) and without shifting a negative number: that is
- * floor((v + 2^(s-1) - [v < 0]) / 2^s), taken on u = v + 2^63 in unsigned arithmetic (2^63 is a
- * multiple of 2^s). ortho_round_shift: for 2 <= s <= 62 and any v > INT64_MIN, u's low s bits and the
- * rest apart so that nothing carries out; ortho_round_shift_small: for |v| < 2^62, at once. */
-MC_ALWAYS_INLINE int64_t ortho_round_shift(int64_t v, unsigned s)
-{
-    const uint64_t u = (uint64_t)v ^ ((uint64_t)1 << 63);
-    const uint64_t low = (u & (((uint64_t)1 << s) - 1u)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
-    return (int64_t)((u >> s) + (low >> s)) - ((int64_t)1 << (63 - s));
-}
-
+/* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) for |v| < 2^62 and 1 <= s <= 62,
+ * without a branch (the vertices' signs are a coin toss to a predictor) and without shifting a
+ * negative number: that is floor((v + 2^(s-1) - [v < 0]) / 2^s), taken on u = v + 2^63 in unsigned
+ * arithmetic (2^63 is a multiple of 2^s; |v| < 2^62 keeps the sum from carrying out). */
 MC_ALWAYS_INLINE int64_t ortho_round_shift_small(int64_t v, unsigned s)
 {
     const uint64_t u = ((uint64_t)v ^ ((uint64_t)1 << 63)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
@@ -48,13 +40,14 @@ MC_ALWAYS_INLINE int64_t ortho_round_shift_small(int64_t v, unsigned s)
 #define ORTHO_ROTATE(x, row, p0, p1, p2) \
     ortho_round_shift_small(ORTHO_MUL((x)->r[row][0], p0) + ORTHO_MUL((x)->r[row][1], p1) + ORTHO_MUL((x)->r[row][2], p2), 16)
 
-/* The orthographic projection of q = R p: S q in 1/16 pixel, Q16 * Q30 >> 42 */
+/* The orthographic projection of q = R p: S q in 1/16 pixel, Q16 * Q30 >> 42 (|S q| < 2^16 * 2^16 *
+ * 2^30: mc_view_clamp keeps S within MC_VIEW_EXTENT_MAX pixels, xform.h) */
 MC_ALWAYS_INLINE void ortho_project(int64_t scale, int64_t cx, int64_t cy, int64_t q0, int64_t q1, int64_t q2,
                                    mc_xvertex *out)
 {
     uint32_t flags = 0;
-    out->x = ortho_band(cx + ortho_round_shift(scale * q0, 42), &flags);
-    out->y = ortho_band(cy - ortho_round_shift(scale * q1, 42), &flags);
+    out->x = ortho_band(cx + ortho_round_shift_small(scale * q0, 42), &flags);
+    out->y = ortho_band(cy - ortho_round_shift_small(scale * q1, 42), &flags);
     out->z = (uint32_t)ortho_round_shift_small(((int64_t)7 << 27) - q2, 15);   /* (7/8 - q.z) * 2^15 */
     out->flags = flags;
 }

@@ -263,23 +263,23 @@ static void check_clamp(const mc_view *in, uint32_t w, uint32_t h)
     mc_view out = mc_view_clamp(in, w, h);
     uint64_t side = w < h ? w : h;
     if (side == 0) side = 1;
-    /* documented: zoom in [1/64, 64] and screen extent zoom * side <= MC_COORD_LIMIT / 2 pixels */
-    int64_t zhi = (int64_t)((uint64_t)(MC_COORD_LIMIT / 2) * MC_ZOOM_ONE / side);
+    /* documented: zoom in [1/64, 64] and screen extent zoom * side <= MC_COORD_LIMIT / 2 pixels, and
+     * never above 2^16 pixels (xform.h: a mesh vertex's projection below 2^62) */
+    const int64_t ext = MC_COORD_LIMIT / 2 < 65536 ? MC_COORD_LIMIT / 2 : 65536;
+    int64_t zhi = (int64_t)((uint64_t)ext * MC_ZOOM_ONE / side);
     if (zhi > MC_ZOOM_MAX) zhi = MC_ZOOM_MAX;
     int64_t zlo = MC_ZOOM_MIN < zhi ? MC_ZOOM_MIN : zhi;   /* a huge target leaves no room for 1/64 */
     if (zhi < 1) zhi = zlo = 1;
     if (out.zoom != clamp_ref(in->zoom, zlo, zhi))
         fail_msg("mc_view_clamp(zoom %" PRId32 ", %" PRIu32 "x%" PRIu32 "): zoom %" PRId32 ", want %" PRId32
-                 " (the nearest zoom in [1/64, 64] with extent <= MC_COORD_LIMIT/2 = %d px)",
-                 in->zoom, w, h, out.zoom, clamp_ref(in->zoom, zlo, zhi), MC_COORD_LIMIT / 2);
-    /* (for sides above MC_COORD_LIMIT / 2 * 65536 no positive Q16 zoom keeps the extent in bounds;
+                 " (the nearest zoom in [1/64, 64] with extent <= %d px)",
+                 in->zoom, w, h, out.zoom, clamp_ref(in->zoom, zlo, zhi), (int)ext);
+    /* (for sides above that extent * 65536 no positive Q16 zoom keeps the extent in bounds;
      * mc_octree_render refuses such targets anyway) */
     if (out.zoom < 1 ||
-        (side <= (uint64_t)(MC_COORD_LIMIT / 2) * MC_ZOOM_ONE &&
-         (uint64_t)out.zoom * side > (uint64_t)(MC_COORD_LIMIT / 2) * MC_ZOOM_ONE))
+        (side <= (uint64_t)ext * MC_ZOOM_ONE && (uint64_t)out.zoom * side > (uint64_t)ext * MC_ZOOM_ONE))
         fail_msg("mc_view_clamp(zoom %" PRId32 ", %" PRIu32 "x%" PRIu32 "): extent %.3f px is not in"
-                 " (0, MC_COORD_LIMIT/2 = %d]", in->zoom, w, h, (double)out.zoom * (double)side / 65536,
-                 MC_COORD_LIMIT / 2);
+                 " (0, %d]", in->zoom, w, h, (double)out.zoom * (double)side / 65536, (int)ext);
     if (out.tx != clamp_ref(in->tx, -MC_COORD_LIMIT / 4, MC_COORD_LIMIT / 4) ||
         out.ty != clamp_ref(in->ty, -MC_COORD_LIMIT / 4, MC_COORD_LIMIT / 4))
         fail_msg("mc_view_clamp(tx %" PRId32 ", ty %" PRId32 ") = (%" PRId32 ", %" PRId32 "), want each clamped"

@@ -11,17 +11,19 @@
  * angles every frame.
  *
  * Any values are accepted. Values the fixed-point format cannot represent are clamped, never wrapped
- * (see mc_view_clamp): zoom to [1/64, 64] and to a screen extent of at most MC_COORD_LIMIT / 2 pixels,
+ * (see mc_view_clamp): zoom to [1/64, 64] and to a screen extent of at most MC_VIEW_EXTENT_MAX pixels,
  * translations to +-MC_COORD_LIMIT / 4 pixels, the perspective eye distance to [1/16, 256] cube sides.
  *
  * Representable ranges (MC_COORD_LIMIT = 2^(30 - MC_FRAC_BITS) pixels; at the default MC_FRAC_BITS 15:
  * 32768 pixels), all enforced by mc_view_clamp and the renderers, never by wrapping:
  *   - largest model extent on screen: the bounding cube's side S = zoom * min(width, height) is at
- *     most MC_COORD_LIMIT / 2 pixels (16384 at F = 15), so the bounding sphere (S * sqrt(3) / 2) plus
- *     half the screen plus the translation stays below MC_COORD_LIMIT and every fixed-point sum on
- *     the rendering path stays below 2^30 (half the int32 range). The model itself is always scaled
- *     into the unit cube by the generator, so this is the only extent limit;
- *   - largest zoom: min(64, MC_COORD_LIMIT / 2 / min(width, height)): at F = 15, 64 for short sides
+ *     most MC_VIEW_EXTENT_MAX pixels: MC_COORD_LIMIT / 2 (16384 at F = 15), so the bounding sphere
+ *     (S * sqrt(3) / 2) plus half the screen plus the translation stays below MC_COORD_LIMIT and every
+ *     fixed-point sum on the rendering path stays below 2^30 (half the int32 range); and never above
+ *     2^16 pixels (a bound only below F = 13), so that a mesh vertex's projection, S in Q16 times a
+ *     Q30 view-space coordinate, stays below 2^62. The model itself is always scaled into the unit
+ *     cube by the generator, so this is the only extent limit;
+ *   - largest zoom: min(64, MC_VIEW_EXTENT_MAX / min(width, height)): at F = 15, 64 for short sides
  *     up to 256 pixels, 34 and a fraction at 480 pixels, 4 at MC_TARGET_MAX (4096 pixels); smallest zoom 1/64;
  *   - translations: +-MC_COORD_LIMIT / 4 pixels (+-8192 at F = 15), far enough to move the model
  *     wholly off any target;
@@ -55,6 +57,8 @@ typedef struct mc_view {
 #define MC_ZOOM_MAX (MC_ZOOM_ONE * 64)
 #define MC_EYE_MIN (MC_ZOOM_ONE / 16)
 #define MC_EYE_MAX (MC_ZOOM_ONE * 256)
+/* The largest screen extent of the model's cube, pixels (see above). */
+#define MC_VIEW_EXTENT_MAX (MC_COORD_LIMIT / 2 < 65536 ? MC_COORD_LIMIT / 2 : 65536)
 
 /* Frontal, zoom 1, orthographic, eye 2 cube sides away. */
 mc_view mc_view_default(void);
