@@ -75,7 +75,7 @@ struct Plan {
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const int kPmArrayCount = 8, kPmLineArrays = 4, kPmFaceBits = 6, kPmSplitFaces = 7;   // the line drawings': 4 and 5
+const int kPmArrayCount = 8, kPmOpposite = 4, kPmEdgeOrder = 5, kPmFaceBits = 6, kPmSplitFaces = 7;
 const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "opposite", "edge_order",
                                                "face_bits", "split_faces"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
@@ -98,12 +98,12 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     for (const auto &f : pm.faces)
         for (uint32_t c : f) put(p.pm_bytes[3], c, ib);
     for (const auto &f : pm.opposite)
-        for (uint32_t h : f) put(p.pm_bytes[4], h, p.half_bytes);
-    for (uint32_t h : pm.edge_order) put(p.pm_bytes[5], h, p.half_bytes);
+        for (uint32_t h : f) put(p.pm_bytes[kPmOpposite], h, p.half_bytes);
+    for (uint32_t h : pm.edge_order) put(p.pm_bytes[kPmEdgeOrder], h, p.half_bytes);
     // each face's shade and crease bits by the runtime's own code (mesh_face.h mc_mesh_face_bits, which
     // a stream's reader calls too) over the arrays just laid out, one chunk each
     const auto whole = [&](int k) { return mc_chunk{p.pm_bytes[k].data(), static_cast<uint32_t>(p.pm_bytes[k].size())}; };
-    const mc_chunk positions = whole(0), corners = whole(3), opposite = whole(4);
+    const mc_chunk positions = whole(0), corners = whole(3), opposite = whole(kPmOpposite);
     mc_pmesh view{};
     view.faces = static_cast<uint32_t>(pm.faces.size());
     view.index_bytes = static_cast<uint8_t>(ib);
@@ -196,7 +196,7 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
             if (k == kPmFaceBits) p.pm_face_data += p.pm_bytes[k].size();
-            else if (k == kPmLineArrays || k == kPmLineArrays + 1) p.pm_line_data += p.pm_bytes[k].size();
+            else if (k == kPmOpposite || k == kPmEdgeOrder) p.pm_line_data += p.pm_bytes[k].size();   // the line drawings'
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
         p.pm_data += p.pm_palette.size();

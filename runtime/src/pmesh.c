@@ -1,11 +1,17 @@
 /* Level of detail of a progressive mesh (pmesh.h): the ancestor map, refined and coarsened. */
 #include "modelc/pmesh.h"
 
+/* Record i of a list of one index field each, ib bytes wide, 2^shift records a chunk: the tree's
+ * subtree sizes and the splits' vertices (the level change passes the fields in locals). */
+MC_ALWAYS_INLINE uint32_t index_record(const mc_chunk *list, unsigned shift, unsigned ib, uint32_t i)
+{
+    return mc_le_index(mc_chunk_record(list, shift, ib, i), ib);
+}
+
 /* The size of vertex v's subtree (its tree record). */
 MC_ALWAYS_INLINE uint32_t subtree_size(const mc_pmesh *pm, uint32_t v)
 {
-    const unsigned ib = pm->index_bytes;
-    return mc_le_index(mc_chunk_record(pm->tree, pm->record_shift, ib, v), ib);
+    return index_record(pm->tree, pm->record_shift, pm->index_bytes, v);
 }
 
 /* The parent of v, the vertex of the split whose first face is f0, at a level where v is present and
@@ -61,8 +67,8 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
     if (level > pm->vertices) level = pm->vertices;
     while (lod->level < level) {   /* split: the vertex's subtree now stands for it */
         const uint32_t s = lod->level - base, nf = mc_pmesh_split_faces_in(bits, shift, s);
-        const uint32_t v = mc_le_index(mc_chunk_record(splits, shift, ib, s), ib);
-        anc_fill(lod, v, mc_le_index(mc_chunk_record(tree, shift, ib, v), ib), v);
+        const uint32_t v = index_record(splits, shift, ib, s);
+        anc_fill(lod, v, index_record(tree, shift, ib, v), v);
         lod->faces += nf;
         lod->level++;
         if (lod->nbr) nbr_added(lod, lod->faces - nf);
@@ -70,8 +76,8 @@ uint32_t mc_pmesh_lod_set(mc_pmesh_lod *lod, uint32_t level)
     while (lod->level > level) {   /* collapse: the subtree goes back to the parent, which split
                                     * earlier and so is present */
         const uint32_t s = lod->level - 1u - base, nf = mc_pmesh_split_faces_in(bits, shift, s);
-        const uint32_t v = mc_le_index(mc_chunk_record(splits, shift, ib, s), ib);
-        anc_fill(lod, v, mc_le_index(mc_chunk_record(tree, shift, ib, v), ib), split_parent(lod, v, lod->faces - nf));
+        const uint32_t v = index_record(splits, shift, ib, s);
+        anc_fill(lod, v, index_record(tree, shift, ib, v), split_parent(lod, v, lod->faces - nf));
         lod->level--;
         if (lod->nbr) nbr_removed(lod, lod->faces - nf, lod->faces);
         lod->faces -= nf;
@@ -96,8 +102,7 @@ uint32_t mc_pmesh_lod_fit_to(mc_pmesh_lod *lod, uint32_t max_faces, uint32_t max
 
 uint32_t mc_pmesh_split_vertex(const mc_pmesh *pm, uint32_t s)
 {
-    const unsigned ib = pm->index_bytes;
-    return mc_le_index(mc_chunk_record(pm->splits, pm->record_shift, ib, s), ib);
+    return index_record(pm->splits, pm->record_shift, pm->index_bytes, s);
 }
 
 uint32_t mc_pmesh_root_span(const mc_pmesh *pm, uint32_t v)
