@@ -111,11 +111,16 @@ MC_NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, ui
 }
 
 /* The cache entries of the corners of the face whose corner record is r (ib: the index width, a
- * constant where called), each corner standing for its ancestor present at the level. */
+ * constant where called), each corner standing for its ancestor present at the level; full (a
+ * constant where called): the level is the full mesh, whose every vertex is its own ancestor. */
 MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *cache, const uint8_t *r, unsigned ib,
-                                     const mc_xvertex **a, const mc_xvertex **b, const mc_xvertex **c)
+                                     int full, const mc_xvertex **a, const mc_xvertex **b, const mc_xvertex **c)
 {
-    if (ib == 2) {
+    if (full && ib == 2) {
+        *a = &cache[mc_le16(r)], *b = &cache[mc_le16(r + 2)], *c = &cache[mc_le16(r + 4)];
+    } else if (full) {
+        *a = &cache[mc_le32(r)], *b = &cache[mc_le32(r + 4)], *c = &cache[mc_le32(r + 8)];
+    } else if (ib == 2) {
         const uint16_t *anc = (const uint16_t *)lod->anc;
         *a = &cache[anc[mc_le16(r)]], *b = &cache[anc[mc_le16(r + 2)]], *c = &cache[anc[mc_le16(r + 4)]];
     } else {
@@ -126,15 +131,16 @@ MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *
 
 /* The facing bits of faces f0 .. f0 + n - 1, whose corner records start at r, from the cache; *acc
  * holds the bits of the byte being filled, stored as each byte is complete. ib is the part's index
- * width (a constant where called, so that one loop is made for each width). */
+ * width and full whether the level is the full mesh (record_corners; constants where called, so
+ * that one loop is made for each). */
 MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing,
-                                 uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, uint32_t *acc)
+                                 uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, int full, uint32_t *acc)
 {
     uint32_t bits = *acc;
     for (uint32_t i = 0; i < n; i++, r += 3u * ib) {
         const uint32_t f = f0 + i;
         const mc_xvertex *a, *b, *c;
-        record_corners(lod, cache, r, ib, &a, &b, &c);
+        record_corners(lod, cache, r, ib, full, &a, &b, &c);
         uint32_t fr;
         if (a->flags | b->flags | c->flags) fr = (uint32_t)face_front(lod, x, f);
         else fr = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
@@ -160,12 +166,20 @@ static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xver
     }
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
+    /* at the full level the corners are read as stored (every vertex its own ancestor); a firmware
+     * keeps one copy of the loop (flash) */
+    const int full = MC_MESH_SELECT && lod->level == pm->vertices;
     uint32_t acc = 0;
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = pm->corners[f0 >> shift].data;
-        if (pm->index_bytes == 2) facing_run(lod, x, cache, facing, f0, n, r, 2, &acc);
-        else facing_run(lod, x, cache, facing, f0, n, r, 4, &acc);
+        if (pm->index_bytes == 2) {
+            if (full) facing_run(lod, x, cache, facing, f0, n, r, 2, 1, &acc);
+            else facing_run(lod, x, cache, facing, f0, n, r, 2, 0, &acc);
+        } else {
+            if (full) facing_run(lod, x, cache, facing, f0, n, r, 4, 1, &acc);
+            else facing_run(lod, x, cache, facing, f0, n, r, 4, 0, &acc);
+        }
     }
     if (lod->faces & 7u) facing[lod->faces >> 3] = (uint8_t)acc;
 }
@@ -462,12 +476,12 @@ MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xve
     mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
 }
 
-/* Face f of the face pass, its corner record at q (ib: the index width, a constant where called). */
+/* Face f of the face pass, its corner record at q (ib, full: as record_corners, constants where called). */
 MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd, int cull,
-                               uint32_t f, const uint8_t *q, unsigned ib)
+                               uint32_t f, const uint8_t *q, unsigned ib, int full)
 {
     const mc_xvertex *a, *b, *c;
-    record_corners(lod, cache, q, ib, &a, &b, &c);
+    record_corners(lod, cache, q, ib, full, &a, &b, &c);
     if (a->flags | b->flags | c->flags) {
         hide_clipped(sd, lod, x, f);
         return;
@@ -476,10 +490,11 @@ MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const
 }
 
 /* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
- * cache (ib: the index width, a constant where called). Culling, with MC_MESH_SELECT, the front faces
+ * cache (ib: the index width, full: the level is the full mesh; constants where called). Culling, with MC_MESH_SELECT, the front faces
  * are taken 32 at a time from their facing bits, lowest first, instead of a branch on each face's. */
 MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
-                               const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib)
+                               const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib,
+                               int full)
 {
 #if MC_MESH_SELECT
     for (uint32_t i0 = 0; i0 < n; i0 += 32u) {
@@ -489,12 +504,12 @@ MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const
         while (bits) {
             const uint32_t i = i0 + mc_ctz(bits);
             bits &= bits - 1u;
-            hide_one(lod, x, cache, sd, cull, f0 + i, r + i * 3u * ib, ib);
+            hide_one(lod, x, cache, sd, cull, f0 + i, r + i * 3u * ib, ib, full);
         }
     }
 #else
     for (uint32_t i = 0; i < n; i++, r += 3u * ib)
-        if (!cull || front(facing, f0 + i)) hide_one(lod, x, cache, sd, cull, f0 + i, r, ib);
+        if (!cull || front(facing, f0 + i)) hide_one(lod, x, cache, sd, cull, f0 + i, r, ib, full);
 #endif
 }
 
@@ -535,11 +550,17 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
         } else {
             const unsigned shift = pm->record_shift;
             const uint32_t chunk = UINT32_C(1) << shift;
+            const int full = MC_MESH_SELECT && lod->level == pm->vertices;
             for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
                 const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
                 const uint8_t *r = pm->corners[f0 >> shift].data;
-                if (pm->index_bytes == 2) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2);
-                else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4);
+                if (pm->index_bytes == 2) {
+                    if (full) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, 1);
+                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, 0);
+                } else {
+                    if (full) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, 1);
+                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, 0);
+                }
             }
         }
     }
