@@ -110,15 +110,30 @@ MC_NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, ui
     return flagged;
 }
 
-/* The cache entries of the corners of the face whose corner record is r (ib: the index width, a
- * constant where called), each corner standing for its ancestor present at the level; full (a
- * constant where called): the level is the full mesh, whose every vertex is its own ancestor. */
-MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *cache, const uint8_t *r, unsigned ib,
-                                     int full, const mc_xvertex **a, const mc_xvertex **b, const mc_xvertex **c)
+/* How the passes over every face read a face's corners from the cache (a constant where called, so
+ * that each pass has a loop for each): through the ancestor map; as stored (the full level, where
+ * every vertex is its own ancestor); as stored with no corner flagged (the full level, and the frame's
+ * projection flagged no vertex: no face needs its plane test or its clipping). With MC_MESH_SELECT
+ * only: a firmware keeps one loop of each pass (flash). */
+enum { CORNERS_MAPPED, CORNERS_STORED, CORNERS_PLAIN };
+
+/* The corner mode of a frame at lod's level; unflagged: no vertex of the level is flagged (known
+ * from the projection). */
+static unsigned corner_mode(const mc_pmesh_lod *lod, int unflagged)
 {
-    if (full && ib == 2) {
+    if (!MC_MESH_SELECT || lod->level != lod->pm->vertices) return CORNERS_MAPPED;
+    return unflagged ? CORNERS_PLAIN : CORNERS_STORED;
+}
+
+/* The cache entries of the corners of the face whose corner record is r (ib: the index width; mode:
+ * the corner mode; constants where called), each corner standing for its ancestor present at the
+ * level. */
+MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *cache, const uint8_t *r, unsigned ib,
+                                     unsigned mode, const mc_xvertex **a, const mc_xvertex **b, const mc_xvertex **c)
+{
+    if (mode != CORNERS_MAPPED && ib == 2) {
         *a = &cache[mc_le16(r)], *b = &cache[mc_le16(r + 2)], *c = &cache[mc_le16(r + 4)];
-    } else if (full) {
+    } else if (mode != CORNERS_MAPPED) {
         *a = &cache[mc_le32(r)], *b = &cache[mc_le32(r + 4)], *c = &cache[mc_le32(r + 8)];
     } else if (ib == 2) {
         const uint16_t *anc = (const uint16_t *)lod->anc;
@@ -131,18 +146,18 @@ MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *
 
 /* The facing bits of faces f0 .. f0 + n - 1, whose corner records start at r, from the cache; *acc
  * holds the bits of the byte being filled, stored as each byte is complete. ib is the part's index
- * width and full whether the level is the full mesh (record_corners; constants where called, so
- * that one loop is made for each). */
+ * width and mode the corner mode (record_corners; constants where called, so that one loop is made
+ * for each). */
 MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing,
-                                 uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, int full, uint32_t *acc)
+                                 uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, unsigned mode, uint32_t *acc)
 {
     uint32_t bits = *acc;
     for (uint32_t i = 0; i < n; i++, r += 3u * ib) {
         const uint32_t f = f0 + i;
         const mc_xvertex *a, *b, *c;
-        record_corners(lod, cache, r, ib, full, &a, &b, &c);
+        record_corners(lod, cache, r, ib, mode, &a, &b, &c);
         uint32_t fr;
-        if (a->flags | b->flags | c->flags) fr = (uint32_t)face_front(lod, x, f);
+        if (mode != CORNERS_PLAIN && (a->flags | b->flags | c->flags)) fr = (uint32_t)face_front(lod, x, f);
         else fr = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
         bits |= fr << (f & 7u);
         if ((f & 7u) == 7u) facing[f >> 3] = (uint8_t)bits, bits = 0;
@@ -151,8 +166,8 @@ MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, con
 }
 
 /* Sets the level's facing bits (mc_mesh_facing's; the corners from the cache when there is one, read
- * in order, a run of records a chunk). */
-static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing)
+ * in order, a run of records a chunk; unflagged: no vertex of the level is flagged). */
+static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, int unflagged, uint8_t *facing)
 {
     const mc_pmesh *pm = lod->pm;
     if (!cache) {
@@ -166,19 +181,19 @@ static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xver
     }
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
-    /* at the full level the corners are read as stored (every vertex its own ancestor); a firmware
-     * keeps one copy of the loop (flash) */
-    const int full = MC_MESH_SELECT && lod->level == pm->vertices;
+    const unsigned mode = corner_mode(lod, unflagged);
     uint32_t acc = 0;
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = pm->corners[f0 >> shift].data;
         if (pm->index_bytes == 2) {
-            if (full) facing_run(lod, x, cache, facing, f0, n, r, 2, 1, &acc);
-            else facing_run(lod, x, cache, facing, f0, n, r, 2, 0, &acc);
+            if (mode == CORNERS_PLAIN) facing_run(lod, x, cache, facing, f0, n, r, 2, CORNERS_PLAIN, &acc);
+            else if (mode == CORNERS_STORED) facing_run(lod, x, cache, facing, f0, n, r, 2, CORNERS_STORED, &acc);
+            else facing_run(lod, x, cache, facing, f0, n, r, 2, CORNERS_MAPPED, &acc);
         } else {
-            if (full) facing_run(lod, x, cache, facing, f0, n, r, 4, 1, &acc);
-            else facing_run(lod, x, cache, facing, f0, n, r, 4, 0, &acc);
+            if (mode == CORNERS_PLAIN) facing_run(lod, x, cache, facing, f0, n, r, 4, CORNERS_PLAIN, &acc);
+            else if (mode == CORNERS_STORED) facing_run(lod, x, cache, facing, f0, n, r, 4, CORNERS_STORED, &acc);
+            else facing_run(lod, x, cache, facing, f0, n, r, 4, CORNERS_MAPPED, &acc);
         }
     }
     if (lod->faces & 7u) facing[lod->faces >> 3] = (uint8_t)acc;
@@ -364,14 +379,15 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
 
 /* Both ways' edge pass: the level's crease and facing bits in mem, then every edge of a kind in
  * flags drawn as its line, into t with mc_line's depth test (sd null) or offered to sd (t null);
- * counts into st. A constant sink makes one function of it for each way. */
-MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *mem,
-                                 unsigned flags, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st)
+ * counts into st; unflagged: no vertex of the level is flagged in the cache. A constant sink makes
+ * one function of it for each way. */
+MC_ALWAYS_INLINE void draw_edges(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, int unflagged,
+                                 uint8_t *mem, unsigned flags, const mc_target *t, mc_sdepth *sd, mc_lines_stats *st)
 {
     uint8_t *facing = mc_lines_facing(mem);
     const uint8_t *cr = mc_lines_creases(mem, lod->pm->faces);
     mc_mesh_creases_update(lod, mem);
-    set_facing(lod, x, cache, facing);
+    set_facing(lod, x, cache, unflagged, facing);
     mc_line_style style;
     style.flags = (uint8_t)(MC_LINE_WRITE_DEPTH | ((flags & MC_LINES_NO_HIDING) ? MC_LINE_NO_DEPTH_TEST : 0u));
     style.depth_offset = 0;
@@ -415,7 +431,7 @@ int mc_mesh_lines(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, 
     if (t->width > MC_TARGET_MAX || t->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
     mc_xform_init(&x, view, t->width, t->height);
-    draw_edges(lod, &x, cache, mem, flags, t, 0, &st);
+    draw_edges(lod, &x, cache, 0, mem, flags, t, 0, &st);
     if (stats) *stats = st;
     return MC_OK;
 }
@@ -476,13 +492,13 @@ MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xve
     mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
 }
 
-/* Face f of the face pass, its corner record at q (ib, full: as record_corners, constants where called). */
+/* Face f of the face pass, its corner record at q (ib, mode: as record_corners, constants where called). */
 MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd, int cull,
-                               uint32_t f, const uint8_t *q, unsigned ib, int full)
+                               uint32_t f, const uint8_t *q, unsigned ib, unsigned mode)
 {
     const mc_xvertex *a, *b, *c;
-    record_corners(lod, cache, q, ib, full, &a, &b, &c);
-    if (a->flags | b->flags | c->flags) {
+    record_corners(lod, cache, q, ib, mode, &a, &b, &c);
+    if (mode != CORNERS_PLAIN && (a->flags | b->flags | c->flags)) {
         hide_clipped(sd, lod, x, f);
         return;
     }
@@ -490,11 +506,11 @@ MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const
 }
 
 /* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
- * cache (ib: the index width, full: the level is the full mesh; constants where called). Culling, with MC_MESH_SELECT, the front faces
+ * cache (ib: the index width, mode: the corner mode; constants where called). Culling, with MC_MESH_SELECT, the front faces
  * are taken 32 at a time from their facing bits, lowest first, instead of a branch on each face's. */
 MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
                                const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib,
-                               int full)
+                               unsigned mode)
 {
 #if MC_MESH_SELECT
     for (uint32_t i0 = 0; i0 < n; i0 += 32u) {
@@ -504,12 +520,12 @@ MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const
         while (bits) {
             const uint32_t i = i0 + mc_ctz(bits);
             bits &= bits - 1u;
-            hide_one(lod, x, cache, sd, cull, f0 + i, r + i * 3u * ib, ib, full);
+            hide_one(lod, x, cache, sd, cull, f0 + i, r + i * 3u * ib, ib, mode);
         }
     }
 #else
     for (uint32_t i = 0; i < n; i++, r += 3u * ib)
-        if (!cull || front(facing, f0 + i)) hide_one(lod, x, cache, sd, cull, f0 + i, r, ib, full);
+        if (!cull || front(facing, f0 + i)) hide_one(lod, x, cache, sd, cull, f0 + i, r, ib, mode);
 #endif
 }
 
@@ -527,9 +543,9 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
     if (sd->width > MC_TARGET_MAX || sd->height > MC_TARGET_MAX) return MC_ERR_SIZE;
     mc_xform x;
     mc_xform_init(&x, view, sd->width, sd->height);
-    if (cache) mc_mesh_project(lod, &x, cache);
+    const int unflagged = cache && !mc_mesh_project(lod, &x, cache);
     /* the lines first: their pixels become the buffer's entries, the nearest kept */
-    draw_edges(lod, &x, cache, mem, flags, 0, sd, &st);
+    draw_edges(lod, &x, cache, unflagged, mem, flags, 0, sd, &st);
     const uint8_t *facing = mc_lines_facing(mem);
     /* then the faces mc_mesh_render would draw empty the entries they hide (a face with a flagged
      * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
@@ -550,16 +566,18 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
         } else {
             const unsigned shift = pm->record_shift;
             const uint32_t chunk = UINT32_C(1) << shift;
-            const int full = MC_MESH_SELECT && lod->level == pm->vertices;
+            const unsigned mode = corner_mode(lod, unflagged);
             for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
                 const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
                 const uint8_t *r = pm->corners[f0 >> shift].data;
                 if (pm->index_bytes == 2) {
-                    if (full) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, 1);
-                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, 0);
+                    if (mode == CORNERS_PLAIN) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_PLAIN);
+                    else if (mode == CORNERS_STORED) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_STORED);
+                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_MAPPED);
                 } else {
-                    if (full) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, 1);
-                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, 0);
+                    if (mode == CORNERS_PLAIN) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_PLAIN);
+                    else if (mode == CORNERS_STORED) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_STORED);
+                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_MAPPED);
                 }
             }
         }

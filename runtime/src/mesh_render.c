@@ -103,52 +103,60 @@ static void clipped_face(const mc_pmesh *pm, const mc_xform *x, const uint32_t c
  * inline (xform_ortho.h), its constants in registers. One loop for both index widths and both
  * projections: the tests are the same every vertex, and a copy of the loop would cost a firmware's
  * flash. */
-static void project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache, uint32_t v0, uint32_t n,
-                        const uint8_t *r)
+static uint32_t project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache, uint32_t v0, uint32_t n,
+                            const uint8_t *r)
 {
     const int wide = lod->pm->index_bytes != 2, perspective = x->perspective;
     const uint16_t *anc16 = (const uint16_t *)lod->anc;
     const uint32_t *anc32 = (const uint32_t *)lod->anc;
     mc_xform_ortho o;
     mc_xform_ortho_init(&o, x);
+    uint32_t flags = 0;
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
         if ((wide ? anc32[v] : anc16[v]) != v) continue;
         int32_t p[3];
         mc_pmesh_position_at(r, p);
         if (perspective) mc_xform_vertex(x, p, &cache[v]);
         else mc_xform_ortho_point(&o, p, &cache[v]);
+        flags |= cache[v].flags;
     }
+    return flags;
 }
 
-/* Projects vertex v into cache[v]. */
-static void project_one(const mc_pmesh *pm, const mc_xform *x, const mc_xform_ortho *o, mc_xvertex *cache, uint32_t v)
+/* Projects vertex v into cache[v]; returns its flags. */
+static uint32_t project_one(const mc_pmesh *pm, const mc_xform *x, const mc_xform_ortho *o, mc_xvertex *cache, uint32_t v)
 {
     int32_t p[3];
     mc_pmesh_position_at(mc_chunk_record(pm->positions, pm->record_shift, 6u, v), p);
     if (x->perspective) mc_xform_vertex(x, p, &cache[v]);
     else mc_xform_ortho_point(o, p, &cache[v]);
+    return cache[v].flags;
 }
 
 /* Projects every vertex present at the level into cache[v]. At a fine level the positions are read
  * in order, the absent ones skipped; at a coarse one (under a third of the vertices present) only
  * the present ones are visited, the roots by their subtrees and then the vertex of each split made,
- * so that the work follows the level, not the full mesh. The same entries either way. */
-static void project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
+ * so that the work follows the level, not the full mesh. The same entries either way. Returns their
+ * flags, or-ed. */
+static uint32_t project_level(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
 {
     const mc_pmesh *pm = lod->pm;
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
+    uint32_t flags = 0;
     if (lod->level < pm->vertices / 3u) {
         mc_xform_ortho o;
         mc_xform_ortho_init(&o, x);
-        for (uint32_t v = 0; v < pm->vertices; v += mc_pmesh_root_span(pm, v)) project_one(pm, x, &o, cache, v);
-        for (uint32_t s = 0; s < lod->level - pm->base_vertices; s++) project_one(pm, x, &o, cache, mc_pmesh_split_vertex(pm, s));
-        return;
+        for (uint32_t v = 0; v < pm->vertices; v += mc_pmesh_root_span(pm, v)) flags |= project_one(pm, x, &o, cache, v);
+        for (uint32_t s = 0; s < lod->level - pm->base_vertices; s++)
+            flags |= project_one(pm, x, &o, cache, mc_pmesh_split_vertex(pm, s));
+        return flags;
     }
     for (uint32_t v0 = 0; v0 < pm->vertices; v0 += chunk) {
         const uint32_t n = pm->vertices - v0 < chunk ? pm->vertices - v0 : chunk;
-        project_run(lod, x, cache, v0, n, pm->positions[v0 >> shift].data);
+        flags |= project_run(lod, x, cache, v0, n, pm->positions[v0 >> shift].data);
     }
+    return flags;
 }
 
 int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, const mc_target *t,
@@ -217,4 +225,7 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
     return MC_OK;
 }
 
-void mc_mesh_project(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache) { project_level(lod, x, cache); }
+uint32_t mc_mesh_project(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache)
+{
+    return project_level(lod, x, cache);
+}

@@ -605,6 +605,26 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
                      s5.silhouettes != s3.silhouettes || s5.creases != s3.creases || s5.borders != s3.borders ||
                      s5.pixels != s3.pixels))
             bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse with a neighbour table: not the same drawing");
+        /* mc_mesh_project's answer (the sparse way reads no corner's flag at the full level when it
+         * is 0) against the flags of the level's vertices, each projected on its own */
+        {
+            mc_xform x;
+            mc_xform_init(&x, &v, (uint32_t)w, (uint32_t)h);
+            uint32_t want_flags = 0;
+            for (uint32_t u = 0; u < PM.vertices; u++) {
+                /* (a vertex of the level is its own ancestor) */
+                if ((PM.index_bytes == 2 ? ((const uint16_t *)lod->anc)[u] : ((const uint32_t *)lod->anc)[u]) != u) continue;
+                int32_t p[3];
+                mc_xvertex e;
+                mc_pmesh_position(&PM, u, p);
+                mc_xform_vertex(&x, p, &e);
+                want_flags |= e.flags;
+            }
+            const uint32_t got_flags = mc_mesh_project(lod, &x, cache);
+            if (!bad && got_flags != want_flags)
+                bad++, snprintf(first, sizeof first, "mc_mesh_project returned flags %u, the level's vertices have %u",
+                                got_flags, want_flags);
+        }
         mc_pmesh_lod_neighbours(lod, NULL);
         free(nbr);
         free(c3), free(c4), free(d3), free(d4), free(bits), free(cache);

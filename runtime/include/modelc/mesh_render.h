@@ -99,8 +99,9 @@ int mc_mesh_render(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags,
                    mc_xvertex *cache, mc_mesh_stats *stats);
 
 /* Projects every vertex v present at lod's current level through x into cache[v] (MC_MESH_CACHE_BYTES
- * of the part's vertices), as mc_mesh_render does with a cache. */
-void mc_mesh_project(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache);
+ * of the part's vertices), as mc_mesh_render does with a cache. Returns their MC_XFORM_* flags,
+ * or-ed: 0 when no vertex of the level is flagged. */
+uint32_t mc_mesh_project(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache);
 
 /* Face f of lod's current level as mc_mesh_render draws it: its corners' unit-cube positions p (Q16,
  * pmesh.h) and their projections through x in v; returns its corners' MC_XFORM_* flags, or-ed (not
