@@ -98,6 +98,25 @@ static void clipped_face(const mc_pmesh *pm, const mc_xform *x, const uint32_t c
     st->pixels += covered;
 }
 
+#if MC_MESH_SELECT
+/* project_run's orthographic loop for index width ib (a constant where called), the positions read
+ * as the 64-bit values the projection multiplies (x86-64: nothing escapes, nothing is widened). */
+MC_ALWAYS_INLINE uint32_t project_ortho_run(const mc_pmesh_lod *lod, const mc_xform_ortho *o, mc_xvertex *cache,
+                                            uint32_t v0, uint32_t n, const uint8_t *r, unsigned ib)
+{
+    const uint16_t *anc16 = (const uint16_t *)lod->anc;
+    const uint32_t *anc32 = (const uint32_t *)lod->anc;
+    uint32_t flags = 0;
+    for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
+        if ((ib == 2 ? anc16[v] : anc32[v]) != v) continue;
+        mc_xform_ortho_xyz(o, (int64_t)mc_le16(r) - 32768, (int64_t)mc_le16(r + 2) - 32768, (int64_t)mc_le16(r + 4) - 32768,
+                           &cache[v]);
+        flags |= cache[v].flags;
+    }
+    return flags;
+}
+#endif
+
 /* Projects the vertices v0 .. v0 + n - 1 present at the level (their own ancestors) into cache,
  * their position records starting at r; in the usual (orthographic) view with the projection
  * inline (xform_ortho.h), its constants in registers. One loop for both index widths and both
@@ -111,6 +130,9 @@ static uint32_t project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvert
     const uint32_t *anc32 = (const uint32_t *)lod->anc;
     mc_xform_ortho o;
     mc_xform_ortho_init(&o, x);
+#if MC_MESH_SELECT
+    if (!perspective) return wide ? project_ortho_run(lod, &o, cache, v0, n, r, 4) : project_ortho_run(lod, &o, cache, v0, n, r, 2);
+#endif
     uint32_t flags = 0;
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
         if ((wide ? anc32[v] : anc16[v]) != v) continue;

@@ -24,18 +24,23 @@ MC_ALWAYS_INLINE int32_t ortho_band(int64_t v, uint32_t *flags)
 }
 
 /* mc_round_shift(v, s) (v / 2^s to nearest, ties away from zero) for |v| < 2^62 and 1 <= s <= 62,
- * without a branch (the vertices' signs are a coin toss to a predictor) and without shifting a
- * negative number: that is floor((v + 2^(s-1) - [v < 0]) / 2^s), taken on u = v + 2^63 in unsigned
- * arithmetic (2^63 is a multiple of 2^s; |v| < 2^62 keeps the sum from carrying out). */
+ * without a branch (the vertices' signs are a coin toss to a predictor): floor((v + 2^(s-1) -
+ * [v < 0]) / 2^s), the floor an arithmetic shift (config.h MC_ASR_CHECK). */
 MC_ALWAYS_INLINE int64_t ortho_round_shift_small(int64_t v, unsigned s)
 {
-    const uint64_t u = ((uint64_t)v ^ ((uint64_t)1 << 63)) + ((uint64_t)1 << (s - 1)) - (uint64_t)(v < 0);
-    return (int64_t)(u >> s) - ((int64_t)1 << (63 - s));
+    return (v + ((int64_t)1 << (s - 1)) - (int64_t)((uint64_t)v >> 63)) >> s;
 }
 
-/* a * b for |a| <= 2^30 and |b| <= 2^15 taken as 32-bit values, so that a 32-bit core multiplies
- * them in one step (a 64 x 64 product is three) */
+/* a * b for |a| <= 2^30 and |b| <= 2^15: on a 32-bit core taken as 32-bit values, so that it
+ * multiplies them in one step (a 64 x 64 product is three); on a 64-bit one as the 64-bit values
+ * the rotation is kept in (ortho_coef), with no widening before each product. */
+#if UINTPTR_MAX > 0xFFFFFFFFu
+typedef int64_t ortho_coef;
+#define ORTHO_MUL(a, b) ((int64_t)(a) * (int64_t)(b))
+#else
+typedef int32_t ortho_coef;
 #define ORTHO_MUL(a, b) ((int64_t)(int32_t)(a) * (int64_t)(int32_t)(b))
+#endif
 /* R p, Q30: |q| < 2^30 (sums below 3 * 2^45 before the shift) */
 #define ORTHO_ROTATE(x, row, p0, p1, p2) \
     ortho_round_shift_small(ORTHO_MUL((x)->r[row][0], p0) + ORTHO_MUL((x)->r[row][1], p1) + ORTHO_MUL((x)->r[row][2], p2), 16)
@@ -53,7 +58,7 @@ MC_ALWAYS_INLINE void ortho_project(int64_t scale, int64_t cx, int64_t cy, int64
 }
 
 typedef struct mc_xform_ortho {
-    int32_t r[3][3];         /* x->r */
+    ortho_coef r[3][3];      /* x->r */
     int64_t scale, cx, cy;
 } mc_xform_ortho;
 
@@ -64,11 +69,16 @@ MC_ALWAYS_INLINE void mc_xform_ortho_init(mc_xform_ortho *o, const mc_xform *x)
     o->scale = x->scale, o->cx = x->cx, o->cy = x->cy;
 }
 
-MC_ALWAYS_INLINE void mc_xform_ortho_point(const mc_xform_ortho *o, const int32_t p[3], mc_xvertex *out)
+/* mc_xform_ortho_point of the point (p0, p1, p2) */
+MC_ALWAYS_INLINE void mc_xform_ortho_xyz(const mc_xform_ortho *o, int64_t p0, int64_t p1, int64_t p2, mc_xvertex *out)
 {
-    const int64_t p0 = p[0], p1 = p[1], p2 = p[2];
     ortho_project(o->scale, o->cx, o->cy, ORTHO_ROTATE(o, 0, p0, p1, p2), ORTHO_ROTATE(o, 1, p0, p1, p2),
                   ORTHO_ROTATE(o, 2, p0, p1, p2), out);
+}
+
+MC_ALWAYS_INLINE void mc_xform_ortho_point(const mc_xform_ortho *o, const int32_t p[3], mc_xvertex *out)
+{
+    mc_xform_ortho_xyz(o, p[0], p[1], p[2], out);
 }
 
 #endif
