@@ -144,6 +144,20 @@ MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *
     }
 }
 
+/* Whether face f, whose corner record is r, is front-facing (ib, mode: as record_corners). */
+MC_ALWAYS_INLINE uint32_t facing_one(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint32_t f,
+                                     const uint8_t *r, unsigned ib, unsigned mode)
+{
+    const mc_xvertex *a, *b, *c;
+    record_corners(lod, cache, r, ib, mode, &a, &b, &c);
+    if (mode != CORNERS_PLAIN && (a->flags | b->flags | c->flags)) return (uint32_t)face_front(lod, x, f);
+#if UINTPTR_MAX > 0xFFFFFFFFu   /* a 64-bit core widens each coordinate as it reads it */
+    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y) < 0;
+#else                           /* a 32-bit one subtracts in one step */
+    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
+#endif
+}
+
 /* The facing bits of faces f0 .. f0 + n - 1, whose corner records start at r, from the cache; *acc
  * holds the bits of the byte being filled, stored as each byte is complete. ib is the part's index
  * width and mode the corner mode (record_corners; constants where called, so that one loop is made
@@ -151,15 +165,20 @@ MC_ALWAYS_INLINE void record_corners(const mc_pmesh_lod *lod, const mc_xvertex *
 MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing,
                                  uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, unsigned mode, uint32_t *acc)
 {
-    uint32_t bits = *acc;
-    for (uint32_t i = 0; i < n; i++, r += 3u * ib) {
+    uint32_t bits = *acc, i = 0;
+#if MC_MESH_SELECT
+    /* whole bytes where the run starts on one (every run but maybe a short part's): each bit shifted
+     * in from the top, the byte stored once */
+    if ((f0 & 7u) == 0)
+        for (; i + 8u <= n; i += 8u) {
+            uint32_t byte = 0;
+            for (uint32_t k = 0; k < 8u; k++, r += 3u * ib) byte = byte >> 1 | facing_one(lod, x, cache, f0 + i + k, r, ib, mode) << 7;
+            facing[(f0 + i) >> 3] = (uint8_t)byte;
+        }
+#endif
+    for (; i < n; i++, r += 3u * ib) {
         const uint32_t f = f0 + i;
-        const mc_xvertex *a, *b, *c;
-        record_corners(lod, cache, r, ib, mode, &a, &b, &c);
-        uint32_t fr;
-        if (mode != CORNERS_PLAIN && (a->flags | b->flags | c->flags)) fr = (uint32_t)face_front(lod, x, f);
-        else fr = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
-        bits |= fr << (f & 7u);
+        bits |= facing_one(lod, x, cache, f, r, ib, mode) << (f & 7u);
         if ((f & 7u) == 7u) facing[f >> 3] = (uint8_t)bits, bits = 0;
     }
     *acc = bits;
