@@ -508,7 +508,7 @@ MC_ALWAYS_INLINE void hide_face(mc_sdepth *sd, const mc_xvertex *a, const mc_xve
         !mc_sdepth_any(sd, (uint32_t)box.i0, (uint32_t)box.i1, (uint32_t)box.j0, (uint32_t)box.j1))
         return;
 #endif
-    mc_raster_triangle_hide(sd, v, cull ? MC_RASTER_CULL_BACK : 0u);
+    mc_raster_triangle_hide_box(sd, v, cull ? MC_RASTER_CULL_BACK : 0u, &box);   /* (the box as it takes it) */
 }
 
 /* Face f of the face pass, its corner record at q (ib, mode: as record_corners, constants where called). */

@@ -119,9 +119,9 @@ MC_ALWAYS_INLINE uint32_t project_ortho_run(const mc_pmesh_lod *lod, const mc_xf
 
 /* Projects the vertices v0 .. v0 + n - 1 present at the level (their own ancestors) into cache,
  * their position records starting at r; in the usual (orthographic) view with the projection
- * inline (xform_ortho.h), its constants in registers. One loop for both index widths and both
- * projections: the tests are the same every vertex, and a copy of the loop would cost a firmware's
- * flash. */
+ * inline (xform_ortho.h), its constants in registers. A firmware keeps one loop for both index
+ * widths and both projections (the tests are the same every vertex, and a copy of the loop would
+ * cost flash); with MC_MESH_SELECT the orthographic view has a loop of its own (project_ortho_run). */
 static uint32_t project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache, uint32_t v0, uint32_t n,
                             const uint8_t *r)
 {

@@ -511,15 +511,12 @@ MC_NOINLINE static uint32_t draw_rows_hide(const mc_target *t, mc_sdepth *sd, tr
 }
 
 /* The triangle either drawn into t (sd null) or hiding the entries of sd (t then describes sd's
- * frame). A constant sd makes two functions of it. */
-MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_raster_vertex v[3], uint8_t color,
-                                   unsigned flags, uint32_t offset)
+ * frame), its box (mc_raster_centres, not empty) taken. A constant sd makes two functions of it. */
+MC_ALWAYS_INLINE uint32_t triangle_in(const mc_target *t, mc_sdepth *sd, const mc_raster_vertex v[3], uint8_t color,
+                                      unsigned flags, uint32_t offset, const mc_raster_box *box)
 {
     /* (the row path relies on the box's rows: it leaves horizontal edges to them) */
-    mc_raster_box box;
-    if (!mc_raster_centres(v, t->width, t->height, &box)) return 0;
-    const int32_t i0 = box.i0, i1 = box.i1, j0 = box.j0, j1 = box.j1;
-    if (sd && !mc_sdepth_any(sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1)) return 0;
+    const int32_t i0 = box->i0, i1 = box->i1, j0 = box->j0, j1 = box->j1;
     const int32_t x0 = v[0].x, y0 = v[0].y, x1 = v[1].x, y1 = v[1].y, x2 = v[2].x, y2 = v[2].y;
     const int32_t xmin = mc_raster_min3(x0, x1, x2), xmax = mc_raster_max3(x0, x1, x2);
     const int32_t ymin = mc_raster_min3(y0, y1, y2), ymax = mc_raster_max3(y0, y1, y2);
@@ -545,7 +542,9 @@ MC_ALWAYS_INLINE uint32_t triangle(const mc_target *t, mc_sdepth *sd, const mc_r
 
 uint32_t mc_raster_triangle(const mc_target *t, const mc_raster_vertex v[3], uint8_t color, unsigned flags)
 {
-    return triangle(t, 0, v, color, flags, 0);
+    mc_raster_box box;
+    if (!mc_raster_centres(v, t->width, t->height, &box)) return 0;
+    return triangle_in(t, 0, v, color, flags, 0, &box);
 }
 
 uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags)
@@ -553,14 +552,29 @@ uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsi
     return mc_raster_triangle_hide_offset(s, v, flags, 0);
 }
 
-uint32_t mc_raster_triangle_hide_offset(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset)
+/* The face pass of a triangle whose box is taken (one copy for the callers below). */
+static uint32_t hide_in(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset, const mc_raster_box *box)
 {
-    mc_target t;   /* the frame's size, for the clipping the two share */
+    mc_target t;
     /* the row pointers the drawing path steps are never read here; without colours they step
      * through the depth array's bytes, so that they always point into an array */
     t.color = s->color ? s->color : (uint8_t *)(void *)s->depth;
     t.depth = s->depth, t.width = s->width, t.height = s->height;
-    return triangle(&t, s, v, 0, flags, offset);
+    return triangle_in(&t, s, v, 0, flags, offset, box);
+}
+
+uint32_t mc_raster_triangle_hide_offset(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset)
+{
+    mc_raster_box box;
+    if (!mc_raster_centres(v, s->width, s->height, &box) ||
+        !mc_sdepth_any(s, (uint32_t)box.i0, (uint32_t)box.i1, (uint32_t)box.j0, (uint32_t)box.j1))
+        return 0;
+    return hide_in(s, v, flags, offset, &box);
+}
+
+uint32_t mc_raster_triangle_hide_box(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, const mc_raster_box *box)
+{
+    return hide_in(s, v, flags, 0, box);
 }
 
 uint64_t mc_raster_slope(const mc_raster_vertex v[3])

@@ -7,7 +7,7 @@
  *   - mc_line_sdepth: random lines, on and off the frame, against mc_line drawn with no depth test
  *     into a target: the same pixels and count, each entry the line's depth there less the offset
  *     (saturating at 0), nearest kept where lines cross;
- *   - mc_raster_triangle_hide and _offset: random triangles (the rasterizer's own generator ranges:
+ *   - mc_raster_triangle_hide, _offset and _box: random triangles (the rasterizer's own generator ranges:
  *     specks to triangles far beyond the frame, both orientations, culled or not, a third pushed back
  *     by a random offset) over random entries against mc_raster_triangle drawn into an empty target:
  *     an entry is emptied exactly where the triangle covers its pixel at a depth not greater than the
@@ -349,8 +349,14 @@ static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
                 model_remove(&f, i % w, i / w);
                 want++;
             }
-        const uint32_t got = off || mc_rng_below(&r, 2) ? mc_raster_triangle_hide_offset(&f.s, v, flags, off)
-                                                        : mc_raster_triangle_hide(&f.s, v, flags);
+        /* with no offset a third each: _hide, _offset, _box (given the box mc_raster_centres takes;
+         * a triangle without one hides nothing) */
+        const uint32_t way = off ? 1u : mc_rng_below(&r, 3);
+        mc_raster_box box;
+        const uint32_t got = way == 1u   ? mc_raster_triangle_hide_offset(&f.s, v, flags, off)
+                             : way == 0u ? mc_raster_triangle_hide(&f.s, v, flags)
+                             : mc_raster_centres(v, f.s.width, f.s.height, &box) ? mc_raster_triangle_hide_box(&f.s, v, flags, &box)
+                                                                                 : 0u;
         if (got != want)
             fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) on %ux%u: %u emptied, want %u", v[0].x, v[0].y, v[0].z,
                      v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, w, h, got, want);

@@ -56,11 +56,8 @@ typedef struct mc_raster_vertex {
     uint32_t z;     /* 0 .. MC_DEPTH_EMPTY - 2 */
 } mc_raster_vertex;
 
-/* floor(v / 16) for |v| < 2^26, without shifting a negative number (implementation-defined in C99) */
-MC_ALWAYS_INLINE int32_t mc_raster_floor16(int32_t v)
-{
-    return (int32_t)((uint32_t)(v + ((int32_t)1 << 26)) >> 4) - ((int32_t)1 << 22);
-}
+/* floor(v / 16) for |v| < 2^26: an arithmetic shift (config.h MC_ASR_CHECK) */
+MC_ALWAYS_INLINE int32_t mc_raster_floor16(int32_t v) { return v >> 4; }
 
 /* Pixels i0 .. i1 across, j0 .. j1 down: the pixels whose centres a triangle may cover. */
 typedef struct mc_raster_box {
@@ -141,6 +138,11 @@ uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsi
  * an entry of depth e is emptied where the triangle's depth there is at most e - offset (an entry
  * nearer than offset is never emptied). For edges that lie on the faces that hide others. */
 uint32_t mc_raster_triangle_hide_offset(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset);
+
+/* mc_raster_triangle_hide of a triangle whose box the caller has taken: *box as mc_raster_centres
+ * sets it for s's frame, where it returned 1 (the same pixels emptied; a pass over many faces that
+ * rejects most by their box need not have it taken twice). */
+uint32_t mc_raster_triangle_hide_box(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, const mc_raster_box *box);
 
 /* One pixel's worth of the triangle's steepest depth slope: floor(max(|dz/dx|, |dz/dy|)) + 1 depth
  * units per pixel (so at least 1), or 0 for a triangle of no area, which covers no pixel. */
