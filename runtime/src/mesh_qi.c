@@ -75,9 +75,6 @@ static int cmp_frac(int64_t a, int64_t b, int64_t c, int64_t d)
     return sa > 0 ? r : -r;
 }
 
-/* floor(v / 16) for |v| < 2^26, without shifting a negative number */
-static int32_t floor16(int32_t v) { return (int32_t)((uint32_t)(v + ((int32_t)1 << 26)) >> 4) - ((int32_t)1 << 22); }
-
 static int64_t area2(const mc_raster_vertex v[3])
 {
     return (int64_t)(v[1].x - v[0].x) * (v[2].y - v[0].y) - (int64_t)(v[2].x - v[0].x) * (v[1].y - v[0].y);
@@ -529,8 +526,8 @@ static void face_by_face(qi_frame *fr, const qi_line *ln, const walk *w)
 static void draw_line(qi_frame *fr, const qi_line *ln, uint32_t j, const mc_qi_hook *hook)
 {
     mc_line_vertex la, lb;
-    la.x = floor16(ln->ax), la.y = floor16(ln->ay), la.z = ln->az;
-    lb.x = floor16(ln->bx), lb.y = floor16(ln->by), lb.z = ln->bz;
+    la.x = mc_raster_floor16(ln->ax), la.y = mc_raster_floor16(ln->ay), la.z = ln->az;
+    lb.x = mc_raster_floor16(ln->bx), lb.y = mc_raster_floor16(ln->by), lb.z = ln->bz;
     walk w;
     if (!walk_init(fr->t->width, fr->t->height, la, lb, &w)) return;
     for (uint32_t i = 0; i < (w.count + 7u) / 8u; i++) fr->bits[i] = 0;
@@ -817,8 +814,8 @@ int mc_mesh_qi(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, con
             }
             const mc_raster_vertex *a = &ends[0], *b = &ends[1];
             mc_line_vertex la, lb;
-            la.x = floor16(a->x), la.y = floor16(a->y), la.z = a->z;
-            lb.x = floor16(b->x), lb.y = floor16(b->y), lb.z = b->z;
+            la.x = mc_raster_floor16(a->x), la.y = mc_raster_floor16(a->y), la.z = a->z;
+            lb.x = mc_raster_floor16(b->x), lb.y = mc_raster_floor16(b->y), lb.z = b->z;
             walk w;
             if (!walk_init(t->width, t->height, la, lb, &w)) continue;   /* no pixel on the target */
             if (room && (uint8_t *)(fr.contours + C) <= (uint8_t *)(fr.lines_top - L - 1)) {
