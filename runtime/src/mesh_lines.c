@@ -278,8 +278,13 @@ MC_ALWAYS_INLINE uint32_t facing_window(const uint8_t *facing, uint32_t f, uint3
 {
     const uint32_t b = f >> 3, nb = MC_MESH_FACING_BYTES(faces);
     uint64_t w = 0;
-    for (uint32_t k = 0; k < 5u; k++)
-        if (b + k < nb) w |= (uint64_t)facing[b + k] << (8u * k);
+    if (b + 5u <= nb) {   /* (all five bytes within the level's: every window but the last few) */
+        w = (uint64_t)facing[b] | (uint64_t)facing[b + 1] << 8 | (uint64_t)facing[b + 2] << 16 |
+            (uint64_t)facing[b + 3] << 24 | (uint64_t)facing[b + 4] << 32;
+    } else {
+        for (uint32_t k = 0; k < 5u; k++)
+            if (b + k < nb) w |= (uint64_t)facing[b + k] << (8u * k);
+    }
     return (uint32_t)(w >> (f & 7u));
 }
 #endif
@@ -377,7 +382,8 @@ MC_ALWAYS_INLINE void edge_run(const mc_pmesh_lod *lod, const mc_xform *x, const
         uint32_t bits = m == 32u ? 0xFFFFFFFFu : (UINT32_C(1) << m) - 1u;
         if (skip) bits &= facing_window(facing, f0 + i0, lod->faces) | (any_crease ? crease_window(cr, f0 + i0, m) : 0u);
         while (bits) {
-            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i, fc = mc_lines_face_creases(cr, f);
+            /* (a level without a crease has no crease bit set: none is read) */
+            const uint32_t i = i0 + mc_ctz(bits), f = f0 + i, fc = any_crease ? mc_lines_face_creases(cr, f) : 0u;
             const uint8_t *q = r + i * 3u * hb;
             bits &= bits - 1u;
             /* (a sparse buffer's face without a crease faces front) */
