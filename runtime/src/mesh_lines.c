@@ -531,8 +531,9 @@ MC_ALWAYS_INLINE void hide_one(const mc_pmesh_lod *lod, const mc_xform *x, const
 }
 
 /* The face pass over faces f0 .. f0 + n - 1, whose corner records start at r, their corners from the
- * cache (ib: the index width, mode: the corner mode; constants where called). Culling, with MC_MESH_SELECT, the front faces
- * are taken 32 at a time from their facing bits, lowest first, instead of a branch on each face's. */
+ * cache (ib: the index width, mode: the corner mode; constants where called). Culling, with
+ * MC_MESH_SELECT, the front faces are taken 32 at a time from their facing bits, lowest first,
+ * instead of a branch on each face's. */
 MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
                                const uint8_t *facing, int cull, uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib,
                                unsigned mode)

@@ -213,10 +213,12 @@
 #endif
 
 /* MC_ASR_CHECK: the runtime takes a right shift of a negative signed number as a floor division by
- * a power of two (an arithmetic shift: fixed.h mc_fix_floor, the projection's rounding), which C99
- * leaves to the implementation and every compiler modelc targets does (gcc, clang, arm-none-eabi-gcc).
- * Not a setting: a compiler that shifts otherwise stops the build here, naming it. */
-typedef char MC_ASR_CHECK_right_shift_of_a_negative_number_must_be_arithmetic[(-7 >> 1) == -4 && (-(1LL << 40) >> 39) == -2 ? 1 : -1];
+ * a power of two (an arithmetic shift: fixed.h mc_fix_floor, raster.h mc_raster_floor16, the
+ * projection's rounding), which C99 leaves to the implementation and every compiler modelc targets
+ * does (gcc, clang, arm-none-eabi-gcc). Not a setting: a compiler that shifts otherwise stops the
+ * build here, naming it. */
+typedef char MC_ASR_CHECK_right_shift_of_a_negative_number_must_be_arithmetic
+    [(-7 >> 1) == -4 && (-(1LL << 40) >> 39) == -2 ? 1 : -1];
 
 /* MC_PLOT_HOOK(fx, fy, color_ptr): called for every point that lands on screen, before the depth
  * test, with its screen position in Q MC_FRAC_BITS pixels (int32; pixels in MC_POS_HEADER's type
