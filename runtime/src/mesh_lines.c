@@ -1,4 +1,9 @@
-/* Line drawings of a progressive mesh: see modelc/mesh_lines.h. */
+/* Line drawings of a progressive mesh: see modelc/mesh_lines.h.
+ * Long because it is one drawing's passes (every face's facing, every edge's kind and line, and the
+ * sparse way's face pass) over the same inline readers of a face's corners, facing and crease bits,
+ * each pass made once per index width and corner mode from one body (constants where called): apart,
+ * those readers would move to a header that every part includes, and the passes' specialisations
+ * would no longer be read side by side. */
 #include "modelc/mesh_lines.h"
 #include "modelc/bits.h"   /* mc_ctz */
 #include "mesh_creases.h"

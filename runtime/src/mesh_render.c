@@ -98,51 +98,48 @@ static void clipped_face(const mc_pmesh *pm, const mc_xform *x, const uint32_t c
     st->pixels += covered;
 }
 
-#if MC_MESH_SELECT
-/* project_run's orthographic loop for index width ib (a constant where called), the positions read
- * as the 64-bit values the projection multiplies (x86-64: nothing escapes, nothing is widened). */
-MC_ALWAYS_INLINE uint32_t project_ortho_run(const mc_pmesh_lod *lod, const mc_xform_ortho *o, mc_xvertex *cache,
-                                            uint32_t v0, uint32_t n, const uint8_t *r, unsigned ib)
+/* The loop of project_run over vertices v0 .. v0 + n - 1 (position records from r): wide, the 4-byte
+ * index width; perspective, the view's. With MC_MESH_SELECT both are constants where called, so that
+ * each case is a loop of its own (the orthographic one keeps the position in registers); a firmware
+ * keeps one loop (flash), the tests the same every vertex. */
+MC_ALWAYS_INLINE uint32_t project_loop(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xform_ortho *o,
+                                       mc_xvertex *cache, uint32_t v0, uint32_t n, const uint8_t *r, int wide,
+                                       int perspective)
 {
     const uint16_t *anc16 = (const uint16_t *)lod->anc;
     const uint32_t *anc32 = (const uint32_t *)lod->anc;
     uint32_t flags = 0;
     for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
-        if ((ib == 2 ? anc16[v] : anc32[v]) != v) continue;
-        mc_xform_ortho_xyz(o, (int64_t)mc_le16(r) - 32768, (int64_t)mc_le16(r + 2) - 32768, (int64_t)mc_le16(r + 4) - 32768,
-                           &cache[v]);
+        if ((wide ? anc32[v] : anc16[v]) != v) continue;
+        if (!perspective && UINTPTR_MAX > 0xFFFFFFFFu) {   /* a 64-bit core reads the position as the values it multiplies */
+            mc_xform_ortho_xyz(o, (int64_t)mc_le16(r) - 32768, (int64_t)mc_le16(r + 2) - 32768, (int64_t)mc_le16(r + 4) - 32768,
+                               &cache[v]);
+        } else {
+            int32_t p[3];
+            mc_pmesh_position_at(r, p);
+            if (perspective) mc_xform_vertex(x, p, &cache[v]);
+            else mc_xform_ortho_point(o, p, &cache[v]);
+        }
         flags |= cache[v].flags;
     }
     return flags;
 }
-#endif
 
 /* Projects the vertices v0 .. v0 + n - 1 present at the level (their own ancestors) into cache,
  * their position records starting at r; in the usual (orthographic) view with the projection
- * inline (xform_ortho.h), its constants in registers. A firmware keeps one loop for both index
- * widths and both projections (the tests are the same every vertex, and a copy of the loop would
- * cost flash); with MC_MESH_SELECT the orthographic view has a loop of its own (project_ortho_run). */
+ * inline (xform_ortho.h), its constants in registers. Returns their flags, or-ed. */
 static uint32_t project_run(const mc_pmesh_lod *lod, const mc_xform *x, mc_xvertex *cache, uint32_t v0, uint32_t n,
                             const uint8_t *r)
 {
     const int wide = lod->pm->index_bytes != 2, perspective = x->perspective;
-    const uint16_t *anc16 = (const uint16_t *)lod->anc;
-    const uint32_t *anc32 = (const uint32_t *)lod->anc;
     mc_xform_ortho o;
     mc_xform_ortho_init(&o, x);
 #if MC_MESH_SELECT
-    if (!perspective) return wide ? project_ortho_run(lod, &o, cache, v0, n, r, 4) : project_ortho_run(lod, &o, cache, v0, n, r, 2);
+    if (perspective) return project_loop(lod, x, &o, cache, v0, n, r, wide, 1);
+    return wide ? project_loop(lod, x, &o, cache, v0, n, r, 1, 0) : project_loop(lod, x, &o, cache, v0, n, r, 0, 0);
+#else
+    return project_loop(lod, x, &o, cache, v0, n, r, wide, perspective);
 #endif
-    uint32_t flags = 0;
-    for (uint32_t v = v0; v < v0 + n; v++, r += 6) {
-        if ((wide ? anc32[v] : anc16[v]) != v) continue;
-        int32_t p[3];
-        mc_pmesh_position_at(r, p);
-        if (perspective) mc_xform_vertex(x, p, &cache[v]);
-        else mc_xform_ortho_point(&o, p, &cache[v]);
-        flags |= cache[v].flags;
-    }
-    return flags;
 }
 
 /* Projects vertex v into cache[v]; returns its flags. */

@@ -48,7 +48,9 @@
  *                             union of its edges' mc_line between their ends (mc_mesh_edge_ends:
  *                             clipped where one is flagged), hidden ones a subset; guard zones
  *                             untouched; over the sparse depth buffer (mc_mesh_lines_sparse) the
- *                             same counts and the same pixels showing a line as the z-buffer way
+ *                             same counts and the same pixels showing a line as the z-buffer way;
+ *                             mc_mesh_project's returned flags those of the level's vertices, each
+ *                             projected on its own
  */
 #include <stdint.h>
 #include <stdio.h>
