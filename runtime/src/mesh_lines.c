@@ -565,6 +565,45 @@ void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem)
     if (lod && lod->pm && lod->pm->opposite && mem) mc_mesh_creases_update(lod, mem);
 }
 
+/* The face pass: every face mc_mesh_render would draw (a closed part's front faces) empties the
+ * entries of sd it hides (a face with a flagged corner culled by its plane, then as its clipped fan);
+ * a face whose box holds no entry costs its corners and its box. Apart (noinline, called once a
+ * frame): the pass's loops keep their registers, and a profile tells it from the edge pass. */
+static MC_NOINLINE void face_pass(const mc_pmesh_lod *lod, const mc_xform *x, mc_sdepth *sd, const uint8_t *facing,
+                                  const mc_xvertex *cache, int unflagged)
+{
+    const mc_pmesh *pm = lod->pm;
+    const int cull = pm->closed;
+    if (!cache) {
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            if (cull && !front(facing, f)) continue;
+            int32_t p[3][3];
+            mc_xvertex v[3];
+            mc_mesh_face_positions(lod, f, p);
+            for (int k = 0; k < 3; k++) mc_xform_vertex(x, p[k], &v[k]);
+            if (v[0].flags | v[1].flags | v[2].flags) hide_clipped(sd, lod, x, f);
+            else hide_face(sd, &v[0], &v[1], &v[2], cull);
+        }
+        return;
+    }
+    const unsigned shift = pm->record_shift;
+    const uint32_t chunk = UINT32_C(1) << shift;
+    const unsigned mode = corner_mode(lod, unflagged);
+    for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
+        const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
+        const uint8_t *r = pm->corners[f0 >> shift].data;
+        if (pm->index_bytes == 2) {
+            if (mode == CORNERS_PLAIN) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_PLAIN);
+            else if (mode == CORNERS_STORED) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_STORED);
+            else hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_MAPPED);
+        } else {
+            if (mode == CORNERS_PLAIN) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_PLAIN);
+            else if (mode == CORNERS_STORED) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_STORED);
+            else hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_MAPPED);
+        }
+    }
+}
+
 int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned flags, mc_sdepth *sd, uint8_t *mem,
                          mc_xvertex *cache, mc_lines_stats *stats)
 {
@@ -575,44 +614,10 @@ int mc_mesh_lines_sparse(const mc_pmesh_lod *lod, const mc_view *view, unsigned 
     mc_xform x;
     mc_xform_init(&x, view, sd->width, sd->height);
     const int unflagged = cache && !mc_mesh_project(lod, &x, cache);
-    /* the lines first: their pixels become the buffer's entries, the nearest kept */
+    /* the lines first: their pixels become the buffer's entries, the nearest kept; then the faces */
     draw_edges(lod, &x, cache, unflagged, mem, flags, 0, sd, &st);
-    const uint8_t *facing = mc_lines_facing(mem);
-    /* then the faces mc_mesh_render would draw empty the entries they hide (a face with a flagged
-     * corner culled by its plane, then as its clipped fan); a face whose box holds no entry costs its
-     * corners and its box */
-    if (!(flags & MC_LINES_NO_HIDING) && sd->width && sd->height) {   /* (an empty frame has nothing to hide) */
-        const mc_pmesh *pm = lod->pm;
-        const int cull = pm->closed;
-        if (!cache) {
-            for (uint32_t f = 0; f < lod->faces; f++) {
-                if (cull && !front(facing, f)) continue;
-                int32_t p[3][3];
-                mc_xvertex v[3];
-                mc_mesh_face_positions(lod, f, p);
-                for (int k = 0; k < 3; k++) mc_xform_vertex(&x, p[k], &v[k]);
-                if (v[0].flags | v[1].flags | v[2].flags) hide_clipped(sd, lod, &x, f);
-                else hide_face(sd, &v[0], &v[1], &v[2], cull);
-            }
-        } else {
-            const unsigned shift = pm->record_shift;
-            const uint32_t chunk = UINT32_C(1) << shift;
-            const unsigned mode = corner_mode(lod, unflagged);
-            for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
-                const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
-                const uint8_t *r = pm->corners[f0 >> shift].data;
-                if (pm->index_bytes == 2) {
-                    if (mode == CORNERS_PLAIN) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_PLAIN);
-                    else if (mode == CORNERS_STORED) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_STORED);
-                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_MAPPED);
-                } else {
-                    if (mode == CORNERS_PLAIN) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_PLAIN);
-                    else if (mode == CORNERS_STORED) hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_STORED);
-                    else hide_run(lod, &x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_MAPPED);
-                }
-            }
-        }
-    }
+    if (!(flags & MC_LINES_NO_HIDING) && sd->width && sd->height)   /* (an empty frame has nothing to hide) */
+        face_pass(lod, &x, sd, mc_lines_facing(mem), cache, unflagged);
     if (stats) *stats = st;
     return MC_OK;
 }
