@@ -103,6 +103,8 @@ for m in $lines_models; do
         --mask "$out/$m.lines.mesa.pgm" >"$out/$m.lines.mesa.img.txt"
     run valgrind --tool=callgrind --toggle-collect=mc_front_mesh_frame --callgrind-out-file="$out/$m.lines.cg" \
         "$out/$m-frames" --style lines --frames "$cg_frames" --size "$size" >"$out/$m.lines.cg.txt" 2>"$out/$m.lines.cg.log"
+    # each pass's instructions, with what it calls (the breakdown table)
+    run_glob "callgrind_annotate --inclusive=yes --threshold=100 $out/$m.lines.cg >$out/$m.lines.cg.incl.txt 2>/dev/null"
     timed_rounds "$m" "$out/$m.lines" --style lines
     echo "$m" >>"$out/lines_rows.txt"
 done
@@ -189,6 +191,50 @@ def png(path, w, h, rgb):
                            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 lines_rows = open(f"{out}/lines_rows.txt").read().split()
+
+def inclusive(m, name):
+    """Instructions of function `name` with everything it calls, in the lines callgrind run (0: not called):
+    the largest of its entries (a function with inlined code from headers has one entry per file, the
+    function's own file holding the calls into it)."""
+    text = open(f"{out}/{m}.lines.cg.incl.txt").read()
+    hits = re.findall(r"^\s*([\d,]+) \([^)]*\)\s+\S+:" + re.escape(name) + r"(?: \[.*)?$", text, re.M)
+    return max((int(h.replace(",", "")) for h in hits), default=0)
+
+def breakdown_section(rows):
+    """Where a line drawing's instructions go, pass by pass, and what the frame would be without the two
+    passes over every front face (the edge kinds, the boxes): the bound those passes set on the ratio."""
+    lines = ["### Where a line drawing's instructions go\n",
+             "The callgrind runs above, per frame, each pass with what it calls (`callgrind_annotate --inclusive=yes --threshold=100`): "
+             "projection `mc_mesh_project` (every vertex of the level into the cache); facing `set_facing` (every face's "
+             "bit); lines `draw_edge` (each line's ends, depth offset and pixels offered to the buffer); face pass "
+             "`face_pass`, split into the faces whose box meets a line pixel (`mc_raster_triangle_hide_box`, and "
+             "`hide_clipped` for a face with a flagged corner) and the boxes of all the others; buffer "
+             "`mc_sdepth_init` (the target made paper); the edge pass is what is left of `mc_mesh_lines_sparse` (each "
+             "face's edge kinds: the neighbours' facing bits, the crease bits). Without the edge pass and the boxes "
+             "(were they free), the frame would take the rest; the last two columns estimate it at the frame's own "
+             "instructions a millisecond (modelc ms above / its instructions) and set it against Mesa's ms above.\n",
+             "| mesh | frame | projection | facing | edge pass | lines | face pass: boxes | face pass: faces meeting a "
+             "line pixel | buffer | rest, without the edge pass and the boxes | its ms at the frame's rate | "
+             "ratio to Mesa at that |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for m in rows:
+        tr = [list(map(float, l.split())) for l in open(f"{out}/{m}.lines.times")]
+        ms, mesa = statistics.median(r[0] for r in tr), statistics.median(r[1] for r in tr)
+        c = {k: inclusive(m, k) / cg_frames for k in ("mc_front_mesh_frame", "mc_mesh_lines_sparse", "mc_mesh_project",
+             "set_facing", "face_pass", "mc_raster_triangle_hide_box", "hide_clipped", "draw_edge", "mc_sdepth_init",
+             "mc_mesh_creases_update")}
+        frame = c["mc_front_mesh_frame"]
+        tri = c["mc_raster_triangle_hide_box"] + c["hide_clipped"]
+        boxes = c["face_pass"] - tri
+        edges = (c["mc_mesh_lines_sparse"] - c["mc_mesh_project"] - c["set_facing"] - c["face_pass"] - c["draw_edge"]
+                 - c["mc_mesh_creases_update"])
+        rest = frame - edges - boxes
+        rest_ms = ms * rest / frame
+        M = lambda v: f"{v / 1e6:.2f} M"
+        lines.append(f"| {m} | {M(frame)} | {M(c['mc_mesh_project'])} | {M(c['set_facing'])} | {M(edges)} | "
+                     f"{M(c['draw_edge'])} | {M(boxes)} | {M(tri)} | {M(c['mc_sdepth_init'])} | {M(rest)} | "
+                     f"{rest_ms:.2f} | {mesa / rest_ms:.2f}x |")
+    return "\n".join(lines)
 if lines_rows:
     closed = ", ".join(f"{m} " + ("closed" if re.search(r"closed 1", open(f"{out}/{m}.lines.r1.modelc.txt").read())
                                   else "open") for m in lines_rows)
@@ -285,6 +331,7 @@ if lines_rows:
         print(f"\n![{picture}: modelc, Mesa, both](lines_{picture}.png)\n")
         print(f"`tests/bench/lines_{picture}.png`: the frontal drawing of {picture} by modelc (left) and by Mesa "
               "(middle); right, the line pixels of both (black), of modelc only (red) and of Mesa only (blue).\n")
+    print("\n" + breakdown_section(lines_rows) + "\n")
 print(f"Load average at the end: {load}.")
 if bad:
     print(f"\n**Coverage masks differ by more than 1 %, or the line lists differ, for: {', '.join(bad)}.**")
