@@ -17,7 +17,7 @@
 #   make bench-track             the tracker: time and error on synthetic and ViSP's real cube sequences, beside ViSP (make deps-bench); the line walk's two forms
 #   make bench-lod-auto          the automatic level of detail against frame-time targets
 #   make bench-neighbours        line drawings at coarse levels with and without the neighbour table
-#   make bench-cones             face groups' normal cones: what a hierarchy could spare the line drawings
+#   make bench-cones             face groups' normal cones, line pixels near the faces: what a hierarchy could spare the line drawings
 #   make bench-lod-error         level of detail: error (PSNR, coverage) against run time, shaded frames
 #   make bench-views             the point renderer at every view (zoom, size, perspective, deeper bakes), level of detail on and off, beside Mesa
 #   make bench-web               the web viewer's module in headless Chromium beside the native viewer, side by side
@@ -303,7 +303,7 @@ bench-neighbours: $(MODELC) models
 # face groups' normal cones against random views: what a hierarchy could spare the line drawings'
 # passes over every face (an analysis of the meshes' geometry)
 .PHONY: bench-cones
-bench-cones: models
+bench-cones: $(MODELC) models
 	@tests/bench/cone_groups.sh
 
 # run time against error for the mesh's level of detail: shaded frames at 1-100 % of the faces against

@@ -1,28 +1,44 @@
 #!/usr/bin/env bash
-# What a face hierarchy could spare the line drawings' passes over every face (the facing pass and
-# the edge pass, mesh_lines.c): tests/bench/cone_groups.py groups each mesh's faces G at a time, by
-# position or by normal, and tests each group's normal cone against random orthographic views.
-# Analysis of the meshes' own geometry (no modelc code runs): why the lines style visits every face.
+# What a face hierarchy could spare the line drawings' passes over every face (mesh_lines.c). The
+# facing and edge passes: tests/bench/cone_groups.py groups each mesh's faces G at a time, by
+# position or by normal, and tests each group's normal cone against random orthographic views (the
+# meshes' own geometry; no modelc code runs). The face pass's boxes: each mesh baked --as both and
+# drawn over the benchmarks' turn (tests/bench/mesh_frames.c --near: the frame's line pixels before
+# any is hidden, against the faces the face pass visits, one by one and in position groups).
 # Replaces its marked section of RESULTS.md (make bench-cones, and make bench, run it):
 #   tests/bench/cone_groups.sh [RESULTS.md]
+#   CONE_MODELS (bunny00 fandisk lion_head), CONE_DIRECTIONS (20), CONE_FRAMES (20: frames of the
+#   turn for the face pass's table), CONE_SIZE (320x240)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/lib.sh
 . tests/bench/section.sh
 results=${1:-tests/bench/RESULTS.md}
 models=${CONE_MODELS:-bunny00 fandisk lion_head}
-directions=${CONE_DIRECTIONS:-20}
+directions=${CONE_DIRECTIONS:-20} frames=${CONE_FRAMES:-20} size=${CONE_SIZE:-320x240}
 out=build/bench/cone_groups
+modelc=build/bin/modelc
+[ -x "$modelc" ] || { echo "cone_groups.sh: $modelc missing: run make gen" >&2; exit 1; }
 mkdir -p "$out"
 cmds=()
+run() { cmds+=("$*"); "$@"; }
+cflags="-O2 -g -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Iruntime/include -Iruntime/front/host -Iruntime/front/common"
 : >"$out/rows.txt"
+: >"$out/near.txt"
 for m in $models; do
     f=$(model_file "$m")
     cmds+=("python3 tests/bench/cone_groups.py $f $directions 1 32 64 128")
     python3 tests/bench/cone_groups.py "$f" "$directions" 1 32 64 128 | sed "s/^/$m /" >>"$out/rows.txt"
+    rm -rf "${out:?}/$m"
+    run "$modelc" "$f" -o "$out" --name "$m" --depth 1 --as both -q
+    # shellcheck disable=SC2086
+    run gcc $cflags -DPM=mc_pmesh_$m -include "$out/$m/$m.h" -o "$out/$m-frames" tests/bench/mesh_frames.c \
+        runtime/src/*.c runtime/front/common/mesh_frame.c "$out/$m"/*.c
+    run "$out/$m-frames" --near "$frames" --size "$size" >"$out/$m.near.txt"
+    echo "$m $out/$m.near.txt" >>"$out/near.txt"
 done
-python3 - "$out/rows.txt" "$directions" >"$out/section.md" <<'PY'
-import sys
+python3 - "$out/rows.txt" "$directions" "$out/near.txt" "$frames" "$size" >"$out/section.md" <<'PY'
+import re, sys
 rows = [l.split() for l in open(sys.argv[1])]
 print("## Face groups and normal cones: what a hierarchy could spare a line drawing\n")
 print("`tests/bench/cone_groups.sh` (`make bench-cones`): each mesh's faces (the catalogue's file, exact normals in "
@@ -38,5 +54,33 @@ print("| mesh | grouping | G | groups | mixed | uniform at a border | could be p
 print("|---|---|---:|---:|---:|---:|---:|")
 for m, g, size, n, mixed, border, skip in rows:
     print(f"| {m} | {g} | {size} | {int(n):,} | {float(mixed) * 100:.1f} % | {float(border) * 100:.1f} % | {float(skip) * 100:.1f} % |")
+
+def field(text, key):
+    return float(re.search(r"^" + re.escape(key) + r" ([\d.]+)$", text, re.M).group(1))
+print("\n### The face pass's boxes: line pixels near the faces\n")
+print(f"The other pass over every face, the sparse way's face pass (mesh_lines.c `face_pass`), tests each face it "
+      "visits (a closed part's front faces, else all) for a line pixel in its box of pixel centres, and only a face "
+      "that has one is set up as a triangle. A hierarchy over the faces could pass over a group whose screen box holds "
+      f"no line pixel. Measured on the benchmarks' turn ({sys.argv[4]} frames at {sys.argv[5]}, the full level, "
+      "orthographic) with modelc's own frames (`tests/bench/mesh_frames.c --near`: each frame's line pixels before any "
+      "is hidden, `mc_mesh_lines_sparse` with `MC_LINES_NO_HIDING`, against the cached projection): per frame, the "
+      "faces the face pass visits; of those, the ones whose box meets a line pixel (at most what the face pass sets "
+      "up: a line pixel an earlier face empties is gone when a later one comes); the ones with a line pixel within d pixels of their "
+      "corners' pixels (d = 1, 2, 4, 8: what a test on a grid of such cells could not pass over); and the ones a "
+      "hierarchy of position groups could pass over: the faces in the Morton order of their centres, G at a time, a "
+      "group passed over when the box of its visited faces' pixels holds no line pixel. Shares of the faces visited, "
+      "mean over the frames.\n")
+print("| mesh | faces | visited | box meets a line pixel | within 1 px | within 2 px | within 4 px | within 8 px | "
+      "passed over, groups of 32 | of 64 | of 128 |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+for line in open(sys.argv[3]):
+    m, path = line.split()
+    t = open(path).read()
+    faces = int(re.search(r"faces (\d+)", t).group(1))
+    vis = field(t, "visited per frame")
+    pct = lambda v: f"{100 * v / vis:.1f} %"
+    cells = " | ".join(pct(field(t, f"within {d} per frame")) for d in (1, 2, 4, 8))
+    groups = " | ".join(pct(field(t, f"spared in groups of {g} per frame")) for g in (32, 64, 128))
+    print(f"| {m} | {faces:,} | {vis:,.0f} | {pct(field(t, 'meeting per frame'))} | {cells} | {groups} |")
 PY
 write_section "$results" cone_groups "$out/section.md" "${cmds[@]}"

@@ -58,6 +58,9 @@
 
 #include "modelc/mesh_lines.h"
 #include "modelc/mesh_render.h"
+#include "modelc/finish.h"     /* MC_DEPTH_FILLED (--near) */
+#include "modelc/raster.h"
+#include "modelc/sdepth.h"
 #include "modelc/target.h"
 #include "mesh_frame.h"   /* runtime/front/common: mc_front_mesh_frame */
 #include "timing.h"       /* runtime/front/host: clocks, medians */
@@ -179,17 +182,141 @@ static int lines_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, 
     return 0;
 }
 
+/* --near N: N frames of the turn, each's line pixels before any is hidden (mc_mesh_lines_sparse with
+ * MC_LINES_NO_HIDING, into the sparse buffer) set against the faces the face pass visits (a closed
+ * part's front faces, else all): see the header. */
+static uint32_t morton_of[MAX_FACES], face_order[MAX_FACES];
+static int by_morton(const void *a, const void *b)
+{
+    const uint32_t x = morton_of[*(const uint32_t *)a], y = morton_of[*(const uint32_t *)b];
+    return x < y ? -1 : x > y;
+}
+static uint32_t spread10(uint32_t v)   /* the 10 bits of v to every third bit */
+{
+    v &= 0x3FFu;
+    v = (v | v << 16) & 0x030000FFu;
+    v = (v | v << 8) & 0x0300F00Fu;
+    v = (v | v << 4) & 0x030C30C3u;
+    return (v | v << 2) & 0x09249249u;
+}
+/* face f's pixel box (floor of its corners' 1/16-pixel positions), grown by d and clamped to the
+ * frame; 0 when a corner is flagged (its box unknown: counted as near a line) or nothing is left */
+static int pixel_box(const mc_pmesh_lod *lod, const mc_xvertex *cache, uint32_t f, int d, const mc_target *t,
+                     int32_t b[4])
+{
+    uint32_t c[3];
+    mc_pmesh_lod_face(lod, f, c);
+    int32_t x0 = INT32_MAX, x1 = INT32_MIN, y0 = INT32_MAX, y1 = INT32_MIN;
+    for (int k = 0; k < 3; k++) {
+        const mc_xvertex *e = &cache[c[k]];
+        if (e->flags) return -1;
+        const int32_t px = e->x >> 4, py = e->y >> 4;
+        x0 = px < x0 ? px : x0, x1 = px > x1 ? px : x1, y0 = py < y0 ? py : y0, y1 = py > y1 ? py : y1;
+    }
+    x0 -= d, y0 -= d, x1 += d, y1 += d;
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > t->width - 1) x1 = t->width - 1;
+    if (y1 > t->height - 1) y1 = t->height - 1;
+    b[0] = x0, b[1] = x1, b[2] = y0, b[3] = y1;
+    return x0 <= x1 && y0 <= y1;
+}
+static int near_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int frames_n)
+{
+    enum { DS = 4, GS = 3 };
+    static const int dist[DS] = {1, 2, 4, 8};
+    static const uint32_t group[GS] = {32, 64, 128};
+    uint8_t *mem = (uint8_t *)lines_mem;
+    static uint8_t facing[MAX_FACES / 8 + 1];
+    memset(lines_mem, 0, MC_MESH_LINES_BYTES(PM.faces));
+    /* the faces in the Morton order of their centres (the level's corners' positions, 10 bits an axis) */
+    for (uint32_t f = 0; f < lod->faces; f++) {
+        uint32_t c[3];
+        int32_t sum[3] = {0, 0, 0};
+        mc_pmesh_lod_face(lod, f, c);
+        for (int k = 0; k < 3; k++) {
+            int32_t p[3];
+            mc_pmesh_position(&PM, c[k], p);
+            for (int a = 0; a < 3; a++) sum[a] += p[a];
+        }
+        uint32_t m = 0;
+        for (int a = 0; a < 3; a++) m |= spread10((uint32_t)(sum[a] / 3 + 32768) >> 6) << a;
+        morton_of[f] = m, face_order[f] = f;
+    }
+    qsort(face_order, lod->faces, sizeof face_order[0], by_morton);
+    double visited = 0, meets = 0, near[DS] = {0}, spared[GS] = {0};
+    for (int i = 0; i < frames_n; i++) {
+        const mc_view v = bench_turn_view(bench_turn_yaw(i, frames_n));
+        mc_sdepth sd;
+        mc_lines_stats ls;
+        if (mc_sdepth_init(&sd, t->width, t->height, sdepth_bits, t->depth, t->color, MC_DEPTH_FILLED, MC_MESH_PAPER) ||
+            mc_mesh_lines_sparse(lod, &v, MC_LINES_ALL | MC_LINES_NO_HIDING, &sd, mem, cache, &ls) != MC_OK)
+            return 1;
+        mc_xform x;
+        mc_xform_init(&x, &v, t->width, t->height);
+        mc_mesh_facing(lod, &x, facing);
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            if (PM.closed && !((facing[f >> 3] >> (f & 7u)) & 1u)) continue;
+            visited++;
+            uint32_t c[3];
+            mc_pmesh_lod_face(lod, f, c);
+            const mc_xvertex *a = &cache[c[0]], *b = &cache[c[1]], *e = &cache[c[2]];
+            int32_t box[4];
+            if (a->flags | b->flags | e->flags) {   /* (the face pass clips it: counted as meeting) */
+                meets++;
+                for (int k = 0; k < DS; k++) near[k]++;
+                continue;
+            }
+            int32_t i0, i1, j0, j1;
+            if (mc_raster_centre_run_inside(a->y, b->y, e->y, t->height, &j0, &j1) &&
+                mc_raster_centre_run_inside(a->x, b->x, e->x, t->width, &i0, &i1) &&
+                mc_sdepth_any(&sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1))
+                meets++;
+            for (int k = 0; k < DS; k++)
+                if (pixel_box(lod, cache, f, dist[k], t, box) &&
+                    mc_sdepth_any(&sd, (uint32_t)box[0], (uint32_t)box[1], (uint32_t)box[2], (uint32_t)box[3]))
+                    near[k]++;
+        }
+        for (int g = 0; g < GS; g++)
+            for (uint32_t s0 = 0; s0 < lod->faces; s0 += group[g]) {
+                int32_t u[4] = {INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN};
+                uint32_t n = 0;
+                int flagged = 0;
+                for (uint32_t s = s0; s < s0 + group[g] && s < lod->faces; s++) {
+                    const uint32_t f = face_order[s];
+                    if (PM.closed && !((facing[f >> 3] >> (f & 7u)) & 1u)) continue;
+                    int32_t box[4];
+                    const int r = pixel_box(lod, cache, f, 0, t, box);
+                    n++;
+                    if (r < 0) flagged = 1;
+                    if (r <= 0) continue;
+                    u[0] = box[0] < u[0] ? box[0] : u[0], u[1] = box[1] > u[1] ? box[1] : u[1];
+                    u[2] = box[2] < u[2] ? box[2] : u[2], u[3] = box[3] > u[3] ? box[3] : u[3];
+                }
+                if (!n || flagged) continue;
+                if (u[0] > u[1] || !mc_sdepth_any(&sd, (uint32_t)u[0], (uint32_t)u[1], (uint32_t)u[2], (uint32_t)u[3]))
+                    spared[g] += n;
+            }
+    }
+    printf("near frames %d faces %u closed %u\n", frames_n, (unsigned)lod->faces, (unsigned)PM.closed);
+    printf("visited per frame %.1f\n", visited / frames_n);
+    printf("meeting per frame %.1f\n", meets / frames_n);
+    for (int k = 0; k < DS; k++) printf("within %d per frame %.1f\n", dist[k], near[k] / frames_n);
+    for (int g = 0; g < GS; g++) printf("spared in groups of %u per frame %.1f\n", (unsigned)group[g], spared[g] / frames_n);
+    return 0;
+}
+
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--vertices N] [--step S] [--cull] [--no-cache] [--neighbours] "
+                    "[--yaw U] [--size WxH] [--vertices N] [--step S] [--cull] [--no-cache] [--neighbours] [--near N] "
                     "[--style shaded|lines]\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
-    int time_n = 0, frames_n = 0, w = 320, h = 240, lines = 0, neighbours = 0;
+    int time_n = 0, frames_n = 0, near_n = 0, w = 320, h = 240, lines = 0, neighbours = 0;
     unsigned flags = 0;
     long vertices = -1;   /* the level: -1 the full mesh */
     long step = 0;        /* --step: splits between the levels --frames alternates */
@@ -205,6 +332,7 @@ int main(int argc, char **argv)
         const char *v = argv[++i];
         if (!strcmp(a, "--time")) time_n = atoi(v);
         else if (!strcmp(a, "--frames")) frames_n = atoi(v);
+        else if (!strcmp(a, "--near")) near_n = atoi(v);
         else if (!strcmp(a, "--size")) { if (sscanf(v, "%dx%d", &w, &h) != 2) return usage(); }
         else if (!strcmp(a, "--ppm")) ppm = v;
         else if (!strcmp(a, "--mask")) mask = v;
@@ -216,7 +344,7 @@ int main(int argc, char **argv)
             else if (strcmp(v, "shaded")) return usage();
         } else return usage();
     }
-    if (time_n < 0 || frames_n < 0 || (!time_n && !frames_n && !ppm && !mask)) return usage();
+    if (time_n < 0 || frames_n < 0 || near_n < 0 || (!time_n && !frames_n && !near_n && !ppm && !mask)) return usage();
     if (w < 1 || h < 1 || w > MAX_SIDE || h > MAX_SIDE) {
         fprintf(stderr, "mesh_frames: size %dx%d beyond 1..%d\n", w, h, MAX_SIDE);
         return 2;
@@ -233,6 +361,7 @@ int main(int argc, char **argv)
     const mc_target t = {color, depth, (uint16_t)w, (uint16_t)h};
     mc_mesh_stats st;
     if (step && (!lines || step >= (long)PM.vertices - (long)PM.base_vertices)) return usage();
+    if (near_n) return cache ? near_main(&lod, &t, cache, near_n) : usage();
     if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw, step);
 
     if (frames_n) {   /* untimed: what callgrind counts (mc_mesh_render only) */
