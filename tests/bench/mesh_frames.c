@@ -46,6 +46,16 @@
  *              the crease bits brought over, mesh_lines.h)
  *   --ppm      the drawing (paper, black silhouettes, grey creases, blue borders); --mask FILE 255
  *              where a pixel holds a line's colour (MC_LINES_SILHOUETTE_COLOR .. BORDER_COLOR)
+ *
+ * --near N (the vertex cache on; --style is then ignored): what a hierarchy could spare the face pass
+ * (tests/bench/cone_groups.sh). N frames of the turn, each drawn by mc_mesh_lines_sparse with
+ * MC_LINES_NO_HIDING (every line pixel offered, none hidden), then the faces the face pass visits (a
+ * closed part's front faces, mc_mesh_facing; else all) set against those pixels: per frame, "visited",
+ * "meeting" (the box of pixel centres holds one, as the face pass tests it; a face with a flagged
+ * corner counts), "within D" for D = 1, 2, 4, 8 (one within D pixels of the box of its corners'
+ * pixels) and "spared in groups of G" for G = 32, 64, 128 (the faces in the Morton order of their
+ * centres, G at a time: a group's visited faces when the box of their corners' pixels holds none),
+ * means over the frames.
  */
 /* -include NAME.h comes first: build with -D_POSIX_C_SOURCE=200809L for time.h's clocks */
 #ifndef _POSIX_C_SOURCE
