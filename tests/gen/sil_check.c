@@ -17,6 +17,13 @@
  *                                 frame. Under callgrind, --toggle-collect=mc_sil_search or mc_sil_exact
  *                                 counts the mode's instructions alone (the exact set for the recall is
  *                                 found by mc_mesh_facing + mc_mesh_edge_kind, outside both).
+ *                                 MODE lines: the exact set as the lines style finds it, its frame's
+ *                                 passes without drawing (mc_mesh_lines_sparse with no edge kind and
+ *                                 MC_LINES_NO_HIDING, the vertex cache on: the projection, every face's
+ *                                 facing, the edge pass); its count of silhouettes must equal the exact
+ *                                 set's every frame (recall 1, else "not ok" and exit 1);
+ *                                 --toggle-collect=mc_mesh_lines_sparse (the crease bits, which the
+ *                                 first frame works out and the rest keep, included).
  */
 #include <math.h>
 #include <stdint.h>
@@ -25,6 +32,7 @@
 #include <string.h>
 
 #include "modelc/mesh_lines.h"
+#include "modelc/sdepth.h"
 #include "modelc/silhouette.h"
 
 extern const mc_pmesh PM;
@@ -74,7 +82,7 @@ static int cmp_double(const void *a, const void *b)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: sil_check check W H | run W H FRAMES DEG BUDGET SEEDS search|exact\n");
+        fprintf(stderr, "usage: sil_check check W H | run W H FRAMES DEG BUDGET SEEDS search|exact|lines\n");
         return 2;
     }
     const uint32_t w = (uint32_t)atoi(argv[2]), h = (uint32_t)atoi(argv[3]), F = PM.faces, cap = 4u * F;
@@ -153,8 +161,18 @@ int main(int argc, char **argv)
         const int frames = atoi(argv[4]);
         const double deg = atof(argv[5]);
         const uint32_t budget = (uint32_t)strtoul(argv[6], 0, 10), seeds = (uint32_t)strtoul(argv[7], 0, 10);
-        const int exact = !strcmp(argv[8], "exact");
+        const int exact = !strcmp(argv[8], "exact"), lines = !strcmp(argv[8], "lines");
         mc_pmesh_lod_set(&lod, PM.vertices);
+        /* MODE lines: the lines style's memory, vertex cache and (empty) sparse buffer */
+        uint32_t *mem = calloc(MC_MESH_LINES_BYTES(F) / 4u + 1u, 4), *sbits = malloc(4u * MC_SDEPTH_WORDS(w, h));
+        uint16_t *sdepth = malloc(2u * w * h);
+        uint8_t *scolor = malloc((size_t)w * h);
+        mc_xvertex *cache = malloc(MC_MESH_CACHE_BYTES(PM.vertices));
+        mc_sdepth sd;
+        if (!mem || !sbits || !sdepth || !scolor || !cache ||
+            mc_sdepth_init(&sd, (uint16_t)w, (uint16_t)h, sbits, sdepth, scolor, 0xFFFFu, 0) != MC_OK)
+            return 2;
+        unsigned long miscounted = 0;
         mc_sil s;
         mc_sil_init(&s, (uint8_t *)marks, list, cap, 12345);
         double *recall = malloc(sizeof(double) * (size_t)frames);
@@ -166,22 +184,35 @@ int main(int argc, char **argv)
             mc_xform x;
             mc_xform_init(&x, &v, w, h);
             mc_sil_stats st;
-            if (exact) mc_sil_exact(&s, &lod, &x, &st);
-            else mc_sil_search(&s, &lod, &x, budget, seeds, &st);
+            mc_lines_stats ls;
+            if (lines) {
+                if (mc_mesh_lines_sparse(&lod, &v, MC_LINES_NO_HIDING, &sd, (uint8_t *)mem, cache, &ls) != MC_OK) return 2;
+                st.tests = 0, st.facings = lod.faces;   /* (no edge tests counted: a pass over the faces) */
+            } else if (exact) {
+                mc_sil_exact(&s, &lod, &x, &st);
+            } else {
+                mc_sil_search(&s, &lod, &x, budget, seeds, &st);
+            }
             classify(&lod, &x, facing, is_sil);
             double all = 0, got = 0;
+            uint32_t count = 0;
             for (uint32_t f = 0; f < lod.faces; f++)
                 for (uint32_t k = 0; k < 3; k++) {
                     const uint32_t he = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(&lod, he);
-                    if (is_sil[he] && MC_HALF_FACE(o) > f) all += edge_length(&lod, &x, he);
+                    if (is_sil[he] && MC_HALF_FACE(o) > f) all += edge_length(&lod, &x, he), count++;
                 }
-            for (uint32_t j = 0; j < s.count; j++) got += edge_length(&lod, &x, s.list[j]);
+            if (lines) {   /* a count, not a list: all of them, or a miscount */
+                got = ls.silhouettes == count ? all : 0;
+                miscounted += ls.silhouettes != count;
+            }
+            for (uint32_t j = 0; !lines && j < s.count; j++) got += edge_length(&lod, &x, s.list[j]);
             if (i >= 10) recall[n++] = all > 0 ? got / all : 1.0, tests += st.tests, facings += st.facings;
         }
         qsort(recall, (size_t)n, sizeof(double), cmp_double);
         printf("frames %d recall median %.4f p5 %.4f min %.4f tests %.0f facings %.0f edges %u faces %u\n", n,
                recall[n / 2], recall[n / 20], recall[0], tests / n, facings / n, PM.edges, lod.faces);
-        return 0;
+        if (miscounted) printf("not ok: the lines style's edge pass counted other silhouettes in %lu frames\n", miscounted);
+        return miscounted ? 1 : 0;
     }
     fprintf(stderr, "sil_check: bad arguments\n");
     return 2;
