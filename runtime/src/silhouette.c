@@ -16,6 +16,14 @@ void mc_sil_init(mc_sil *s, uint8_t *marks, uint32_t *list, uint32_t capacity, u
     s->capacity = capacity;
     s->count = 0;
     s->rng = seed ? seed : 2463534242u;
+    s->cache = 0;
+    s->seen = 0;
+}
+
+void mc_sil_cache(mc_sil *s, mc_xvertex *cache, uint32_t *seen)
+{
+    s->cache = cache && seen ? cache : 0;
+    s->seen = cache && seen ? seen : 0;
 }
 
 /* All marks of the level's faces to zero: whole words, eight adjacent stores a step (so compilers
@@ -39,11 +47,42 @@ typedef struct walk {
     uint32_t total;   /* silhouettes found, listed or not (mc_sil_exact's count) */
 } walk;
 
+/* Vertex v's projection this call, from the cache when it was met before. */
+static const mc_xvertex *vertex(walk *w, uint32_t v)
+{
+    mc_xvertex *e = &w->s->cache[v];
+    uint32_t *bits = &w->s->seen[v >> 5];
+    const uint32_t bit = UINT32_C(1) << (v & 31u);
+    if (!(*bits & bit)) {
+        int32_t p[3];
+        mc_pmesh_position(w->lod->pm, v, p);
+        mc_xform_vertex(w->x, p, e);
+        *bits |= bit;
+    }
+    return e;
+}
+
+/* Face f's facing as mc_mesh_front finds it, its corners' projections from the cache: the sign of its
+ * projected area, or its plane's where a corner is flagged. */
+static int front_cached(walk *w, uint32_t f)
+{
+    uint32_t c[3];
+    mc_pmesh_lod_face(w->lod, f, c);
+    const mc_xvertex *a = vertex(w, c[0]), *b = vertex(w, c[1]), *d = vertex(w, c[2]);
+    if (a->flags | b->flags | d->flags) {
+        int32_t p[3][3];
+        for (int k = 0; k < 3; k++) mc_pmesh_position(w->lod->pm, c[k], p[k]);
+        return mc_mesh_face_front(w->x, (const int32_t(*)[3])p);
+    }
+    return ((int64_t)b->x - a->x) * ((int64_t)d->y - a->y) - ((int64_t)d->x - a->x) * ((int64_t)b->y - a->y) < 0;
+}
+
 static int front(walk *w, uint32_t f)
 {
     uint8_t *m = &w->s->marks[f];
     if (!(*m & KNOWN)) {
-        *m |= (uint8_t)(KNOWN | (mc_mesh_front(w->lod, w->x, f) ? FRONT : 0u));
+        const int fr = w->s->cache ? front_cached(w, f) : mc_mesh_front(w->lod, w->x, f);
+        *m |= (uint8_t)(KNOWN | (fr ? FRONT : 0u));
         w->st.facings++;
     }
     return (*m & FRONT) != 0;
@@ -116,6 +155,8 @@ static void start(walk *w, mc_sil *s, const mc_pmesh_lod *lod, const mc_xform *x
     w->budget = budget;
     w->total = 0;
     clear_marks(s->marks, lod->faces);
+    if (s->cache)
+        for (uint32_t i = 0; i < MC_SIL_SEEN_WORDS(lod->pm->vertices); i++) s->seen[i] = 0;
 }
 
 uint32_t mc_sil_exact(mc_sil *s, const mc_pmesh_lod *lod, const mc_xform *x, mc_sil_stats *stats)

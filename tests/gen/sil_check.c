@@ -2,19 +2,23 @@
  * Built by tests/gen/silhouette.sh and tests/bench/silhouette.sh with -DPM=mc_pmesh_NAME -include
  * NAME.h and the bake's files.
  *
- *   sil_check check W H           over a turn of views at three levels: mc_sil_exact's list equals the
- *                                 silhouette edges of mesh_lines.h's classification (mc_mesh_facing +
- *                                 mc_mesh_edge_kind over every edge: checked against a double-precision
- *                                 classification in pmesh_check.c lines), each once; mc_sil_search's
- *                                 list, at several budgets, is a subset of it with no edge twice, its
- *                                 tests within the budget, and the same lists from the same calls
- *                                 (a second state run alongside); one line "ok ..." or "not ok ..."
- *   sil_check run W H FRAMES DEG BUDGET SEEDS MODE
+ *   sil_check check W H           over a turn of views at three levels (every fourth view in
+ *                                 perspective with the eye inside the model's cube: corners flagged
+ *                                 at the near plane): mc_sil_exact's list equals the silhouette edges
+ *                                 of mesh_lines.h's classification (mc_mesh_facing + mc_mesh_edge_kind
+ *                                 over every edge: checked against a double-precision classification in
+ *                                 pmesh_check.c lines), each once, with the vertex cache (mc_sil_cache)
+ *                                 at every other view; mc_sil_search's list, at several budgets, is a
+ *                                 subset of it with no edge twice, its tests within the budget, and
+ *                                 the same lists from the same calls (a second state run alongside,
+ *                                 with the vertex cache); one line "ok ..." or "not ok ..."
+ *   sil_check run W H FRAMES DEG BUDGET SEEDS MODE [cache]
  *                                 a turn of FRAMES views DEG degrees apart (yaw, pitch 20 degrees),
  *                                 MODE search or exact; per frame the found silhouettes' screen length
  *                                 against the exact set's; prints the recall (median, 5th percentile,
  *                                 minimum after the first 10 frames) and the mean tests and facings per
- *                                 frame. Under callgrind, --toggle-collect=mc_sil_search or mc_sil_exact
+ *                                 frame; with cache, search and exact project each vertex once a call
+ *                                 (mc_sil_cache). Under callgrind, --toggle-collect=mc_sil_search or mc_sil_exact
  *                                 counts the mode's instructions alone (the exact set for the recall is
  *                                 found by mc_mesh_facing + mc_mesh_edge_kind, outside both).
  *                                 MODE lines: the exact set as the lines style finds it, its frame's
@@ -73,6 +77,16 @@ static mc_view view_at(double deg)
     return v;
 }
 
+/* view_at in perspective with the eye a fifth of the cube from its centre: the near plane cuts
+ * the model, so some corners are flagged */
+static mc_view view_inside(double deg)
+{
+    mc_view v = view_at(deg);
+    v.projection = MC_PERSPECTIVE;
+    v.eye = MC_ZOOM_ONE / 5;
+    return v;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -82,7 +96,7 @@ static int cmp_double(const void *a, const void *b)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: sil_check check W H | run W H FRAMES DEG BUDGET SEEDS search|exact|lines\n");
+        fprintf(stderr, "usage: sil_check check W H | run W H FRAMES DEG BUDGET SEEDS search|exact|lines [cache]\n");
         return 2;
     }
     const uint32_t w = (uint32_t)atoi(argv[2]), h = (uint32_t)atoi(argv[3]), F = PM.faces, cap = 4u * F;
@@ -90,7 +104,9 @@ int main(int argc, char **argv)
     uint8_t *facing = malloc(MC_MESH_FACING_BYTES(F) + 8), *is_sil = malloc(4u * F + 8), *seen = malloc(4u * F + 8);
     uint32_t *marks = malloc(MC_SIL_FACE_BYTES(F) + 8), *marks2 = malloc(MC_SIL_FACE_BYTES(F) + 8);
     uint32_t *list = malloc(4u * cap), *list2 = malloc(4u * cap);
-    if (!anc || !facing || !is_sil || !seen || !marks || !marks2 || !list || !list2) return 2;
+    mc_xvertex *vcache = malloc(MC_MESH_CACHE_BYTES(PM.vertices));   /* mc_sil_cache's */
+    uint32_t *vseen = malloc(4u * MC_SIL_SEEN_WORDS(PM.vertices));
+    if (!anc || !facing || !is_sil || !seen || !marks || !marks2 || !list || !list2 || !vcache || !vseen) return 2;
     mc_pmesh_lod lod;
     mc_pmesh_lod_init(&lod, &PM, anc);
     if (!strcmp(argv[1], "check")) {
@@ -105,8 +121,9 @@ int main(int argc, char **argv)
                 mc_sil s, s2;
                 mc_sil_init(&s, (uint8_t *)marks, list, cap, 12345);
                 mc_sil_init(&s2, (uint8_t *)marks2, list2, cap, 12345);
+                mc_sil_cache(&s2, vcache, vseen);
                 for (int i = 0; i < 24; i++, frames++) {
-                    mc_view v = view_at(i * 15.0 + l * 7.0);
+                    mc_view v = i % 4 == 3 ? view_inside(i * 15.0 + l * 7.0) : view_at(i * 15.0 + l * 7.0);
                     mc_xform x;
                     mc_xform_init(&x, &v, w, h);
                     const uint32_t want = classify(&lod, &x, facing, is_sil);
@@ -114,6 +131,7 @@ int main(int argc, char **argv)
                     if (b == 0) {   /* the exact scan, once per view */
                         mc_sil e;
                         mc_sil_init(&e, (uint8_t *)marks, list, cap, 1);
+                        if (i & 1) mc_sil_cache(&e, vcache, vseen);
                         const uint32_t n = mc_sil_exact(&e, &lod, &x, &st);
                         memset(seen, 0, 4u * F);
                         uint32_t ok = n == want && e.count == want;
@@ -153,11 +171,12 @@ int main(int argc, char **argv)
         if (bad) printf("not ok: %lu problems; first: %s\n", bad, first);
         else
             printf("ok: %lu frames at 3 levels: exact scans equal the classification (%lu silhouette edges), searches at "
-                   "budgets 50, 2000, 100000 list only silhouettes, each once, within budget, repeatably (%lu listed)\n",
+                   "budgets 50, 2000, 100000 list only silhouettes, each once, within budget, repeatably, the same with "
+                   "the vertex cache (%lu listed)\n",
                    frames, exact_total, searched_total);
         return bad ? 1 : 0;
     }
-    if (!strcmp(argv[1], "run") && argc == 9) {
+    if (!strcmp(argv[1], "run") && (argc == 9 || (argc == 10 && !strcmp(argv[9], "cache")))) {
         const int frames = atoi(argv[4]);
         const double deg = atof(argv[5]);
         const uint32_t budget = (uint32_t)strtoul(argv[6], 0, 10), seeds = (uint32_t)strtoul(argv[7], 0, 10);
@@ -175,6 +194,7 @@ int main(int argc, char **argv)
         unsigned long miscounted = 0;
         mc_sil s;
         mc_sil_init(&s, (uint8_t *)marks, list, cap, 12345);
+        if (argc == 10) mc_sil_cache(&s, vcache, vseen);
         double *recall = malloc(sizeof(double) * (size_t)frames);
         double tests = 0, facings = 0;
         int n = 0;

@@ -26,8 +26,10 @@
  * finds in later frames from the seeds and the chains; what it finds is always correct.
  *
  * Memory: the caller's, MC_SIL_FACE_BYTES(F) bytes of per-face marks (cleared each call; aligned
- * for uint32_t) and `capacity` half-edges of list. No heap, bounded stack, no floating point.
- * Freestanding.
+ * for uint32_t) and `capacity` half-edges of list; and, given to mc_sil_cache, a vertex cache
+ * (MC_MESH_CACHE_BYTES(V), mesh_render.h) with MC_SIL_SEEN_WORDS(V) words of bits, so that a call
+ * projects each vertex it meets once (without, each facing projects its face's three corners). The
+ * same calls find the same edges either way. No heap, bounded stack, no floating point. Freestanding.
  */
 #ifndef MODELC_SILHOUETTE_H
 #define MODELC_SILHOUETTE_H
@@ -37,6 +39,8 @@
 
 /* Bytes of per-face marks for a part of F faces (whole 32-bit words). */
 #define MC_SIL_FACE_BYTES(faces) ((((uint32_t)(faces) + 3u) / 4u) * 4u)
+/* Words of vertex bits for a part of V vertices (mc_sil_cache). */
+#define MC_SIL_SEEN_WORDS(vertices) (((uint32_t)(vertices) + 31u) / 32u)
 
 typedef struct mc_sil {
     uint8_t *marks;      /* per face: facing known, front, edges 0..2 tested this call */
@@ -44,6 +48,8 @@ typedef struct mc_sil {
     uint32_t capacity;   /* entries of list */
     uint32_t count;      /* entries in use */
     uint32_t rng;        /* xorshift32 state, never 0 */
+    mc_xvertex *cache;   /* null, or per vertex its projection this call (where seen says so) */
+    uint32_t *seen;      /* per vertex a bit: projected this call (cleared each call) */
 } mc_sil;
 
 typedef struct mc_sil_stats {
@@ -54,8 +60,12 @@ typedef struct mc_sil_stats {
     uint32_t found;      /* silhouettes in the list at the end */
 } mc_sil_stats;
 
-/* An empty list; seed: any value (0 is replaced by a fixed non-zero state). */
+/* An empty list, no vertex cache; seed: any value (0 is replaced by a fixed non-zero state). */
 void mc_sil_init(mc_sil *s, uint8_t *marks, uint32_t *list, uint32_t capacity, uint32_t seed);
+
+/* From the next call on, each vertex met is projected once a call, into cache (MC_MESH_CACHE_BYTES of
+ * the part's vertices) with its bit in seen (MC_SIL_SEEN_WORDS); null for either: none kept. */
+void mc_sil_cache(mc_sil *s, mc_xvertex *cache, uint32_t *seen);
 
 /* Every silhouette edge of lod's level seen through x (see the promise); returns how many there are. */
 uint32_t mc_sil_exact(mc_sil *s, const mc_pmesh_lod *lod, const mc_xform *x, mc_sil_stats *stats);
