@@ -567,10 +567,16 @@ void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem)
 
 /* The face pass: every face mc_mesh_render would draw (a closed part's front faces) empties the
  * entries of sd it hides (a face with a flagged corner culled by its plane, then as its clipped fan);
- * a face whose box holds no entry costs its corners and its box. Apart (noinline, called once a
- * frame): the pass's loops keep their registers, and a profile tells it from the edge pass. */
-static MC_NOINLINE void face_pass(const mc_pmesh_lod *lod, const mc_xform *x, mc_sdepth *sd, const uint8_t *facing,
-                                  const mc_xvertex *cache, int unflagged)
+ * a face whose box holds no entry costs its corners and its box. Apart on x86-64 (MC_MESH_SELECT:
+ * noinline, called once a frame) so that a profile tells it from the edge pass (tests/bench/mesh.sh);
+ * a firmware inlines it (0.2 % fewer instructions a line pixel on the Cortex-M4). */
+#if MC_MESH_SELECT
+#define FACE_PASS MC_NOINLINE
+#else
+#define FACE_PASS
+#endif
+static FACE_PASS void face_pass(const mc_pmesh_lod *lod, const mc_xform *x, mc_sdepth *sd, const uint8_t *facing,
+                                const mc_xvertex *cache, int unflagged)
 {
     const mc_pmesh *pm = lod->pm;
     const int cull = pm->closed;
