@@ -19,7 +19,8 @@
 #     (--stream-splits packed): the arrays its reader decodes equal its plain stream's
 #     (tests/stream/stream_same.c), also with every third corner found by the decoder's passes;
 #   - silhouettes (tests/gen/sil_check.c): the exact scan equals the line drawing's classification, the
-#     bounded search lists only silhouettes, each once, within its budget, the same on every run;
+#     bounded search lists only silhouettes, each once, within its budget, the same on every run and
+#     with the vertex cache (mc_sil_cache), also where the near plane flags corners;
 # and budget.json's figures add up. Then: a point set asked for a mesh fails with one line and no
 # output; --max-faces caps the finest level; a points-only bake is unchanged by the mesh code.
 #
