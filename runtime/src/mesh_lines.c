@@ -122,6 +122,21 @@ MC_NOINLINE int mc_mesh_edge_ends(const mc_pmesh_lod *lod, const mc_xform *x, ui
  * only: a firmware keeps one loop of each pass (flash). */
 enum { CORNERS_MAPPED, CORNERS_STORED, CORNERS_PLAIN };
 
+/* run(args..., ib, mode) with the part's index width ib (2 or 4) and the corner mode as constants:
+ * a pass's loop over a run of faces, written once, made for each of the six. */
+#define BY_CORNERS(ib, mode, run, ...)                                              \
+    do {                                                                            \
+        if ((ib) == 2) {                                                            \
+            if ((mode) == CORNERS_PLAIN) run(__VA_ARGS__, 2, CORNERS_PLAIN);        \
+            else if ((mode) == CORNERS_STORED) run(__VA_ARGS__, 2, CORNERS_STORED); \
+            else run(__VA_ARGS__, 2, CORNERS_MAPPED);                               \
+        } else {                                                                    \
+            if ((mode) == CORNERS_PLAIN) run(__VA_ARGS__, 4, CORNERS_PLAIN);        \
+            else if ((mode) == CORNERS_STORED) run(__VA_ARGS__, 4, CORNERS_STORED); \
+            else run(__VA_ARGS__, 4, CORNERS_MAPPED);                               \
+        }                                                                           \
+    } while (0)
+
 /* The corner mode of a frame at lod's level; unflagged: no vertex of the level is flagged (known
  * from the projection). */
 static unsigned corner_mode(const mc_pmesh_lod *lod, int unflagged)
@@ -156,19 +171,14 @@ MC_ALWAYS_INLINE uint32_t facing_one(const mc_pmesh_lod *lod, const mc_xform *x,
     const mc_xvertex *a, *b, *c;
     record_corners(lod, cache, r, ib, mode, &a, &b, &c);
     if (mode != CORNERS_PLAIN && (a->flags | b->flags | c->flags)) return (uint32_t)face_front(lod, x, f);
-#if UINTPTR_MAX > 0xFFFFFFFFu   /* a 64-bit core widens each coordinate as it reads it */
-    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y) < 0;
-#else                           /* a 32-bit one subtracts in one step */
-    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
-#endif
+    return (uint32_t)mc_mesh_front_of(a, b, c);
 }
 
 /* The facing bits of faces f0 .. f0 + n - 1, whose corner records start at r, from the cache; *acc
  * holds the bits of the byte being filled, stored as each byte is complete. ib is the part's index
- * width and mode the corner mode (record_corners; constants where called, so that one loop is made
- * for each). */
+ * width and mode the corner mode (record_corners; constants where called, BY_CORNERS). */
 MC_ALWAYS_INLINE void facing_run(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, uint8_t *facing,
-                                 uint32_t f0, uint32_t n, const uint8_t *r, unsigned ib, unsigned mode, uint32_t *acc)
+                                 uint32_t f0, uint32_t n, const uint8_t *r, uint32_t *acc, unsigned ib, unsigned mode)
 {
     uint32_t bits = *acc, i = 0;
 #if MC_MESH_SELECT
@@ -210,15 +220,7 @@ static void set_facing(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xver
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = pm->corners[f0 >> shift].data;
-        if (pm->index_bytes == 2) {
-            if (mode == CORNERS_PLAIN) facing_run(lod, x, cache, facing, f0, n, r, 2, CORNERS_PLAIN, &acc);
-            else if (mode == CORNERS_STORED) facing_run(lod, x, cache, facing, f0, n, r, 2, CORNERS_STORED, &acc);
-            else facing_run(lod, x, cache, facing, f0, n, r, 2, CORNERS_MAPPED, &acc);
-        } else {
-            if (mode == CORNERS_PLAIN) facing_run(lod, x, cache, facing, f0, n, r, 4, CORNERS_PLAIN, &acc);
-            else if (mode == CORNERS_STORED) facing_run(lod, x, cache, facing, f0, n, r, 4, CORNERS_STORED, &acc);
-            else facing_run(lod, x, cache, facing, f0, n, r, 4, CORNERS_MAPPED, &acc);
-        }
+        BY_CORNERS(pm->index_bytes, mode, facing_run, lod, x, cache, facing, f0, n, r, &acc);
     }
     if (lod->faces & 7u) facing[lod->faces >> 3] = (uint8_t)acc;
 }
@@ -598,15 +600,7 @@ static FACE_PASS void face_pass(const mc_pmesh_lod *lod, const mc_xform *x, mc_s
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = pm->corners[f0 >> shift].data;
-        if (pm->index_bytes == 2) {
-            if (mode == CORNERS_PLAIN) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_PLAIN);
-            else if (mode == CORNERS_STORED) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_STORED);
-            else hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 2, CORNERS_MAPPED);
-        } else {
-            if (mode == CORNERS_PLAIN) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_PLAIN);
-            else if (mode == CORNERS_STORED) hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_STORED);
-            else hide_run(lod, x, cache, sd, facing, cull, f0, n, r, 4, CORNERS_MAPPED);
-        }
+        BY_CORNERS(pm->index_bytes, mode, hide_run, lod, x, cache, sd, facing, cull, f0, n, r);
     }
 }
 

@@ -83,7 +83,7 @@ STEP int front_cached(walk *w, uint32_t f)
         for (int k = 0; k < 3; k++) mc_pmesh_position(w->lod->pm, c[k], p[k]);
         return mc_mesh_face_front(w->x, (const int32_t(*)[3])p);
     }
-    return ((int64_t)b->x - a->x) * ((int64_t)d->y - a->y) - ((int64_t)d->x - a->x) * ((int64_t)b->y - a->y) < 0;
+    return mc_mesh_front_of(a, b, d);
 }
 
 STEP int front(walk *w, uint32_t f)

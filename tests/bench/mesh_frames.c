@@ -209,27 +209,29 @@ static uint32_t spread10(uint32_t v)   /* the 10 bits of v to every third bit */
     v = (v | v << 4) & 0x030C30C3u;
     return (v | v << 2) & 0x09249249u;
 }
-/* face f's pixel box (floor of its corners' 1/16-pixel positions), grown by d and clamped to the
- * frame; 0 when a corner is flagged (its box unknown: counted as near a line) or nothing is left */
-static int pixel_box(const mc_pmesh_lod *lod, const mc_xvertex *cache, uint32_t f, int d, const mc_target *t,
-                     int32_t b[4])
+/* face f's pixel box (x0, x1, y0, y1: the pixels holding its corners' 1/16-pixel positions);
+ * 0 when a corner is flagged (its box unknown: counted as near a line) */
+static int pixel_box(const mc_pmesh_lod *lod, const mc_xvertex *cache, uint32_t f, int32_t b[4])
 {
     uint32_t c[3];
     mc_pmesh_lod_face(lod, f, c);
-    int32_t x0 = INT32_MAX, x1 = INT32_MIN, y0 = INT32_MAX, y1 = INT32_MIN;
+    b[0] = b[2] = INT32_MAX, b[1] = b[3] = INT32_MIN;
     for (int k = 0; k < 3; k++) {
         const mc_xvertex *e = &cache[c[k]];
-        if (e->flags) return -1;
+        if (e->flags) return 0;
         const int32_t px = e->x >> 4, py = e->y >> 4;
-        x0 = px < x0 ? px : x0, x1 = px > x1 ? px : x1, y0 = py < y0 ? py : y0, y1 = py > y1 ? py : y1;
+        b[0] = px < b[0] ? px : b[0], b[1] = px > b[1] ? px : b[1], b[2] = py < b[2] ? py : b[2], b[3] = py > b[3] ? py : b[3];
     }
-    x0 -= d, y0 -= d, x1 += d, y1 += d;
-    if (x0 < 0) x0 = 0;
-    if (y0 < 0) y0 = 0;
-    if (x1 > t->width - 1) x1 = t->width - 1;
-    if (y1 > t->height - 1) y1 = t->height - 1;
-    b[0] = x0, b[1] = x1, b[2] = y0, b[3] = y1;
-    return x0 <= x1 && y0 <= y1;
+    return 1;
+}
+
+/* Whether a line pixel of sd lies in box b grown by d pixels (clamped to the frame). */
+static int line_near(const mc_sdepth *sd, const int32_t b[4], int32_t d)
+{
+    const int32_t x0 = b[0] - d < 0 ? 0 : b[0] - d, y0 = b[2] - d < 0 ? 0 : b[2] - d;
+    const int32_t x1 = b[1] + d > sd->width - 1 ? sd->width - 1 : b[1] + d;
+    const int32_t y1 = b[3] + d > sd->height - 1 ? sd->height - 1 : b[3] + d;
+    return x0 <= x1 && y0 <= y1 && mc_sdepth_any(sd, (uint32_t)x0, (uint32_t)x1, (uint32_t)y0, (uint32_t)y1);
 }
 static int near_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int frames_n)
 {
@@ -282,10 +284,8 @@ static int near_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, i
                 mc_raster_centre_run_inside(a->x, b->x, e->x, t->width, &i0, &i1) &&
                 mc_sdepth_any(&sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1))
                 meets++;
-            for (int k = 0; k < DS; k++)
-                if (pixel_box(lod, cache, f, dist[k], t, box) &&
-                    mc_sdepth_any(&sd, (uint32_t)box[0], (uint32_t)box[1], (uint32_t)box[2], (uint32_t)box[3]))
-                    near[k]++;
+            pixel_box(lod, cache, f, box);
+            for (int k = 0; k < DS; k++) near[k] += line_near(&sd, box, dist[k]);
         }
         for (int g = 0; g < GS; g++)
             for (uint32_t s0 = 0; s0 < lod->faces; s0 += group[g]) {
@@ -296,16 +296,12 @@ static int near_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, i
                     const uint32_t f = face_order[s];
                     if (PM.closed && !((facing[f >> 3] >> (f & 7u)) & 1u)) continue;
                     int32_t box[4];
-                    const int r = pixel_box(lod, cache, f, 0, t, box);
                     n++;
-                    if (r < 0) flagged = 1;
-                    if (r <= 0) continue;
+                    if (!pixel_box(lod, cache, f, box)) { flagged = 1; continue; }
                     u[0] = box[0] < u[0] ? box[0] : u[0], u[1] = box[1] > u[1] ? box[1] : u[1];
                     u[2] = box[2] < u[2] ? box[2] : u[2], u[3] = box[3] > u[3] ? box[3] : u[3];
                 }
-                if (!n || flagged) continue;
-                if (u[0] > u[1] || !mc_sdepth_any(&sd, (uint32_t)u[0], (uint32_t)u[1], (uint32_t)u[2], (uint32_t)u[3]))
-                    spared[g] += n;
+                if (n && !flagged && !line_near(&sd, u, 0)) spared[g] += n;
             }
     }
     printf("near frames %d faces %u closed %u\n", frames_n, (unsigned)lod->faces, (unsigned)PM.closed);

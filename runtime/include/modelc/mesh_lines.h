@@ -102,6 +102,19 @@ typedef struct mc_lines_stats {
 /* Whether face f (0 .. lod->faces-1) of the level is front-facing seen through x. */
 int mc_mesh_front(const mc_pmesh_lod *lod, const mc_xform *x, uint32_t f);
 
+/* Whether a face whose corners project to a, b, c, none of them flagged, is front-facing: the sign
+ * of its projected area, as mc_mesh_front takes it. Inline for the passes over every face (a
+ * cache's entries read in place); a 64-bit core widens each coordinate as it reads it, a 32-bit one
+ * subtracts in one step. */
+MC_ALWAYS_INLINE int mc_mesh_front_of(const mc_xvertex *a, const mc_xvertex *b, const mc_xvertex *c)
+{
+#if UINTPTR_MAX > 0xFFFFFFFFu
+    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y) < 0;
+#else
+    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y) < 0;
+#endif
+}
+
 /* Sets facing bit f (0 .. lod->faces-1) for every front-facing face of the level seen through x. */
 void mc_mesh_facing(const mc_pmesh_lod *lod, const mc_xform *x, uint8_t *facing);
 
