@@ -115,7 +115,8 @@
  *     that hides an entry); the faces the edge pass visits and the front faces of the face pass are
  *     taken 32 at a time from their facing bits, and the edge pass is compiled once more for the
  *     full level (no stored opposite there needs a walk); the silhouette search's steps are inlined
- *     into its walks (silhouette.c). On the benchmark machine (gcc 12 -O2,
+ *     into its walks (silhouette.c), and the sparse way's face pass is a function of its own, so
+ *     that a profile tells it apart (mesh_lines.c face_pass). On the benchmark machine (gcc 12 -O2,
  *     bunny00's lines at 320x240) about 5 % fewer instructions, a third of the mispredicted branches
  *     (cachegrind --branch-sim=yes, --frames 20) and about 0.77 times the branches' time a frame,
  *     side by side: tests/bench/mesh_frames.c built as tests/bench/mesh.sh builds it, once more with
