@@ -4,11 +4,13 @@
 # position or by normal, and tests each group's normal cone against random orthographic views (the
 # meshes' own geometry; no modelc code runs). The face pass's boxes: each mesh baked --as both and
 # drawn over the benchmarks' turn (tests/bench/mesh_frames.c --near: the frame's line pixels before
-# any is hidden, against the faces the face pass visits, one by one and in position groups).
+# any is hidden, against the faces the face pass visits, one by one and in position groups), and
+# which of those faces hide a line pixel at all (mesh_frames --hiders).
 # Replaces its marked section of RESULTS.md (make bench-cones, and make bench, run it):
 #   tests/bench/cone_groups.sh [RESULTS.md]
 #   CONE_MODELS (bunny00 fandisk lion_head), CONE_DIRECTIONS (20), CONE_FRAMES (20: frames of the
-#   turn for the face pass's table), CONE_SIZE (320x240)
+#   turn for the face pass's table), CONE_HIDER_FRAMES (256: frames of the turn for the hiders'),
+#   CONE_SIZE (320x240)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/lib.sh
@@ -16,6 +18,7 @@ cd "$(dirname "$0")/../.."
 results=${1:-tests/bench/RESULTS.md}
 models=${CONE_MODELS:-bunny00 fandisk lion_head}
 directions=${CONE_DIRECTIONS:-20} frames=${CONE_FRAMES:-20} size=${CONE_SIZE:-320x240}
+hider_frames=${CONE_HIDER_FRAMES:-256}
 out=build/bench/cone_groups
 modelc=build/bin/modelc
 [ -x "$modelc" ] || { echo "cone_groups.sh: $modelc missing: run make gen" >&2; exit 1; }
@@ -35,9 +38,10 @@ for m in $models; do
     run gcc $cflags -DPM=mc_pmesh_$m -include "$out/$m/$m.h" -o "$out/$m-frames" tests/bench/mesh_frames.c \
         runtime/src/*.c runtime/front/common/mesh_frame.c "$out/$m"/*.c
     run "$out/$m-frames" --near "$frames" --size "$size" >"$out/$m.near.txt"
+    run "$out/$m-frames" --hiders "$hider_frames" --size "$size" >"$out/$m.hiders.txt"
     echo "$m $out/$m.near.txt" >>"$out/near.txt"
 done
-python3 - "$out/rows.txt" "$directions" "$out/near.txt" "$frames" "$size" >"$out/section.md" <<'PY'
+python3 - "$out/rows.txt" "$directions" "$out/near.txt" "$frames" "$size" "$hider_frames" >"$out/section.md" <<'PY'
 import re, sys
 rows = [l.split() for l in open(sys.argv[1])]
 print("## Face groups and normal cones: what a hierarchy could spare a line drawing\n")
@@ -82,5 +86,39 @@ for line in open(sys.argv[3]):
     cells = " | ".join(pct(field(t, f"within {d} per frame")) for d in (1, 2, 4, 8))
     groups = " | ".join(pct(field(t, f"spared in groups of {g} per frame")) for g in (32, 64, 128))
     print(f"| {m} | {faces:,} | {vis:,.0f} | {pct(field(t, 'meeting per frame'))} | {cells} | {groups} |")
+
+hn = int(sys.argv[6])
+step = 360 / hn
+print("\n### The faces that hide a line pixel\n")
+print(f"Of the faces the face pass visits, which ones empty an entry at all: the face pass done face by face in its "
+      f"order over {hn} frames of the same turn ({step:.2f} degrees of yaw apart), at {sys.argv[5]} "
+      "(`tests/bench/mesh_frames.c --hiders`: each frame's line pixels offered, none hidden, then every visited face's "
+      "box test and `mc_raster_triangle_hide_box`). A face that empties one is a hider. Visiting only a frame's "
+      "hiders, in the same order, leaves the same entries as the whole face pass (every other face emptied none "
+      "and changed nothing a later one meets), and so does any set holding them; the run checks both, each frame "
+      "with its own hiders and with the union of its 16-frame window's, against `mc_mesh_lines_sparse`'s own "
+      "face pass, bit for bit. Ring 1: the faces with a corner at an end of an edge drawn in the frame; ring 2: "
+      "those with a corner on a ring-1 face (where a line could be hidden by the faces around it, as at its own "
+      "ends). Union over W frames: the faces that hide in any of W neighbouring frames of the turn (a set a "
+      "precomputed table for that arc of yaw would have to hold at least; it grows as the frames are sampled "
+      "closer, as the hiders change from one pixel rounding to the next). Line pixels: the buffer's entries "
+      "(distinct pixels, where `mc_lines_stats.pixels` counts each line's). Means over the frames; shares of the "
+      "faces visited, hiders in the rings as shares of the hiders.\n")
+print(f"| mesh | visited | box meets a line pixel | hiders | line pixels | hidden | ring 1 / ring 2 | hiders in ring 1 / 2 "
+      f"| union over 4 frames ({4 * step:.1f} deg) | 16 ({16 * step:.1f} deg) | 64 ({64 * step:.1f} deg) |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+for line in open(sys.argv[3]):
+    m, path = line.split()
+    t = open(path.replace(".near.txt", ".hiders.txt")).read()
+    vis = field(t, "visited per frame")
+    hid = field(t, "hiders per frame")
+    pct = lambda v: f"{100 * v / vis:.1f} %"
+    hp = lambda v: f"{100 * v / hid:.1f} %" if hid else "-"
+    unions = " | ".join(f"{field(t, f'union over {w} per window'):,.0f} ({pct(field(t, f'union over {w} per window'))})"
+                        for w in (4, 16, 64))
+    print(f"| {m} | {vis:,.0f} | {pct(field(t, 'meeting per frame'))} | {hid:,.1f} ({pct(hid)}) | "
+          f"{field(t, 'line pixels offered per frame'):,.0f} | {field(t, 'line pixels hidden per frame'):,.0f} | "
+          f"{pct(field(t, 'ring 1 per frame'))} / {pct(field(t, 'ring 2 per frame'))} | "
+          f"{hp(field(t, 'hiders in ring 1 per frame'))} / {hp(field(t, 'hiders in ring 2 per frame'))} | {unions} |")
 PY
 write_section "$results" cone_groups "$out/section.md" "${cmds[@]}"

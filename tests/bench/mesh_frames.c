@@ -56,6 +56,20 @@
  * pixels) and "spared in groups of G" for G = 32, 64, 128 (the faces in the Morton order of their
  * centres, G at a time: a group's visited faces when the box of their corners' pixels holds none),
  * means over the frames.
+ *
+ * --hiders N (the vertex cache on; --style is then ignored): which faces a line drawing's face pass
+ * needs (tests/bench/cone_groups.sh). N frames of the turn (N <= 1024), each's line pixels offered
+ * with MC_LINES_NO_HIDING, then the face pass done here face by face in its order (a closed part's
+ * front faces, else all; the box of pixel centres tested, then mc_raster_triangle_hide_box, or the
+ * clipped fan for a face with a flagged corner): a face is a hider when it empties an entry. Visiting
+ * only the frame's hiders, in the same order, empties the same entries (every other face emptied
+ * none, and none of them changed what a later face meets); so does any set that holds them, so
+ * the union of the hiders of W neighbouring frames serves each of them. Each frame's entries left
+ * are checked against mc_mesh_lines_sparse's own face pass (the same bits, or the run fails). Prints
+ * per frame "visited", "meeting", "hiders", the line pixels offered and hidden, the visited faces
+ * with a corner on a line (an end of an edge drawn: ring 1) and with a corner on such a face (ring 2)
+ * and the hiders of each ring; and "union over W" for W = 1, 4, 16, 64 frames: the mean size of the
+ * union of the hiders of W consecutive frames (the turn cut into such windows).
  */
 /* -include NAME.h comes first: build with -D_POSIX_C_SOURCE=200809L for time.h's clocks */
 #ifndef _POSIX_C_SOURCE
@@ -312,17 +326,167 @@ static int near_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, i
     return 0;
 }
 
+/* --hiders N: the faces of N frames of the turn whose face pass empties an entry: see the header. */
+#define MAX_HIDER_FRAMES 1024
+static uint32_t hider_frames[MAX_FACES][MAX_HIDER_FRAMES / 32];   /* bit i: a hider in frame i */
+static uint32_t used_copy[MC_SDEPTH_WORDS(MAX_SIDE, MAX_SIDE)];
+static uint8_t hider_facing[MAX_FACES / 8 + 1];
+
+/* Frame i's line pixels offered to sd, none hidden, with x and hider_facing set for its view. */
+static int hiders_lines(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int i, int frames_n, mc_sdepth *sd,
+                        mc_xform *x, unsigned flags)
+{
+    const mc_view v = bench_turn_view(bench_turn_yaw(i, frames_n));
+    mc_lines_stats ls;
+    if (mc_sdepth_init(sd, t->width, t->height, sdepth_bits, t->depth, t->color, MC_DEPTH_FILLED, MC_MESH_PAPER) ||
+        mc_mesh_lines_sparse(lod, &v, MC_LINES_ALL | flags, sd, (uint8_t *)lines_mem, cache, &ls) != MC_OK)
+        return 1;
+    mc_xform_init(x, &v, t->width, t->height);
+    mc_mesh_facing(lod, x, hider_facing);
+    return 0;
+}
+
+/* Face f of the face pass, as mc_mesh_lines_sparse's (a closed part's back faces culled); returns the
+ * entries it empties, *met set when its box holds one (a face with a flagged corner counts). */
+static uint32_t hiders_face(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
+                            uint32_t f, unsigned cull, int *met)
+{
+    uint32_t c[3], removed = 0;
+    mc_pmesh_lod_face(lod, f, c);
+    const mc_xvertex *e[3] = {&cache[c[0]], &cache[c[1]], &cache[c[2]]};
+    *met = 0;
+    if (e[0]->flags | e[1]->flags | e[2]->flags) {   /* as the face pass: the clipped polygon's fan */
+        int32_t p[3][3];
+        mc_raster_vertex tri[3], poly[MC_XFORM_CLIP_MAX];
+        mc_mesh_face(lod, x, f, p, tri);
+        const unsigned n = mc_mesh_clip_face(x, (const int32_t(*)[3])p, poly);
+        *met = 1;
+        for (unsigned k = 1; k + 1 < n; k++) {
+            tri[0] = poly[0], tri[1] = poly[k], tri[2] = poly[k + 1];
+            removed += mc_raster_triangle_hide(sd, tri, 0u);
+        }
+        return removed;
+    }
+    mc_raster_vertex tri[3];
+    mc_raster_box box;
+    for (int k = 0; k < 3; k++) tri[k].x = e[k]->x, tri[k].y = e[k]->y, tri[k].z = e[k]->z;
+    if (!mc_raster_centres(tri, sd->width, sd->height, &box) ||
+        !mc_sdepth_any(sd, (uint32_t)box.i0, (uint32_t)box.i1, (uint32_t)box.j0, (uint32_t)box.j1))
+        return 0;
+    *met = 1;
+    return mc_raster_triangle_hide_box(sd, tri, cull, &box);
+}
+
+/* Whether face f hides in one of frames s0 .. s1 - 1. */
+static int hider_in(uint32_t f, int s0, int s1)
+{
+    for (int i = s0; i < s1; i++)
+        if ((hider_frames[f][i >> 5] >> (i & 31)) & 1u) return 1;
+    return 0;
+}
+
+static int hiders_main(mc_pmesh_lod *lod, const mc_target *t, mc_xvertex *cache, int frames_n)
+{
+    enum { WS = 4 };
+    static const int window[WS] = {1, 4, 16, 64};
+    static uint8_t ring[MAX_FACES];   /* per vertex of the level: bit 0 ring 1, bit 1 ring 2 */
+    memset(lines_mem, 0, MC_MESH_LINES_BYTES(PM.faces));
+    const unsigned cull = PM.closed ? MC_RASTER_CULL_BACK : 0u;
+    const uint8_t *facing = hider_facing;
+    double visited = 0, meets = 0, hiders = 0, offered = 0, hidden = 0, in_ring1 = 0, in_ring2 = 0, hiders1 = 0,
+           hiders2 = 0;
+    for (int i = 0; i < frames_n; i++) {
+        mc_sdepth sd;
+        mc_xform x;
+        if (hiders_lines(lod, t, cache, i, frames_n, &sd, &x, MC_LINES_NO_HIDING)) return 1;
+        const uint32_t offered_now = sd.in_use;
+        /* ring 1: the ends of the edges drawn (as osmesa_mesh lists them); ring 2: the corners of the
+         * faces with one */
+        memset(ring, 0, PM.vertices);
+        for (uint32_t f = 0; f < lod->faces; f++)
+            for (uint32_t k = 0; k < 3; k++) {
+                const uint32_t hh = MC_HALF_EDGE(f, k), o = mc_pmesh_lod_opposite(lod, hh);
+                if (o != MC_NO_HALF_EDGE && MC_HALF_FACE(o) < f) continue;
+                if (!(mc_mesh_edge_kind(lod, facing, hh, o) & MC_LINES_ALL)) continue;
+                uint32_t c[3];
+                mc_pmesh_lod_face(lod, f, c);
+                ring[c[k]] = ring[c[(k + 1) % 3]] = 1;
+            }
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            uint32_t c[3];
+            mc_pmesh_lod_face(lod, f, c);
+            if ((ring[c[0]] | ring[c[1]] | ring[c[2]]) & 1u)
+                for (int k = 0; k < 3; k++) ring[c[k]] |= 2u;
+        }
+        for (uint32_t f = 0; f < lod->faces; f++) {
+            if (cull && !((facing[f >> 3] >> (f & 7u)) & 1u)) continue;
+            int met;
+            const uint32_t removed = hiders_face(lod, &x, cache, &sd, f, cull, &met);
+            uint32_t c[3];
+            mc_pmesh_lod_face(lod, f, c);
+            const unsigned rg = ring[c[0]] | ring[c[1]] | ring[c[2]];
+            visited++, meets += met, in_ring1 += rg & 1u, in_ring2 += (rg & 2u) != 0;
+            if (removed) {
+                hiders++, hider_frames[f][i >> 5] |= UINT32_C(1) << (i & 31);
+                hiders1 += rg & 1u, hiders2 += (rg & 2u) != 0;
+            }
+        }
+        offered += offered_now, hidden += offered_now - sd.in_use;
+    }
+    /* Each frame's entries left: the face pass's own (mc_mesh_lines_sparse); the same when only the
+     * frame's hiders are visited, and when those of its 16-frame window are. */
+    for (int i = 0; i < frames_n; i++) {
+        mc_sdepth sd;
+        mc_xform x;
+        if (hiders_lines(lod, t, cache, i, frames_n, &sd, &x, 0)) return 1;
+        const size_t words = (size_t)sd.height * sd.blocks;
+        memcpy(used_copy, sd.used, words * sizeof *sd.used);
+        for (int w = 0; w < 2; w++) {
+            const int s0 = w ? i - i % 16 : i, s1 = w ? (s0 + 16 < frames_n ? s0 + 16 : frames_n) : i + 1;
+            if (hiders_lines(lod, t, cache, i, frames_n, &sd, &x, MC_LINES_NO_HIDING)) return 1;
+            for (uint32_t f = 0; f < lod->faces; f++) {
+                int met;
+                if ((!cull || ((facing[f >> 3] >> (f & 7u)) & 1u)) && hider_in(f, s0, s1))
+                    hiders_face(lod, &x, cache, &sd, f, cull, &met);
+            }
+            if (memcmp(used_copy, sd.used, words * sizeof *sd.used)) {
+                fprintf(stderr, "mesh_frames --hiders: frame %d: the entries left with %s differ from the face pass's\n", i,
+                        w ? "its window's hiders" : "its hiders only");
+                return 1;
+            }
+        }
+    }
+    printf("hiders frames %d faces %u closed %u\n", frames_n, (unsigned)lod->faces, (unsigned)PM.closed);
+    printf("visited per frame %.1f\n", visited / frames_n);
+    printf("meeting per frame %.1f\n", meets / frames_n);
+    printf("hiders per frame %.1f\n", hiders / frames_n);
+    printf("line pixels offered per frame %.1f\n", offered / frames_n);
+    printf("line pixels hidden per frame %.1f\n", hidden / frames_n);
+    printf("ring 1 per frame %.1f\n", in_ring1 / frames_n);
+    printf("ring 2 per frame %.1f\n", in_ring2 / frames_n);
+    printf("hiders in ring 1 per frame %.1f\n", hiders1 / frames_n);
+    printf("hiders in ring 2 per frame %.1f\n", hiders2 / frames_n);
+    for (int w = 0; w < WS; w++) {
+        double sum = 0;
+        int n = 0;
+        for (int s0 = 0; s0 + window[w] <= frames_n; s0 += window[w], n++)
+            for (uint32_t f = 0; f < lod->faces; f++) sum += hider_in(f, s0, s0 + window[w]);
+        if (n) printf("union over %d per window %.1f\n", window[w], sum / n);
+    }
+    return 0;
+}
+
 static int usage(void)
 {
     fprintf(stderr, "usage: mesh_frames --time N | --frames N | --ppm FILE | --mask FILE  "
-                    "[--yaw U] [--size WxH] [--vertices N] [--step S] [--cull] [--no-cache] [--neighbours] [--near N] "
+                    "[--yaw U] [--size WxH] [--vertices N] [--step S] [--cull] [--no-cache] [--neighbours] [--near N] [--hiders N] "
                     "[--style shaded|lines]\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
-    int time_n = 0, frames_n = 0, near_n = 0, w = 320, h = 240, lines = 0, neighbours = 0;
+    int time_n = 0, frames_n = 0, near_n = 0, hiders_n = 0, w = 320, h = 240, lines = 0, neighbours = 0;
     unsigned flags = 0;
     long vertices = -1;   /* the level: -1 the full mesh */
     long step = 0;        /* --step: splits between the levels --frames alternates */
@@ -339,6 +503,7 @@ int main(int argc, char **argv)
         if (!strcmp(a, "--time")) time_n = atoi(v);
         else if (!strcmp(a, "--frames")) frames_n = atoi(v);
         else if (!strcmp(a, "--near")) near_n = atoi(v);
+        else if (!strcmp(a, "--hiders")) hiders_n = atoi(v);
         else if (!strcmp(a, "--size")) { if (sscanf(v, "%dx%d", &w, &h) != 2) return usage(); }
         else if (!strcmp(a, "--ppm")) ppm = v;
         else if (!strcmp(a, "--mask")) mask = v;
@@ -350,7 +515,9 @@ int main(int argc, char **argv)
             else if (strcmp(v, "shaded")) return usage();
         } else return usage();
     }
-    if (time_n < 0 || frames_n < 0 || near_n < 0 || (!time_n && !frames_n && !near_n && !ppm && !mask)) return usage();
+    if (time_n < 0 || frames_n < 0 || near_n < 0 || hiders_n < 0 || hiders_n > MAX_HIDER_FRAMES ||
+        (!time_n && !frames_n && !near_n && !hiders_n && !ppm && !mask))
+        return usage();
     if (w < 1 || h < 1 || w > MAX_SIDE || h > MAX_SIDE) {
         fprintf(stderr, "mesh_frames: size %dx%d beyond 1..%d\n", w, h, MAX_SIDE);
         return 2;
@@ -368,6 +535,7 @@ int main(int argc, char **argv)
     mc_mesh_stats st;
     if (step && (!lines || step >= (long)PM.vertices - (long)PM.base_vertices)) return usage();
     if (near_n) return cache ? near_main(&lod, &t, cache, near_n) : usage();
+    if (hiders_n) return cache ? hiders_main(&lod, &t, cache, hiders_n) : usage();
     if (lines) return lines_main(&lod, &t, cache, time_n, frames_n, ppm, mask, yaw, step);
 
     if (frames_n) {   /* untimed: what callgrind counts (mc_mesh_render only) */
