@@ -47,7 +47,7 @@ inline constexpr ModuleCode kModules[] = {
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 2408, 2408, "progressive-mesh level of detail, neighbours and their table (pmesh.c)"},
     {"xform_vertex", 3824, 3824, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
-    {"raster", 7104, 7104, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
+    {"raster", 7332, 7332, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 868, 868, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 3756, 3756, "flat-shaded faces of the current level in their stored shades or worked-out ones, clipped where needed (mesh_render.c)"},

@@ -555,6 +555,13 @@ uint32_t mc_raster_triangle_hide(mc_sdepth *s, const mc_raster_vertex v[3], unsi
 /* The face pass of a triangle whose box is taken (one copy for the callers below). */
 static uint32_t hide_in(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, uint32_t offset, const mc_raster_box *box)
 {
+    /* the plane's value at a covered centre is at least the least corner depth (depth_range), and an
+     * entry goes only where that value, pushed back by offset, is no farther than the entry: a face
+     * whose nearest corner so pushed lies beyond every entry of its box hides none, and is not set
+     * up (most faces with an entry in their box, which lie beside the line, not before it) */
+    if ((uint64_t)mc_raster_least_depth(v[0].z, v[1].z, v[2].z) + offset >
+        mc_sdepth_farthest(s, (uint32_t)box->i0, (uint32_t)box->i1, (uint32_t)box->j0, (uint32_t)box->j1))
+        return 0;
     mc_target t;
     /* the row pointers the drawing path steps are never read here; without colours they step
      * through the depth array's bytes, so that they always point into an array */

@@ -3,7 +3,8 @@
  *     block, and of more than 32 blocks: two words of block bits a row) against a dense array of
  *     (in use, depth, colour): the same state after every operation, pixels not in use holding the
  *     empty values, the bit vectors consistent (a block's bit set exactly when its word is not 0),
- *     mc_sdepth_any over random boxes equal to a scan, mc_sdepth_clear touching only pixels in use;
+ *     mc_sdepth_any and mc_sdepth_farthest over random boxes equal to a scan, mc_sdepth_clear
+ *     touching only pixels in use;
  *   - mc_line_sdepth: random lines, on and off the frame, against mc_line drawn with no depth test
  *     into a target: the same pixels and count, each entry the line's depth there less the offset
  *     (saturating at 0), nearest kept where lines cross;
@@ -11,7 +12,9 @@
  *     specks to triangles far beyond the frame, both orientations, culled or not, a third pushed back
  *     by a random offset) over random entries against mc_raster_triangle drawn into an empty target:
  *     an entry is emptied exactly where the triangle covers its pixel at a depth not greater than the
- *     entry's less the offset, and the count returned is those.
+ *     entry's less the offset, and the count returned is those; and entries at the triangle's own
+ *     depth there plus the offset, one less or one more (flat triangles among them), where emptied
+ *     and kept lie a unit apart.
  * Each of these runs its second half with matched bits kept (mc_sdepth_keep_matched): entries
  * inserted matched or not (mc_sdepth_insert_matched, mc_sdepth_insert), lines matched against random
  * edge masks (mc_track_line: an entry matched where the mask there shares a bin with the
@@ -179,10 +182,15 @@ static void ops_on(unsigned w, unsigned h, int rounds, uint64_t seed)
             if (i0 > i1) { unsigned t = i0; i0 = i1; i1 = t; }
             if (j0 > j1) { unsigned t = j0; j0 = j1; j1 = t; }
             int any = 0;
-            for (unsigned y = j0; y <= j1 && !any; y++)
-                for (unsigned x = i0; x <= i1 && !any; x++) any = f.in[y * w + x];
+            uint32_t far = 0;
+            for (unsigned y = j0; y <= j1; y++)
+                for (unsigned x = i0; x <= i1; x++)
+                    if (f.in[y * w + x]) any = 1, far = f.md[y * w + x] > far ? f.md[y * w + x] : far;
             if (mc_sdepth_any(&f.s, i0, i1, j0, j1) != any)
                 fail_msg("%ux%u: any(%u..%u, %u..%u) = %d, scan %d", w, h, i0, i1, j0, j1, !any, any);
+            if (mc_sdepth_farthest(&f.s, i0, i1, j0, j1) != far)
+                fail_msg("%ux%u: farthest(%u..%u, %u..%u) = %u, scan %u", w, h, i0, i1, j0, j1,
+                         (unsigned)mc_sdepth_farthest(&f.s, i0, i1, j0, j1), (unsigned)far);
         }
         if (mc_rng_below(&r, 3) == 0) {
             /* clear touches the pixels in use only: mark the others, they must keep the mark */
@@ -369,10 +377,67 @@ static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
     frame_free(&f);
 }
 
+/* Entries at the face's own depth: the triangle drawn into an empty target first, then entries at
+ * pixels it covers, each at its depth there plus the offset plus -1, 0 or 1 (a third of the
+ * triangles flat, every corner at one depth), so that every entry lies on the boundary between
+ * emptied (0, 1) and kept (-1). Also every other pixel of the box, now and then, an entry nearer than
+ * every corner, which stays. */
+static void hide_at_face_on(unsigned w, unsigned h, int count, uint64_t seed)
+{
+    mc_rng r;
+    mc_rng_seed(&r, seed, 11);
+    frame f;
+    frame_new(&f, w, h);
+    uint8_t *tc = f.t.color;
+    uint16_t *td = f.t.depth;
+    uint32_t emptied_total = 0, kept_total = 0;
+    for (int n = 0; n < count; n++) {
+        mc_raster_vertex v[3];
+        random_triangle(&r, w, h, v);
+        if (mc_rng_below(&r, 3) == 0) v[1].z = v[2].z = v[0].z;
+        const unsigned flags = mc_rng_below(&r, 2) ? MC_RASTER_CULL_BACK : 0;
+        const uint32_t off = mc_rng_below(&r, 2) ? 0 : mc_rng_below(&r, 40);
+        for (unsigned i = 0; i < w * h; i++) tc[i] = 0, td[i] = MC_DEPTH_EMPTY;
+        mc_raster_triangle(&f.t, v, 1, flags);
+        frame_clear(&f);
+        const int nearer = mc_rng_below(&r, 4) == 0;
+        for (unsigned i = 0; i < w * h; i++) {
+            const unsigned x = i % w, y = i / w;
+            if (tc[i]) {
+                const uint32_t z = td[i] + off + mc_rng_below(&r, 3);
+                if (z >= 1u && z - 1u < EMPTY_D) mc_sdepth_insert(&f.s, x, y, (uint16_t)(z - 1u), 1), model_insert(&f, x, y, (uint16_t)(z - 1u), 1);
+            } else if (nearer && v[0].z > 0 && v[1].z > 0 && v[2].z > 0) {
+                mc_sdepth_insert(&f.s, x, y, 0, 1), model_insert(&f, x, y, 0, 1);
+            }
+        }
+        uint32_t want = 0, entries = f.s.in_use;
+        for (unsigned i = 0; i < w * h; i++)
+            if (tc[i] && f.in[i] && f.md[i] >= off && td[i] <= f.md[i] - off) model_remove(&f, i % w, i / w), want++;
+        const uint32_t way = off ? 1u : mc_rng_below(&r, 3);
+        mc_raster_box box;
+        const uint32_t got = way == 1u   ? mc_raster_triangle_hide_offset(&f.s, v, flags, off)
+                             : way == 0u ? mc_raster_triangle_hide(&f.s, v, flags)
+                             : mc_raster_centres(v, f.s.width, f.s.height, &box) ? mc_raster_triangle_hide_box(&f.s, v, flags, &box)
+                                                                                 : 0u;
+        if (got != want)
+            fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) offset %u on %ux%u, entries at its depth: %u emptied, want %u",
+                     v[0].x, v[0].y, v[0].z, v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, (unsigned)off, w, h, got, want);
+        emptied_total += got, kept_total += entries - got;
+        frame_check(&f);
+    }
+    /* both sides of the boundary were met often */
+    assert_true(emptied_total > (uint32_t)count && kept_total > (uint32_t)count / 2u);
+    print_message("# info: %ux%u: %d triangles over entries at their depth: %u emptied, %u kept\n", w, h, count,
+                  emptied_total, kept_total);
+    frame_free(&f);
+}
+
 static void test_hide_9x7(void **state) { (void)state; hide_on(9, 7, 30000, 31); }
 static void test_hide_67x45(void **state) { (void)state; hide_on(67, 45, 8000, 32); }
 static void test_hide_320x240(void **state) { (void)state; hide_on(320, 240, 500, 33); }
 static void test_hide_1100x7(void **state) { (void)state; hide_on(1100, 7, 2000, 34); }
+static void test_hide_at_face_17x13(void **state) { (void)state; hide_at_face_on(17, 13, 20000, 35); }
+static void test_hide_at_face_320x240(void **state) { (void)state; hide_at_face_on(320, 240, 400, 36); }
 
 int main(void)
 {
@@ -381,7 +446,7 @@ int main(void)
         cmocka_unit_test(test_ops_64x5),    cmocka_unit_test(test_ops_97x13),    cmocka_unit_test(test_ops_1100x3),
         cmocka_unit_test(test_lines_33x17), cmocka_unit_test(test_lines_320x240), cmocka_unit_test(test_lines_1100x9),
         cmocka_unit_test(test_hide_9x7),    cmocka_unit_test(test_hide_67x45),   cmocka_unit_test(test_hide_320x240),
-        cmocka_unit_test(test_hide_1100x7),
+        cmocka_unit_test(test_hide_1100x7), cmocka_unit_test(test_hide_at_face_17x13), cmocka_unit_test(test_hide_at_face_320x240),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -144,6 +144,15 @@ uint32_t mc_raster_triangle_hide_offset(mc_sdepth *s, const mc_raster_vertex v[3
  * rejects most by their box need not have it taken twice). */
 uint32_t mc_raster_triangle_hide_box(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flags, const mc_raster_box *box);
 
+/* The least depth the triangle with corner depths z0, z1, z2 has at any pixel it covers (each z taken
+ * as at most MC_DEPTH_EMPTY - 2, as the rasterizer takes it): a face pass empties an entry of depth e
+ * only where this, pushed back by the offset, is at most e. */
+MC_ALWAYS_INLINE uint32_t mc_raster_least_depth(uint32_t z0, uint32_t z1, uint32_t z2)
+{
+    const uint32_t z01 = z0 < z1 ? z0 : z1, z = z2 < z01 ? z2 : z01;
+    return z < MC_DEPTH_EMPTY - 2u ? z : MC_DEPTH_EMPTY - 2u;
+}
+
 /* One pixel's worth of the triangle's steepest depth slope: floor(max(|dz/dx|, |dz/dy|)) + 1 depth
  * units per pixel (so at least 1), or 0 for a triangle of no area, which covers no pixel. */
 uint64_t mc_raster_slope(const mc_raster_vertex v[3]);
