@@ -70,14 +70,18 @@ struct Plan {
     size_t pm_data = 0;                           // every array of the mesh part
     size_t pm_line_data = 0;                      // of which the line drawings' (opposite, edges)
     size_t pm_face_data = 0;                      // and the face bits (shades, creases)
+    size_t pm_group_data = 0;                     // and the face groups (--mesh-groups)
     unsigned index_bytes = 0, half_bytes = 0, record_shift = 0;
+    size_t group_size = 0;                        // --mesh-groups (0: none)
+    unsigned group_bytes = 0;
 };
 
 // The mesh part's chunked arrays, in mc_pmesh's order (pmesh.h; the template's field names), and the
 // symbol of each one's chunk list.
-const int kPmArrayCount = 8, kPmOpposite = 4, kPmEdgeOrder = 5, kPmFaceBits = 6, kPmSplitFaces = 7;
-const char *const kPmArrays[kPmArrayCount] = {"positions", "tree", "splits", "corners", "opposite", "edge_order",
-                                               "face_bits", "split_faces"};
+const int kPmArrayCount = 10, kPmOpposite = 4, kPmEdgeOrder = 5, kPmFaceBits = 6, kPmSplitFaces = 7, kPmGroups = 8,
+          kPmGroupFaces = 9;
+const char *const kPmArrays[kPmArrayCount] = {"positions", "tree",      "splits",      "corners", "opposite",
+                                               "edge_order", "face_bits", "split_faces", "groups",  "group_faces"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
 
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide;
@@ -114,6 +118,53 @@ void pmesh_arrays(const PMesh &pm, Plan &p) {
     p.pm_bytes[kPmFaceBits].resize(pm.faces.size());
     mc_mesh_face_bits(&view, p.pm_bytes[kPmFaceBits].data());
     for (const auto &c : pm.palette) p.pm_palette.insert(p.pm_palette.end(), c.begin(), c.end());
+}
+
+// The 16 bits of v spread to every third bit (bit i to bit 3 i: a Morton code of three coordinates).
+uint64_t spread16(uint64_t v) {
+    v &= 0xFFFF;
+    v = (v | v << 32) & 0x001F00000000FFFFull;
+    v = (v | v << 16) & 0x001F0000FF0000FFull;
+    v = (v | v << 8) & 0x100F00F00F00F00Full;
+    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+    return (v | v << 2) & 0x1249249249249249ull;
+}
+
+// The face groups (pmesh.h groups, group_faces): the full mesh's faces in the Morton order of their
+// centres (ties by index), size at a time; each group's box of its faces' corners. Groups lie in one
+// chunk each: size divides 2^shift.
+void face_groups(const PMesh &pm, size_t size, unsigned shift, Plan &p) {
+    const size_t F = pm.faces.size();
+    if (size > (size_t(1) << shift))
+        throw std::runtime_error("--mesh-groups " + std::to_string(size) + ": at most " +
+                                 std::to_string(size_t(1) << shift) + " faces a group with these --chunk-bytes");
+    std::vector<uint64_t> key(F);
+    std::vector<uint32_t> order(F);
+    for (size_t f = 0; f < F; f++) {
+        uint64_t m = 0;
+        for (int a = 0; a < 3; a++) {
+            const uint32_t sum = uint32_t(pm.positions[pm.faces[f][0]][a]) + pm.positions[pm.faces[f][1]][a] +
+                                 pm.positions[pm.faces[f][2]][a];
+            m |= spread16(sum / 3) << a;
+        }
+        key[f] = m, order[f] = static_cast<uint32_t>(f);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key[a] < key[b]; });
+    p.group_bytes = F <= 65536 ? 2 : 3;
+    auto &boxes = p.pm_bytes[kPmGroups], &faces = p.pm_bytes[kPmGroupFaces];
+    for (size_t first = 0; first < F; first += size) {
+        std::array<uint16_t, 3> lo{0xFFFF, 0xFFFF, 0xFFFF}, hi{0, 0, 0};
+        for (size_t k = first; k < first + size && k < F; k++) {
+            const uint32_t f = order[k];
+            for (int i = 0; i < static_cast<int>(p.group_bytes); i++) faces.push_back(static_cast<uint8_t>(f >> (8 * i)));
+            for (uint32_t c : pm.faces[f])
+                for (int a = 0; a < 3; a++)
+                    lo[a] = std::min(lo[a], pm.positions[c][a]), hi[a] = std::max(hi[a], pm.positions[c][a]);
+        }
+        for (const auto &q : {lo, hi})
+            for (uint16_t c : q) boxes.push_back(static_cast<uint8_t>(c)), boxes.push_back(static_cast<uint8_t>(c >> 8));
+    }
+    p.group_size = size;
 }
 
 // The split faces' bits (pmesh.h split_faces): a chunk's 2^shift splits in (2^shift + 7) / 8 bytes.
@@ -185,17 +236,22 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
         const size_t largest = 3 * std::max(p.index_bytes, p.half_bytes);
         while ((size_t(2) << p.record_shift) * largest <= opt.chunk_bytes) p.record_shift++;
         p.pm_bytes[kPmSplitFaces] = split_face_bits(*opt.pmesh, p.record_shift);
+        if (opt.mesh_groups) face_groups(*opt.pmesh, opt.mesh_groups, p.record_shift, p);
         const char *whats[kPmArrayCount] = {"vertex positions", "vertex subtree sizes", "split vertices",
                                             "face corners", "opposite half-edges", "edges, sharpest first",
-                                            "face shades and crease bits", "split face counts"};
+                                            "face shades and crease bits", "split face counts", "face group boxes",
+                                            "faces by group"};
         const size_t per = size_t(1) << p.record_shift;
         const size_t chunk[kPmArrayCount] = {6 * per, p.index_bytes * per, p.index_bytes * per, 3 * p.index_bytes * per,
-                                             3 * p.half_bytes * per, p.half_bytes * per, per, (per + 7) / 8};
+                                             3 * p.half_bytes * per, p.half_bytes * per, per, (per + 7) / 8,
+                                             12 * per, p.group_bytes * per};
         for (int k = 0; k < kPmArrayCount; k++) {
+            if ((k == kPmGroups || k == kPmGroupFaces) && !p.group_size) continue;   // (null: no groups)
             add_list(p.pm_bytes[k], chunk[k], nullptr, pm_list(name, k),
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
             if (k == kPmFaceBits) p.pm_face_data += p.pm_bytes[k].size();
+            else if (k == kPmGroups || k == kPmGroupFaces) p.pm_group_data += p.pm_bytes[k].size();
             else if (k == kPmOpposite || k == kPmEdgeOrder) p.pm_line_data += p.pm_bytes[k].size();   // the line drawings'
         }
         p.budget_arrays["mc_" + name + "_pm_palette"] = p.pm_palette.size();
@@ -296,7 +352,11 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         m.emplace("palette_size", std::to_string(pm.palette.size()));
         m.emplace("palette_bytes", std::to_string(plan.pm_palette.size()));
         m.emplace("palette_lines", byte_lines(plan.pm_palette.data(), plan.pm_palette.size()));
-        for (int k = 0; k < kPmArrayCount; k++) m.emplace(std::string("list_") + kPmArrays[k], pm_list(name, k));
+        for (int k = 0; k < kPmArrayCount; k++)
+            m.emplace(std::string("list_") + kPmArrays[k],
+                      (k == kPmGroups || k == kPmGroupFaces) && !plan.group_size ? std::string("0") : pm_list(name, k));
+        m.emplace("group_size", std::to_string(plan.group_size));
+        m.emplace("group_bytes", std::to_string(plan.group_bytes));
         out.emplace_back(name + "_pmesh.c", mstch::render(template_text("pmesh.c"), m));
     }
 
@@ -417,10 +477,13 @@ std::string budget_json(const Octree &t, const Voxels &vox, const EmitOptions &o
             {"record_shift", plan.record_shift},
             {"edges", pm.edge_order.size()},
             {"half_edge_bytes", plan.half_bytes},
-            {"bytes", plan.pm_data - plan.pm_line_data - plan.pm_face_data},
+            {"bytes", plan.pm_data - plan.pm_line_data - plan.pm_face_data - plan.pm_group_data},
             {"bytes_per_split",
-             splits ? double(plan.pm_data - plan.pm_line_data - plan.pm_face_data) / double(splits) : 0.0},
+             splits ? double(plan.pm_data - plan.pm_line_data - plan.pm_face_data - plan.pm_group_data) / double(splits)
+                    : 0.0},
             {"face_bytes", plan.pm_face_data},
+            {"group_size", plan.group_size},
+            {"group_bytes", plan.pm_group_data},
             {"line_bytes", plan.pm_line_data},
             {"line_bytes_per_face", double(plan.pm_line_data) / double(pm.faces.size())},
             {"lod_ram", bud.pmesh_lod},

@@ -33,6 +33,7 @@ struct EmitOptions {
     std::vector<std::pair<std::string, std::string>> budget_extra;  // more budget.json entries: key, JSON text
     const PMesh *pmesh = nullptr;   // the mesh part (--as both), or none
     bool mesh_neighbours = false;   // --mesh-neighbours: the app binding holds a neighbour table (pmesh.h)
+    size_t mesh_groups = 0;    // --mesh-groups: faces a face group (pmesh.h groups), a power of two; 0: none
     size_t particles = 300;    // --as edges: particles the app binding's static arrays hold
 };
 

@@ -126,6 +126,11 @@ int main(int argc, char **argv) {
     app.add_flag("--mesh-neighbours", emit.mesh_neighbours, "--as both: the app binding also keeps a table of the "
                  "current level's neighbours, 3 half-edges a face of RAM, so that line drawings at coarse levels "
                  "do not walk across removed faces (runtime/include/modelc/pmesh.h)");
+    app.add_option("--mesh-groups", emit.mesh_groups, "--as both: also store the faces in groups of N (a power of "
+                   "two, 2 to 1024; 0: none), near faces together, with each group's box (12 bytes a group and 2 or 3 "
+                   "a face of flash), so that a line drawing at the full level of an orthographic view passes over "
+                   "a group that cannot hide a line (runtime/include/modelc/pmesh.h)")
+        ->check(CLI::Range(size_t(0), size_t(1024)))->capture_default_str();
     app.add_option("--crease-angle", pmesh_opt.crease_angle, "--as both, --as edges: degrees between two faces' "
                    "normals above which their edge is drawn as a crease, or tracked")
         ->check(CLI::Range(0.0, 180.0))->capture_default_str();
@@ -189,6 +194,12 @@ int main(int argc, char **argv) {
     emit.stream_packed = stream_splits == "packed";
     if (emit.stream_packed && (!emit.stream || as != "both"))
         return fail("--stream-splits packed: only a stream with a mesh part has splits (--emit stream --as both)", 2);
+    if (emit.mesh_groups && (emit.mesh_groups < 2 || (emit.mesh_groups & (emit.mesh_groups - 1))))
+        return fail("--mesh-groups " + std::to_string(emit.mesh_groups) + ": faces a group must be a power of two from 2 to 1024, or 0", 2);
+    if (emit.mesh_groups && as != "both")
+        return fail("--mesh-groups: only a mesh part has faces to group (--as both)", 2);
+    if (emit.mesh_groups && emit.stream)
+        return fail("--mesh-groups: a stream does not carry face groups (--emit stream)", 2);
     if (emit.mesh_neighbours && as != "both")
         return fail("--mesh-neighbours: only a mesh part has neighbours to keep (--as both)", 2);
     if (emit.mesh_neighbours && emit.lib)

@@ -46,12 +46,12 @@ inline constexpr ModuleCode kModules[] = {
 // The mesh part's modules, counted when a bake has one (--as both): what a program drawing it links.
 inline constexpr ModuleCode kMeshModules[] = {
     {"pmesh", 2408, 2408, "progressive-mesh level of detail, neighbours and their table (pmesh.c)"},
-    {"xform_vertex", 3824, 3824, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
-    {"raster", 7332, 7332, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
+    {"xform_vertex", 4352, 4352, "vertex projection and near-plane and guard-band clipping (xform_vertex.c)"},
+    {"raster", 7408, 7408, "filled triangles with a z-buffer, and the face pass over a sparse depth buffer (raster.c)"},
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 868, 868, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 3756, 3756, "flat-shaded faces of the current level in their stored shades or worked-out ones, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 6676, 6676, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"mesh_lines", 7852, 7852, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"mesh_creases", 3692, 3692, "the level's crease bits, brought over after a small level change, or from the stored ones (mesh_creases.c)"},
     {"silhouette", 1596, 1596, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };

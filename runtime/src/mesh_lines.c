@@ -562,6 +562,44 @@ MC_ALWAYS_INLINE void hide_run(const mc_pmesh_lod *lod, const mc_xform *x, const
 #endif
 }
 
+/* Whether face group g of the full level may hide an entry of sd in orthographic view x (pmesh.h
+ * groups): its box of points bounds where its faces lie and their least depth (mc_xform_box_bound),
+ * and a face empties only entries of its pixels at least as far as that depth (raster.h). A box
+ * the view cannot bound is visited. */
+static int group_may_hide(const mc_pmesh *pm, const mc_xform *x, const mc_sdepth *sd, uint32_t g)
+{
+    const uint8_t *r = mc_chunk_record(pm->groups, pm->record_shift, 12u, g);
+    int32_t lo[3], hi[3];
+    mc_pmesh_position_at(r, lo), mc_pmesh_position_at(r + 6, hi);
+    mc_xform_box b;
+    if (!mc_xform_box_bound(x, lo, hi, &b)) return 1;
+    int32_t i0, i1, j0, j1;
+    if (!mc_raster_centre_run_of(b.x0, b.x1, sd->width, &i0, &i1) || !mc_raster_centre_run_of(b.y0, b.y1, sd->height, &j0, &j1))
+        return 0;   /* no pixel centre of the frame: its faces cover none */
+    return mc_sdepth_any_from(sd, (uint32_t)i0, (uint32_t)i1, (uint32_t)j0, (uint32_t)j1, mc_raster_least_depth(b.z0, b.z0, b.z0));
+}
+
+/* The face pass by groups at the full level (ib, mode: as record_corners, constants where called):
+ * a group that may hide an entry has its faces passed as hide_run passes them, in the group's order
+ * (which faces empty an entry does not depend on the order); the others are passed over whole. */
+MC_ALWAYS_INLINE void hide_groups(const mc_pmesh_lod *lod, const mc_xform *x, const mc_xvertex *cache, mc_sdepth *sd,
+                                  const uint8_t *facing, int cull, unsigned ib, unsigned mode)
+{
+    const mc_pmesh *pm = lod->pm;
+    const uint32_t size = pm->group_size, faces = pm->faces;
+    const unsigned shift = pm->record_shift, gb = pm->group_bytes;
+    for (uint32_t g = 0, first = 0; first < faces; g++, first += size) {
+        if (!group_may_hide(pm, x, sd, g)) continue;
+        const uint32_t n = faces - first < size ? faces - first : size;
+        const uint8_t *r = mc_chunk_record(pm->group_faces, shift, gb, first);   /* (a group lies in one chunk) */
+        for (uint32_t k = 0; k < n; k++, r += gb) {
+            const uint32_t f = gb == 2u ? mc_le16(r) : mc_le16(r) | (uint32_t)r[2] << 16;
+            if (cull && !front(facing, f)) continue;
+            hide_one(lod, x, cache, sd, cull, f, mc_chunk_record(pm->corners, shift, 3u * ib, f), ib, mode);
+        }
+    }
+}
+
 void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem)
 {
     if (lod && lod->pm && lod->pm->opposite && mem) mc_mesh_creases_update(lod, mem);
@@ -569,7 +607,8 @@ void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem)
 
 /* The face pass: every face mc_mesh_render would draw (a closed part's front faces) empties the
  * entries of sd it hides (a face with a flagged corner culled by its plane, then as its clipped fan);
- * a face whose box holds no entry costs its corners and its box. Apart on x86-64 (MC_MESH_SELECT:
+ * a face whose box holds no entry costs its corners and its box. With face groups (pmesh.h), at the
+ * full level of an orthographic view, a group that cannot hide an entry costs its box instead. Apart on x86-64 (MC_MESH_SELECT:
  * noinline, called once a frame) so that a profile tells it from the edge pass (tests/bench/mesh.sh);
  * a firmware inlines it (0.1 % fewer instructions a line pixel on the Cortex-M4 than apart). */
 #if MC_MESH_SELECT
@@ -597,6 +636,14 @@ static FACE_PASS void face_pass(const mc_pmesh_lod *lod, const mc_xform *x, mc_s
     const unsigned shift = pm->record_shift;
     const uint32_t chunk = UINT32_C(1) << shift;
     const unsigned mode = corner_mode(lod, unflagged);
+    if (pm->group_size && lod->faces == pm->faces && !x->perspective) {   /* (every corner its own ancestor) */
+#if MC_MESH_SELECT
+        BY_CORNERS(pm->index_bytes, mode, hide_groups, lod, x, cache, sd, facing, cull);
+#else   /* one copy (a firmware's flash): the mapped corners, the index width as it comes */
+        hide_groups(lod, x, cache, sd, facing, cull, pm->index_bytes, CORNERS_MAPPED);
+#endif
+        return;
+    }
     for (uint32_t f0 = 0; f0 < lod->faces; f0 += chunk) {
         const uint32_t n = lod->faces - f0 < chunk ? lod->faces - f0 : chunk;
         const uint8_t *r = pm->corners[f0 >> shift].data;

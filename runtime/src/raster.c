@@ -559,8 +559,9 @@ static uint32_t hide_in(mc_sdepth *s, const mc_raster_vertex v[3], unsigned flag
      * entry goes only where that value, pushed back by offset, is no farther than the entry: a face
      * whose nearest corner so pushed lies beyond every entry of its box hides none, and is not set
      * up (most faces with an entry in their box, which lie beside the line, not before it) */
-    if ((uint64_t)mc_raster_least_depth(v[0].z, v[1].z, v[2].z) + offset >
-        mc_sdepth_farthest(s, (uint32_t)box->i0, (uint32_t)box->i1, (uint32_t)box->j0, (uint32_t)box->j1))
+    const uint64_t least = (uint64_t)mc_raster_least_depth(v[0].z, v[1].z, v[2].z) + offset;
+    if (least > 0xFFFFu ||
+        !mc_sdepth_any_from(s, (uint32_t)box->i0, (uint32_t)box->i1, (uint32_t)box->j0, (uint32_t)box->j1, (uint32_t)least))
         return 0;
     mc_target t;
     /* the row pointers the drawing path steps are never read here; without colours they step

@@ -74,6 +74,39 @@ void mc_xform_vertex(const mc_xform *x, const int32_t p[3], mc_xvertex *out)
     ortho_project(x->scale, x->cx, x->cy, q0, q1, q2, out);
 }
 
+/* The least and greatest of r . p over the box lo .. hi: each term at the end its coefficient's sign
+ * picks (ORTHO_ROTATE before its rounding) */
+static void form_range(const int32_t r[3], const int32_t lo[3], const int32_t hi[3], int64_t *least, int64_t *most)
+{
+    int64_t a = 0, b = 0;
+    for (int k = 0; k < 3; k++) {
+        const int64_t l = (int64_t)r[k] * lo[k], h = (int64_t)r[k] * hi[k];
+        a += l < h ? l : h, b += l < h ? h : l;
+    }
+    *least = a, *most = b;
+}
+
+int mc_xform_box_bound(const mc_xform *x, const int32_t lo[3], const int32_t hi[3], mc_xform_box *b)
+{
+    if (x->perspective) return 0;
+    int64_t q[3][2];   /* each q_i's least and greatest, rounded as mc_xform_vertex rounds it */
+    for (int i = 0; i < 3; i++) {
+        int64_t a, c;
+        form_range(x->r[i], lo, hi, &a, &c);
+        q[i][0] = ortho_round_shift_small(a, 16), q[i][1] = ortho_round_shift_small(c, 16);
+    }
+    /* x grows with q0, y falls with q1, z falls with q2 (S > 0) */
+    const int64_t lim = (int64_t)MC_XFORM_BAND << MC_XFORM_SUBPIXEL_BITS;
+    const int64_t x0 = x->cx + ortho_round_shift_small(x->scale * q[0][0], 42);
+    const int64_t x1 = x->cx + ortho_round_shift_small(x->scale * q[0][1], 42);
+    const int64_t y0 = x->cy - ortho_round_shift_small(x->scale * q[1][1], 42);
+    const int64_t y1 = x->cy - ortho_round_shift_small(x->scale * q[1][0], 42);
+    if (x0 < -lim || x1 > lim || y0 < -lim || y1 > lim) return 0;
+    b->x0 = (int32_t)x0, b->x1 = (int32_t)x1, b->y0 = (int32_t)y0, b->y1 = (int32_t)y1;
+    b->z0 = (uint32_t)ortho_round_shift_small(((int64_t)7 << 27) - q[2][1], 15);
+    return 1;
+}
+
 void mc_xform_view(const mc_xform *x, const int32_t p[3], int32_t q[3])
 {
     const int64_t p0 = p[0], p1 = p[1], p2 = p[2];

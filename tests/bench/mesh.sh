@@ -16,7 +16,9 @@
 #   MESH_CG_FRAMES (20: frames of the turn under callgrind), MESH_LINES_MODELS (MESH_MODELS: the line
 #   drawings' table), MESH_LINES_PICTURE (bunny00: the model of tests/bench/lines_NAME.png, if drawn),
 #   MESH_RUNTIME_REV (empty: the working tree's runtime/; else a git revision to take runtime/ from,
-#   e.g. HEAD, for when the working tree's runtime does not match build/bin/modelc's output)
+#   e.g. HEAD, for when the working tree's runtime does not match build/bin/modelc's output),
+#   MESH_GROUPS (32: the bakes' --mesh-groups, the face groups the line drawings' face pass passes
+#   over; 0: none)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/lib.sh   # runtime_snapshot, model_file
@@ -24,7 +26,7 @@ cd "$(dirname "$0")/../.."
 results=${1:-tests/bench/RESULTS.md}
 models=${MESH_MODELS:-bunny00 fandisk lion_head} rounds=${MESH_ROUNDS:-7} frames=${MESH_FRAMES:-100}
 size=${MESH_SIZE:-320x240} cg_frames=${MESH_CG_FRAMES:-20} rev=${MESH_RUNTIME_REV:-}
-lines_models=${MESH_LINES_MODELS:-$models} lines_picture=${MESH_LINES_PICTURE:-bunny00}
+lines_models=${MESH_LINES_MODELS:-$models} lines_picture=${MESH_LINES_PICTURE:-bunny00} groups=${MESH_GROUPS:-32}
 out=build/bench/mesh
 modelc=build/bin/modelc
 [ -x "$modelc" ] || { echo "mesh.sh: $modelc missing: run make gen" >&2; exit 1; }
@@ -75,7 +77,7 @@ for m in $models; do
     # the catalogue's file (lion_head is lion-head.off)
     src=$(model_file "$m") || { echo "mesh.sh: $m: no such catalogue model, or it cannot be extracted" >&2; exit 1; }
     rm -rf "${out:?}/$m"
-    run "$modelc" "$src" -o "$out" --name "$m" --depth 5 --as both -q
+    run "$modelc" "$src" -o "$out" --name "$m" --depth 5 --as both --mesh-groups "$groups" -q
     run_glob "gcc ${flags[*]} -DPM=mc_pmesh_$m -include $out/$m/$m.h -o $out/$m-frames \
 tests/bench/mesh_frames.c $rt/src/*.c $rt/front/common/mesh_frame.c $out/$m/*.c" ||
         { echo "mesh.sh: the bake does not build against the runtime from $runtime_from: is $modelc older" \
@@ -113,9 +115,9 @@ load=$(cut -d' ' -f1-3 /proc/loadavg)
 renderer=$(sed -n 's/^renderer: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
 version=$(sed -n 's/^version: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
 cc_version=$(gcc --version | head -n1)
-python3 - "$out" "$rounds" "$frames" "$size" "$cg_frames" "$load" "$renderer" "$version" "$cc_version" \
+GROUPS=$groups python3 - "$out" "$rounds" "$frames" "$size" "$cg_frames" "$load" "$renderer" "$version" "$cc_version" \
     "$runtime_from" "$rt_sha" "$lines_sha" "$lines_picture" >"$out/section.md" <<'PY'
-import re, statistics, struct, sys, zlib
+import os, re, statistics, struct, sys, zlib
 out, rounds, frames, size, cg_frames, load, renderer, version, cc, rt_from, rt_sha, lines_sha, picture = sys.argv[1:14]
 cg_frames = int(cg_frames)
 
@@ -245,7 +247,9 @@ if lines_rows:
           "`mc_mesh_lines_sparse` finds every face's facing and every edge's kind, offers the silhouettes', creases' and "
           "borders' pixels, less a per-edge depth offset, to the buffer (`mc_line_sdepth`), then passes the faces, back "
           f"faces culled when the part is closed ({closed}), each emptying the line pixels it hides "
-          "(`mc_raster_triangle_hide`: only a face whose box holds a line pixel is set up), the vertex cache on, "
+          "(`mc_raster_triangle_hide`: only a face whose box holds a line pixel at or beyond its least depth is set up; "
+          f"the bakes' faces in groups of {os.environ['GROUPS']} (`--mesh-groups`, pmesh.h; 0: none), a group whose "
+          "projected box holds no line pixel at or beyond its least depth passed over whole), the vertex cache on, "
           "mc_mesh_lines' memory (`MC_MESH_LINES_BYTES(faces)`) and the buffer's bits static; an untimed frame first "
           "computes the level's crease bits, which "
           "mc_mesh_lines keeps while the level is unchanged. Mesa \"the GPU way\": `osmesa_mesh --style lines`: for each "

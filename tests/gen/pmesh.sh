@@ -169,7 +169,8 @@ same_as_openmesh() {
         "$(diff <(canon "$tmp/openmesh.txt") <(canon "$tmp/runtime.txt") | grep -c '^[<>]') faces differ"; fi
 }
 
-# budget_adds_up LABEL: budget.json's mesh figures (the mesh, its face bits, its line arrays) agree with the arrays it lists
+# budget_adds_up LABEL: budget.json's mesh figures (the mesh, its face bits, its line arrays, its face
+# groups) agree with the arrays it lists
 budget_adds_up() {
     local label=$1 problems
     problems=$(python3 - "$bake/budget.json" <<'PY'
@@ -178,7 +179,8 @@ b = json.load(open(sys.argv[1]))
 pm, arrays = b["pmesh"], b["flash"]["arrays"]
 lines = sum(v for k, v in arrays.items() if "_pm_opposite" in k or "_pm_edge_order" in k)
 faceb = sum(v for k, v in arrays.items() if "_pm_face_bits" in k)
-mesh = sum(v for k, v in arrays.items() if "_pm_" in k) - lines - faceb
+groups = sum(v for k, v in arrays.items() if "_pm_group" in k)
+mesh = sum(v for k, v in arrays.items() if "_pm_" in k) - lines - faceb - groups
 ib, V, F, S, E, hb = pm["index_bytes"], pm["vertices"], pm["faces"], pm["splits"], pm["edges"], pm["half_edge_bytes"]
 per = 1 << pm["record_shift"]   # the split faces' bits: a chunk's splits in (per + 7) // 8 bytes
 bits = S // per * ((per + 7) // 8) + (S % per + 7) // 8
@@ -188,6 +190,10 @@ if mesh != pm["bytes"] or mesh != want: p.append(f"mesh arrays {mesh} bytes, bud
 if faceb != pm["face_bytes"] or faceb != F: p.append(f"face bits {faceb} bytes, budget says {pm['face_bytes']}, faces {F}")
 if lines != pm["line_bytes"] or lines != F * 3 * hb + E * hb:
     p.append(f"line arrays {lines} bytes, budget says {pm['line_bytes']}, layout gives {F * 3 * hb + E * hb}")
+G = pm["group_size"]   # face groups (--mesh-groups): a box of 12 bytes a group, a face's index a face
+want_groups = (F + G - 1) // G * 12 + F * (2 if F <= 65536 else 3) if G else 0
+if groups != pm["group_bytes"] or groups != want_groups:
+    p.append(f"face groups {groups} bytes, budget says {pm['group_bytes']}, layout gives {want_groups}")
 if hb != (2 if 4 * F + 3 < 65535 else 4): p.append(f"half_edge_bytes {hb} for {F} faces")
 if b["flash"]["total"] != sum(arrays.values()): p.append(f"flash total {b['flash']['total']} != arrays {sum(arrays.values())}")
 if pm["lod_ram"] != V * ib or b["ram"]["pmesh_lod"] != V * ib: p.append("lod_ram is not vertices x index_bytes")
@@ -207,7 +213,11 @@ for m in bunny00 fandisk; do
         bunny00) levels="100 2000" ;;
         fandisk) levels="500" ;;
     esac
-    dump_level=${levels%% *} bake_check "$m" "$src" || continue
+    # bunny00 with face groups (pmesh.h groups: the line drawings' face pass by groups, checked against
+    # the same drawing without them), fandisk without
+    groups=()
+    [ "$m" = bunny00 ] && groups=(--mesh-groups 32)
+    dump_level=${levels%% *} bake_check "$m" "$src" "${groups[@]}" || continue
     budget_adds_up "$m"
     for n in $levels; do same_as_openmesh "$m" "$src" "$n"; done
     V=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['vertices'])")
@@ -293,7 +303,9 @@ packed() {
 }
 
 for s in open_grid thin_sheet components non_manifold degenerate; do
-    bake_check "$s" "$tmp/$s.off" || continue
+    groups=()
+    case $s in open_grid | components) groups=(--mesh-groups 8) ;; esac
+    bake_check "$s" "$tmp/$s.off" "${groups[@]}" || continue
     budget_adds_up "$s"
     V=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['vertices'])")
     V0=$(python3 -c "import json; print(json.load(open('$bake/budget.json'))['pmesh']['base_vertices'])")
@@ -355,6 +367,21 @@ for args in "--as points" "--as both --emit lib"; do
     grep -q "^modelc: --mesh-neighbours: " "$tmp/nbr.out" || problems+="said: $(oneline <"$tmp/nbr.out"); "
     [ -e "$out/nbr" ] && problems+="wrote $out/nbr; "
     check_problems "fandisk $args --mesh-neighbours: one modelc: line, exit 2, no output" "$problems"
+done
+
+# ---- --mesh-groups that cannot be: one line, no output ------------------------------------------
+for args in "--as both --mesh-groups 3" "--as points --mesh-groups 8" "--as both --emit stream --mesh-groups 8" \
+    "--as both --chunk-bytes 256 --mesh-groups 1024"; do
+    rm -rf "$out/grp"
+    # shellcheck disable=SC2086
+    "$modelc" "$src" -o "$out" --name grp --depth 1 $args -q >"$tmp/grp.out" 2>&1
+    rc=$?
+    problems=""
+    [ "$rc" = 0 ] && problems+="exit status 0; "
+    [ "$(wc -l <"$tmp/grp.out")" = 1 ] || problems+="$(wc -l <"$tmp/grp.out") lines of output; "
+    grep -q "^modelc: .*--mesh-groups[ :]" "$tmp/grp.out" || problems+="said: $(oneline <"$tmp/grp.out"); "
+    [ -e "$out/grp" ] && problems+="wrote $out/grp; "
+    check_problems "fandisk $args: one modelc: line, a non-zero exit, no output" "$problems"
 done
 
 # ---- the arrays' layout: a bake states it, and a runtime that reads another stops the build ----------

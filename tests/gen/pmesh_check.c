@@ -48,7 +48,8 @@
  *                             union of its edges' mc_line between their ends (mc_mesh_edge_ends:
  *                             clipped where one is flagged), hidden ones a subset; guard zones
  *                             untouched; over the sparse depth buffer (mc_mesh_lines_sparse) the
- *                             same counts and the same pixels showing a line as the z-buffer way;
+ *                             same counts and the same pixels showing a line as the z-buffer way,
+ *                             and with face groups (--mesh-groups) the same bytes as without them;
  *                             mc_mesh_project's returned flags those of the level's vertices, each
  *                             projected on its own
  */
@@ -607,6 +608,17 @@ static int lines_check(mc_pmesh_lod *lod, char **a)
                      s5.silhouettes != s3.silhouettes || s5.creases != s3.creases || s5.borders != s3.borders ||
                      s5.pixels != s3.pixels))
             bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse with a neighbour table: not the same drawing");
+        /* with face groups (pmesh.h), the same drawing, byte for byte, as with them left out */
+        if (PM.group_size) {
+            mc_pmesh plain = PM;
+            plain.groups = plain.group_faces = 0, plain.group_size = 0, plain.group_bytes = 0;
+            mc_pmesh_lod l2 = *lod;
+            l2.pm = &plain;
+            rc = mc_sdepth_init(&sd, (uint16_t)w, (uint16_t)h, bits, d4, c4, MC_DEPTH_FILLED, MC_MESH_PAPER);
+            if (rc == MC_OK) rc = mc_mesh_lines_sparse(&l2, &v, MC_LINES_ALL, &sd, lmem, cache, &s5);
+            if (!bad && (rc != MC_OK || memcmp(c3, c4, px) || memcmp(d3, d4, 2 * px) || s5.pixels != s3.pixels))
+                bad++, snprintf(first, sizeof first, "mc_mesh_lines_sparse without the face groups: not the same drawing");
+        }
         /* mc_mesh_project's answer (the sparse way reads no corner's flag at the full level when it
          * is 0) against the flags of the level's vertices, each projected on its own */
         {

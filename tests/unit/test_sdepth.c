@@ -3,7 +3,7 @@
  *     block, and of more than 32 blocks: two words of block bits a row) against a dense array of
  *     (in use, depth, colour): the same state after every operation, pixels not in use holding the
  *     empty values, the bit vectors consistent (a block's bit set exactly when its word is not 0),
- *     mc_sdepth_any and mc_sdepth_farthest over random boxes equal to a scan, mc_sdepth_clear
+ *     mc_sdepth_any and mc_sdepth_any_from over random boxes equal to a scan, mc_sdepth_clear
  *     touching only pixels in use;
  *   - mc_line_sdepth: random lines, on and off the frame, against mc_line drawn with no depth test
  *     into a target: the same pixels and count, each entry the line's depth there less the offset
@@ -188,9 +188,13 @@ static void ops_on(unsigned w, unsigned h, int rounds, uint64_t seed)
                     if (f.in[y * w + x]) any = 1, far = f.md[y * w + x] > far ? f.md[y * w + x] : far;
             if (mc_sdepth_any(&f.s, i0, i1, j0, j1) != any)
                 fail_msg("%ux%u: any(%u..%u, %u..%u) = %d, scan %d", w, h, i0, i1, j0, j1, !any, any);
-            if (mc_sdepth_farthest(&f.s, i0, i1, j0, j1) != far)
-                fail_msg("%ux%u: farthest(%u..%u, %u..%u) = %u, scan %u", w, h, i0, i1, j0, j1,
-                         (unsigned)mc_sdepth_farthest(&f.s, i0, i1, j0, j1), (unsigned)far);
+            /* from the farthest entry's depth, one more, and a random depth */
+            const uint32_t zs[3] = {far, far + 1u, mc_rng_below(&r, EMPTY_D + 1u)};
+            for (int k = 0; k < 3; k++) {
+                const int want = any && far >= zs[k];
+                if (mc_sdepth_any_from(&f.s, i0, i1, j0, j1, zs[k]) != want)
+                    fail_msg("%ux%u: any_from(%u..%u, %u..%u, %u) = %d, scan %d", w, h, i0, i1, j0, j1, (unsigned)zs[k], !want, want);
+            }
         }
         if (mc_rng_below(&r, 3) == 0) {
             /* clear touches the pixels in use only: mark the others, they must keep the mark */

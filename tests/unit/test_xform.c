@@ -10,6 +10,7 @@
  * over random views across and beyond mc_view_clamp's ranges (zoom 1/128..128, eye 1/32..512,
  * translations, target sides 1..4096) and random points of the unit cube, its corners included;
  * and, orthographic, the inline step the mesh loops use (xform_ortho.h) equal to it bit for bit;
+ * mc_xform_box_bound against the corners of random boxes and points inside them;
  * and xform_ortho.h's two branch-free roundings (v / 2^s to nearest, halves away from zero) against
  * the same rounding in 128-bit integers, over every shift they serve, halves and the extremes of
  * their ranges included.
@@ -194,6 +195,72 @@ static void test_round_shift(void **state)
     }
 }
 
+/* mc_xform_box_bound: over random orthographic views and boxes (specks to the whole cube), the bounds
+ * are the least and greatest of the box's corners' projections (each a monotone rounding of a linear
+ * form, least or greatest at a corner), every point of the box projects inside them, and the bound is
+ * refused exactly when a corner is flagged; a perspective view is always refused. */
+static void test_box_bound(void **state)
+{
+    (void)state;
+    mc_rng g;
+    mc_rng_seed(&g, 0xb0c5, 5);
+    long bounded = 0, refused = 0;
+    for (int k = 0; k < 4000; k++) {
+        const int persp = k % 10 == 9;
+        mc_view v = random_view(&g, persp);
+        uint32_t w = (uint32_t)rnd(&g, 1, 1024), h = (uint32_t)rnd(&g, 1, 1024);
+        if (k % 4 == 1) v.zoom = 128 << 16, w = h = 4096;   /* the largest extent the clamp allows */
+        mc_xform x;
+        mc_xform_init(&x, &v, w, h);
+        int32_t lo[3], hi[3];
+        const int32_t size = rnd(&g, 0, 3) == 0 ? rnd(&g, 0, 65535) : rnd(&g, 0, 3) ? rnd(&g, 0, 64) : rnd(&g, 0, 4000);
+        for (int a = 0; a < 3; a++) {
+            lo[a] = rnd(&g, -32768, 32767 - (size < 65535 ? size : 65535));
+            hi[a] = lo[a] + rnd(&g, 0, size);
+            if (hi[a] > 32767) hi[a] = 32767;
+        }
+        mc_xform_box b;
+        const int ok = mc_xform_box_bound(&x, lo, hi, &b);
+        int32_t cx0 = INT32_MAX, cx1 = INT32_MIN, cy0 = INT32_MAX, cy1 = INT32_MIN;
+        uint32_t cz0 = UINT32_MAX, flags = 0;
+        for (int c = 0; c < 8; c++) {
+            const int32_t p[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]};
+            mc_xvertex e;
+            mc_xform_vertex(&x, p, &e);
+            flags |= e.flags;
+            cx0 = e.x < cx0 ? e.x : cx0, cx1 = e.x > cx1 ? e.x : cx1, cy0 = e.y < cy0 ? e.y : cy0, cy1 = e.y > cy1 ? e.y : cy1;
+            cz0 = e.z < cz0 ? e.z : cz0;
+        }
+        if (persp) {
+            assert_int_equal(ok, 0);
+            continue;
+        }
+        if (ok != !flags) fail_msg("view %d: bound %s with corners' flags %u", k, ok ? "taken" : "refused", (unsigned)flags);
+        if (!ok) {
+            refused++;
+            continue;
+        }
+        bounded++;
+        if (b.x0 != cx0 || b.x1 != cx1 || b.y0 != cy0 || b.y1 != cy1 || b.z0 != cz0)
+            fail_msg("view %d: bound x %d..%d y %d..%d z >= %u, the corners x %d..%d y %d..%d z >= %u", k, b.x0, b.x1, b.y0,
+                     b.y1, (unsigned)b.z0, cx0, cx1, cy0, cy1, (unsigned)cz0);
+        for (int i = 0; i < 40; i++) {
+            int32_t p[3];
+            for (int a = 0; a < 3; a++) p[a] = rnd(&g, lo[a], hi[a]);
+            mc_xvertex e;
+            mc_xform_vertex(&x, p, &e);
+            if (e.flags || e.x < b.x0 || e.x > b.x1 || e.y < b.y0 || e.y > b.y1 || e.z < b.z0)
+                fail_msg("view %d: point (%d %d %d) at (%d %d %u) flags %u, outside its box's bound", k, p[0], p[1], p[2], e.x,
+                         e.y, (unsigned)e.z, (unsigned)e.flags);
+        }
+    }
+    /* both outcomes met often */
+    /* (mc_view_clamp keeps the cube within the band in an orthographic view: a refusal there is never
+     * met, and checked all the same whenever a corner is flagged) */
+    assert_true(bounded > 3000);
+    print_message("# info: %ld boxes bounded, %ld refused (a corner beyond the band)\n", bounded, refused);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -201,6 +268,7 @@ int main(void)
         cmocka_unit_test(test_frontal),
         cmocka_unit_test(test_orthographic),
         cmocka_unit_test(test_perspective),
+        cmocka_unit_test(test_box_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -46,6 +46,13 @@
  *              whose faces both do, across the stored opposite); may be null (then every shade and
  *              crease is worked out; a stream's reader works them out once its mesh is whole:
  *              mc_mesh_face_bits)
+ *   groups     may be null (group_size 0): the full mesh's faces in groups of group_size (a power of
+ *              two, at most 2^record_shift), near faces together; per group its box, the least and
+ *              then the greatest x, y, z of its faces' corners as positions records hold them (12
+ *              bytes), so that a pass can bound where a group lies in a view before visiting its faces
+ *   group_faces per face, group after group: a face's index, group_bytes (2 or 3) wide; group g's
+ *              faces are records g * group_size .. (g + 1) * group_size - 1 (the last group maybe
+ *              fewer), in one chunk
  * and, not chunked, the palette (mesh_render.h): MC_MESH_SHADES greys, then the line colours.
  *
  * Neighbours at level n (mc_pmesh_lod_opposite): a face g missing at n was removed by the collapse
@@ -86,6 +93,10 @@ typedef struct mc_pmesh {
     const uint8_t *palette;      /* RGB triplets: the shades and line colours mesh drawings use */
     const mc_chunk *face_bits;   /* F records of 1 byte, or null */
     const mc_chunk *split_faces; /* V - V0 bits: the faces each split adds */
+    const mc_chunk *groups;      /* ceil(F / group_size) records of 12 bytes, or null */
+    const mc_chunk *group_faces; /* F records of group_bytes, or null */
+    uint16_t group_size;         /* faces a group: a power of two; 0 with no groups */
+    uint8_t group_bytes;         /* 2 (F <= 65536) or 3 */
 } mc_pmesh;
 
 /* A half-edge: edge k (corner k to corner k+1 mod 3) of face f is 4 f + k. */

@@ -103,30 +103,29 @@ MC_ALWAYS_INLINE int mc_sdepth_any(const mc_sdepth *s, uint32_t i0, uint32_t i1,
     return 0;
 }
 
-/* The greatest depth of an entry in columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1,
- * j0 <= j1), or 0 when none is in use there. A face pass asks it before setting a face up: a face
- * nearer than none of them anywhere hides none. */
-MC_ALWAYS_INLINE uint32_t mc_sdepth_farthest(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1)
+/* Whether an entry of columns i0 .. i1 and rows j0 .. j1 (on the frame, i0 <= i1, j0 <= j1) lies at
+ * depth z or farther. A face pass asks it before setting up a face or a group of faces: one whose
+ * least depth is z hides only such entries. */
+MC_ALWAYS_INLINE int mc_sdepth_any_from(const mc_sdepth *s, uint32_t i0, uint32_t i1, uint32_t j0, uint32_t j1, uint32_t z)
 {
     const uint32_t b0 = i0 >> 5, b1 = i1 >> 5;
     const uint32_t first = 0xFFFFFFFFu >> (i0 & 31u), last = 0xFFFFFFFFu << (31u - (i1 & 31u));
     const uint32_t *u = s->used + j0 * s->blocks + b0;
     const uint16_t *d = s->depth + j0 * s->width + 32u * b0;
-    uint32_t far = 0;
     for (uint32_t j = j0; j <= j1; j++, u += s->blocks, d += s->width) {
         uint32_t m = u[0] & first;
         for (uint32_t b = 0;;) {
             if (b == b1 - b0) m &= last;
             while (m) {
-                const uint32_t c = mc_clz32(m), e = d[32u * b + c];
+                const uint32_t c = mc_clz32(m);
+                if (d[32u * b + c] >= z) return 1;
                 m &= ~(0x80000000u >> c);
-                far = e > far ? e : far;
             }
             if (++b > b1 - b0) break;
             m = u[b];
         }
     }
-    return far;
+    return 0;
 }
 
 /* Whether pixel (x, y) (on the frame) is in use. */

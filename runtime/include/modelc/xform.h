@@ -113,6 +113,19 @@ void mc_xform_init(mc_xform *x, const mc_view *v, uint32_t width, uint32_t heigh
 /* Projects p, unit-cube coordinates in Q16 (-32768 .. 32767 for -1/2 .. 1/2, pmesh.h's positions). */
 void mc_xform_vertex(const mc_xform *x, const int32_t p[3], mc_xvertex *out);
 
+/* Where an orthographic view puts a box of points: for every p with lo[k] <= p[k] <= hi[k] (unit-cube
+ * Q16, as mc_xform_vertex takes it), mc_xform_vertex gives x0 <= x <= x1, y0 <= y <= y1 and z >= z0,
+ * no flag. */
+typedef struct mc_xform_box {
+    int32_t x0, x1, y0, y1;  /* 1/16 pixel */
+    uint32_t z0;             /* the least depth */
+} mc_xform_box;
+/* Sets *b for the box lo .. hi (lo[k] <= hi[k]) and returns 1; returns 0 in a perspective view, or
+ * when a point of the box may leave the band (then *b says nothing). Exact bounds: each coordinate
+ * is a rounding of a linear form, monotone, taken at the box's corner where the form is least or
+ * greatest. */
+int mc_xform_box_bound(const mc_xform *x, const int32_t lo[3], const int32_t hi[3], mc_xform_box *b);
+
 /* ---- Clipping (faces and lines with a flagged corner) --------------------------------------------
  * Promise: the part of a triangle or a segment inside the clip region, cut in view space and
  * projected as mc_xform_vertex projects a point, so that what is left can be drawn: every vertex
