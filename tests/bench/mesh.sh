@@ -115,7 +115,7 @@ load=$(cut -d' ' -f1-3 /proc/loadavg)
 renderer=$(sed -n 's/^renderer: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
 version=$(sed -n 's/^version: //p' "$out/$(echo $models | cut -d' ' -f1).mesa.img.txt")
 cc_version=$(gcc --version | head -n1)
-GROUPS=$groups python3 - "$out" "$rounds" "$frames" "$size" "$cg_frames" "$load" "$renderer" "$version" "$cc_version" \
+BAKE_GROUPS=$groups python3 - "$out" "$rounds" "$frames" "$size" "$cg_frames" "$load" "$renderer" "$version" "$cc_version" \
     "$runtime_from" "$rt_sha" "$lines_sha" "$lines_picture" >"$out/section.md" <<'PY'
 import os, re, statistics, struct, sys, zlib
 out, rounds, frames, size, cg_frames, load, renderer, version, cc, rt_from, rt_sha, lines_sha, picture = sys.argv[1:14]
@@ -248,7 +248,7 @@ if lines_rows:
           "borders' pixels, less a per-edge depth offset, to the buffer (`mc_line_sdepth`), then passes the faces, back "
           f"faces culled when the part is closed ({closed}), each emptying the line pixels it hides "
           "(`mc_raster_triangle_hide`: only a face whose box holds a line pixel at or beyond its least depth is set up; "
-          f"the bakes' faces in groups of {os.environ['GROUPS']} (`--mesh-groups`, pmesh.h; 0: none), a group whose "
+          f"the bakes' faces in groups of {os.environ['BAKE_GROUPS']} (`--mesh-groups`, pmesh.h; 0: none), a group whose "
           "projected box holds no line pixel at or beyond its least depth passed over whole), the vertex cache on, "
           "mc_mesh_lines' memory (`MC_MESH_LINES_BYTES(faces)`) and the buffer's bits static; an untimed frame first "
           "computes the level's crease bits, which "
