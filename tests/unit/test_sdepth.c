@@ -321,6 +321,33 @@ static void random_triangle(mc_rng *r, unsigned w, unsigned h, mc_raster_vertex 
     }
 }
 
+/* One face pass over f's entries by triangle v (drawn into f's target first, with flags), pushed
+ * back by off: f's model loses the entries the triangle covers at a depth not greater than theirs
+ * less off, and the pass, one of mc_raster_triangle_hide, _offset and _box (a third each with no
+ * offset; _box given the box mc_raster_centres takes, a triangle without one hiding nothing), must
+ * empty as many (frame_check compares the rest). Returns how many it emptied. */
+static uint32_t hide_checked(mc_rng *r, frame *f, const mc_raster_vertex v[3], unsigned flags, uint32_t off,
+                             const char *what)
+{
+    const unsigned w = f->s.width, h = f->s.height;
+    uint32_t want = 0;
+    for (unsigned i = 0; i < w * h; i++)
+        if (f->t.color[i] && f->in[i] && f->md[i] >= off && f->t.depth[i] <= f->md[i] - off) {
+            model_remove(f, i % w, i / w);
+            want++;
+        }
+    const uint32_t way = off ? 1u : mc_rng_below(r, 3);
+    mc_raster_box box;
+    const uint32_t got = way == 1u   ? mc_raster_triangle_hide_offset(&f->s, v, flags, off)
+                         : way == 0u ? mc_raster_triangle_hide(&f->s, v, flags)
+                         : mc_raster_centres(v, w, h, &box) ? mc_raster_triangle_hide_box(&f->s, v, flags, &box)
+                                                            : 0u;
+    if (got != want)
+        fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) offset %u on %ux%u%s: %u emptied, want %u", v[0].x, v[0].y,
+                 v[0].z, v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, (unsigned)off, w, h, what, got, want);
+    return got;
+}
+
 static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
 {
     mc_rng r;
@@ -355,24 +382,7 @@ static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
         mc_raster_triangle(&f.t, v, 1, flags);
         /* a third of the faces pushed back by an offset (polygon offset) */
         const uint32_t off = mc_rng_below(&r, 3) ? 0 : mc_rng_below(&r, 2) ? mc_rng_below(&r, 40) : mc_rng_below(&r, 70000);
-        uint32_t want = 0;
-        for (unsigned i = 0; i < w * h; i++)
-            if (tc[i] && f.in[i] && f.md[i] >= off && td[i] <= f.md[i] - off) {
-                model_remove(&f, i % w, i / w);
-                want++;
-            }
-        /* with no offset a third each: _hide, _offset, _box (given the box mc_raster_centres takes;
-         * a triangle without one hides nothing) */
-        const uint32_t way = off ? 1u : mc_rng_below(&r, 3);
-        mc_raster_box box;
-        const uint32_t got = way == 1u   ? mc_raster_triangle_hide_offset(&f.s, v, flags, off)
-                             : way == 0u ? mc_raster_triangle_hide(&f.s, v, flags)
-                             : mc_raster_centres(v, f.s.width, f.s.height, &box) ? mc_raster_triangle_hide_box(&f.s, v, flags, &box)
-                                                                                 : 0u;
-        if (got != want)
-            fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) on %ux%u: %u emptied, want %u", v[0].x, v[0].y, v[0].z,
-                     v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, w, h, got, want);
-        emptied_total += got;
+        emptied_total += hide_checked(&r, &f, v, flags, off, "");
         frame_check(&f);
     }
     /* the test is worth its time only if triangles did hide entries */
@@ -384,8 +394,8 @@ static void hide_on(unsigned w, unsigned h, int count, uint64_t seed)
 /* Entries at the face's own depth: the triangle drawn into an empty target first, then entries at
  * pixels it covers, each at its depth there plus the offset plus -1, 0 or 1 (a third of the
  * triangles flat, every corner at one depth), so that every entry lies on the boundary between
- * emptied (0, 1) and kept (-1). Also every other pixel of the box, now and then, an entry nearer than
- * every corner, which stays. */
+ * emptied (0, 1) and kept (-1). Now and then also every pixel it does not cover, at depth 0 (nearer
+ * than any face), which stays. */
 static void hide_at_face_on(unsigned w, unsigned h, int count, uint64_t seed)
 {
     mc_rng r;
@@ -414,18 +424,7 @@ static void hide_at_face_on(unsigned w, unsigned h, int count, uint64_t seed)
                 mc_sdepth_insert(&f.s, x, y, 0, 1), model_insert(&f, x, y, 0, 1);
             }
         }
-        uint32_t want = 0, entries = f.s.in_use;
-        for (unsigned i = 0; i < w * h; i++)
-            if (tc[i] && f.in[i] && f.md[i] >= off && td[i] <= f.md[i] - off) model_remove(&f, i % w, i / w), want++;
-        const uint32_t way = off ? 1u : mc_rng_below(&r, 3);
-        mc_raster_box box;
-        const uint32_t got = way == 1u   ? mc_raster_triangle_hide_offset(&f.s, v, flags, off)
-                             : way == 0u ? mc_raster_triangle_hide(&f.s, v, flags)
-                             : mc_raster_centres(v, f.s.width, f.s.height, &box) ? mc_raster_triangle_hide_box(&f.s, v, flags, &box)
-                                                                                 : 0u;
-        if (got != want)
-            fail_msg("triangle (%d,%d,%u) (%d,%d,%u) (%d,%d,%u) offset %u on %ux%u, entries at its depth: %u emptied, want %u",
-                     v[0].x, v[0].y, v[0].z, v[1].x, v[1].y, v[1].z, v[2].x, v[2].y, v[2].z, (unsigned)off, w, h, got, want);
+        const uint32_t entries = f.s.in_use, got = hide_checked(&r, &f, v, flags, off, ", entries at its depth");
         emptied_total += got, kept_total += entries - got;
         frame_check(&f);
     }
