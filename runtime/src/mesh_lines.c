@@ -608,9 +608,10 @@ void mc_mesh_lines_level(const mc_pmesh_lod *lod, uint8_t *mem)
 /* The face pass: every face mc_mesh_render would draw (a closed part's front faces) empties the
  * entries of sd it hides (a face with a flagged corner culled by its plane, then as its clipped fan);
  * a face whose box holds no entry costs its corners and its box. With face groups (pmesh.h), at the
- * full level of an orthographic view, a group that cannot hide an entry costs its box instead. Apart on x86-64 (MC_MESH_SELECT:
- * noinline, called once a frame) so that a profile tells it from the edge pass (tests/bench/mesh.sh);
- * a firmware inlines it (0.1 % fewer instructions a line pixel on the Cortex-M4 than apart). */
+ * full level of an orthographic view, a group that cannot hide an entry costs its box instead.
+ * Apart on x86-64 (MC_MESH_SELECT: noinline, called once a frame) so that a profile tells it from
+ * the edge pass (tests/bench/mesh.sh); a firmware inlines it (0.1 % fewer instructions a line pixel
+ * on the Cortex-M4 than apart). */
 #if MC_MESH_SELECT
 #define FACE_PASS MC_NOINLINE
 #else
