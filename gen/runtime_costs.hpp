@@ -51,7 +51,7 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"line", 2904, 2904, "clipped lines with a depth test, or into a sparse depth buffer (line.c)"},
     {"sdepth", 868, 868, "the sparse depth buffer: entries at line pixels, bit vectors to skip the rest (sdepth.c)"},
     {"mesh_render", 3756, 3756, "flat-shaded faces of the current level in their stored shades or worked-out ones, clipped where needed (mesh_render.c)"},
-    {"mesh_lines", 7852, 7852, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
+    {"mesh_lines", 7876, 7876, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"mesh_creases", 3692, 3692, "the level's crease bits, brought over after a small level change, or from the stored ones (mesh_creases.c)"},
     {"silhouette", 1596, 1596, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };

@@ -344,11 +344,11 @@ MC_ALWAYS_INLINE void edge_face(const mc_pmesh_lod *lod, const mc_xform *x, cons
 /* Whether the faces across the three edges whose opposites are at q (hb bytes each) all face as fr
  * says (1 front, 0 back): then a face so facing with no crease edge offers no line, in a closed part
  * at a level whose opposites need no walk. Most faces are such: three reads and one test instead of
- * three edge tests (a border, which a closed part has none of, answers 0: the long way). */
+ * three edge tests. Asked of closed parts only, which have no border (pmesh.h closed: the generator
+ * and a stream's reader make sure), so every opposite is a face's. */
 MC_ALWAYS_INLINE int quiet_face(const uint8_t *facing, const uint8_t *q, unsigned hb, uint32_t fr)
 {
     const uint32_t o0 = mc_pmesh_half(q, hb), o1 = mc_pmesh_half(q + hb, hb), o2 = mc_pmesh_half(q + 2u * hb, hb);
-    if (!((o0 + 1u) && (o1 + 1u) && (o2 + 1u))) return 0;
     const uint32_t a = front(facing, MC_HALF_FACE(o0)), b = front(facing, MC_HALF_FACE(o1)), c = front(facing, MC_HALF_FACE(o2));
     return fr ? (a & b & c) != 0 : (a | b | c) == 0;
 }

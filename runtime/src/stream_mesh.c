@@ -137,7 +137,8 @@ static int splits(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
 }
 
 /* The adjacency, read where it lies: every opposite a half-edge of the mesh whose own opposite is the
- * one it was read for (or a border), every edge of the order a half-edge of the mesh. */
+ * one it was read for (or a border, which a part said to be closed has none of: the line drawings
+ * read a closed part's neighbours without asking), every edge of the order a half-edge of the mesh. */
 static int adjacency(mc_stream *s, const uint8_t *p, uint32_t n, uint32_t at)
 {
     const mc_pmesh *pm = &s->pmesh;
@@ -156,6 +157,7 @@ int mc_stream_adjacency(mc_stream *s, const uint8_t *opposite, const uint8_t *or
     for (uint32_t f = 0; f < pm->faces; f++)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t i = 3u * f + k, o = le(opposite + i * hb, hb);
+            if (o == none && pm->closed) return mc_stream_fail(s, MC_STREAM_ERR_MESH, at + (in_place ? i * hb : 0u));
             if (o == none) continue;
             const uint32_t g = MC_HALF_FACE(o), j = MC_HALF_EDGE_INDEX(o);
             if (g >= pm->faces || j > 2 || le(opposite + (3u * g + j) * hb, hb) != MC_HALF_EDGE(f, k))

@@ -313,6 +313,31 @@ for s in open_grid thin_sheet components non_manifold degenerate; do
     renders "$s" "$V"
     packed "$s" "$tmp/$s.off"
 done
+# an open shape's streams said to be closed (the mesh record's flag set, every CRC made valid): the
+# reader refuses the first border (the line drawings read a closed part's neighbours without asking)
+for mode in plain packed; do
+    f=$out/open_grid_$mode/open_grid_$mode.mcs
+    [ -f "$f" ] || { notok "open_grid: a $mode stream said to be closed is refused" "no stream $f"; continue; }
+    python3 - "$f" "$tmp/closed_$mode.mcs" <<'PY'
+import struct, sys, zlib
+b = bytearray(open(sys.argv[1], "rb").read())
+at, found = 20, 0   # the header (MC_STREAM_HEADER_BYTES), then records: u8 kind, u8 level, u16 0, u32 n, payload, CRC-32
+while at + 8 <= len(b):
+    kind, n = b[at], struct.unpack_from("<I", b, at + 4)[0]
+    if kind == 4:   # the mesh record (stream_mesh.h MC_STREAM_KIND_MESH): byte 22 of its payload, closed
+        assert b[at + 8 + 22] == 0
+        b[at + 8 + 22] = 1
+        struct.pack_into("<I", b, at + 8 + n, zlib.crc32(bytes(b[at:at + 8 + n])))
+        found = 1
+    at += 12 + n
+assert found
+open(sys.argv[2], "wb").write(bytes(b))
+PY
+    cap=$(python3 -c "import json; print(json.load(open('$out/open_grid_$mode/budget.json'))['stream']['buffer'])")
+    r=$("$tmp/stream_same" "$tmp/closed_$mode.mcs" "$tmp/closed_$mode.mcs" "$cap" 2>&1)
+    if [[ $r == "FAIL $tmp/closed_$mode.mcs: mesh at byte "* ]]; then ok "open_grid: a $mode stream said to be closed is refused: ${r#FAIL $tmp/}"
+    else notok "open_grid: a $mode stream said to be closed is refused" "$r"; fi
+done
 # the packed stream's 4-byte indices
 packed big_grid "$tmp/big_grid.off" &&
     check_problems "big_grid: 67,600 vertices, so 4-byte indices in the packed stream's decoder" \

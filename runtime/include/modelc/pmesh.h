@@ -81,7 +81,8 @@ typedef struct mc_pmesh {
     uint8_t index_bytes;         /* 2 (V <= 65535) or 4 */
     uint8_t half_bytes;          /* 2 (4 F + 3 < 65535) or 4: a half-edge id */
     uint8_t record_shift;        /* 2^record_shift records in each chunk but the last, every array */
-    uint8_t closed;              /* 1: no border edge (every level then is closed: back faces are hidden) */
+    uint8_t closed;              /* 1: no border edge (every level then is closed: back faces are hidden);
+                                    the line drawings rely on it: a stream's reader refuses a border then */
     uint16_t palette_size;       /* entries of palette */
     int16_t crease_cos;          /* Q14 cosine of the crease angle (mesh_lines.h) */
     const mc_chunk *positions;   /* V records of 6 bytes */
