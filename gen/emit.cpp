@@ -83,6 +83,8 @@ const int kPmArrayCount = 10, kPmOpposite = 4, kPmEdgeOrder = 5, kPmFaceBits = 6
 const char *const kPmArrays[kPmArrayCount] = {"positions", "tree",      "splits",      "corners", "opposite",
                                                "edge_order", "face_bits", "split_faces", "groups",  "group_faces"};
 std::string pm_list(const std::string &name, int k) { return "mc_" + name + "_pm_" + kPmArrays[k]; }
+// Whether array k is baked: the face groups' two only with --mesh-groups (else null in mc_pmesh).
+bool pm_baked(int k, size_t group_size) { return group_size || (k != kPmGroups && k != kPmGroupFaces); }
 
 // The mesh part's arrays in pmesh.h's layout: little-endian records, index fields index_bytes wide;
 // all but the split faces' bits, whose layout follows the chunks' record_shift (split_face_bits).
@@ -246,7 +248,7 @@ Plan make_plan(const Octree &t, const EmitOptions &opt) {
                                              3 * p.half_bytes * per, p.half_bytes * per, per, (per + 7) / 8,
                                              12 * per, p.group_bytes * per};
         for (int k = 0; k < kPmArrayCount; k++) {
-            if ((k == kPmGroups || k == kPmGroupFaces) && !p.group_size) continue;   // (null: no groups)
+            if (!pm_baked(k, p.group_size)) continue;
             add_list(p.pm_bytes[k], chunk[k], nullptr, pm_list(name, k),
                      std::string("mesh ") + whats[k], p.pm_lists, true);
             p.pm_data += p.pm_bytes[k].size();
@@ -353,8 +355,7 @@ Files fill_templates(const Octree &t, const Voxels &vox, const EmitOptions &opt,
         m.emplace("palette_bytes", std::to_string(plan.pm_palette.size()));
         m.emplace("palette_lines", byte_lines(plan.pm_palette.data(), plan.pm_palette.size()));
         for (int k = 0; k < kPmArrayCount; k++)
-            m.emplace(std::string("list_") + kPmArrays[k],
-                      (k == kPmGroups || k == kPmGroupFaces) && !plan.group_size ? std::string("0") : pm_list(name, k));
+            m.emplace(std::string("list_") + kPmArrays[k], pm_baked(k, plan.group_size) ? pm_list(name, k) : std::string("0"));
         m.emplace("group_size", std::to_string(plan.group_size));
         m.emplace("group_bytes", std::to_string(plan.group_bytes));
         out.emplace_back(name + "_pmesh.c", mstch::render(template_text("pmesh.c"), m));

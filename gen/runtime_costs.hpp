@@ -53,7 +53,7 @@ inline constexpr ModuleCode kMeshModules[] = {
     {"mesh_render", 3756, 3756, "flat-shaded faces of the current level in their stored shades or worked-out ones, clipped where needed (mesh_render.c)"},
     {"mesh_lines", 7876, 7876, "silhouettes, creases and borders, hidden lines by z-buffer or sparse depth buffer, clipped (mesh_lines.c)"},
     {"mesh_creases", 3692, 3692, "the level's crease bits, brought over after a small level change, or from the stored ones (mesh_creases.c)"},
-    {"silhouette", 1596, 1596, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
+    {"silhouette", 1536, 1536, "silhouette edges, exact and searched within a work bound (silhouette.c)"},
 };
 // The edge part's own modules (--as edges): a tracker links them with fixed, raster, line and sdepth
 // from the tables above (budget.cpp track_code_bytes).

@@ -72,17 +72,13 @@ STEP const mc_xvertex *vertex(walk *w, uint32_t v)
 }
 
 /* Face f's facing as mc_mesh_front finds it, its corners' projections from the cache: the sign of its
- * projected area, or its plane's where a corner is flagged. */
+ * projected area, or (a corner flagged, which is rare) mc_mesh_front's plane test itself. */
 STEP int front_cached(walk *w, uint32_t f)
 {
     uint32_t c[3];
     mc_pmesh_lod_face(w->lod, f, c);
     const mc_xvertex *a = vertex(w, c[0]), *b = vertex(w, c[1]), *d = vertex(w, c[2]);
-    if (a->flags | b->flags | d->flags) {
-        int32_t p[3][3];
-        for (int k = 0; k < 3; k++) mc_pmesh_position(w->lod->pm, c[k], p[k]);
-        return mc_mesh_face_front(w->x, (const int32_t(*)[3])p);
-    }
+    if (a->flags | b->flags | d->flags) return mc_mesh_front(w->lod, w->x, f);
     return mc_mesh_front_of(a, b, d);
 }
 
