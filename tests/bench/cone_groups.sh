@@ -10,7 +10,8 @@
 #   tests/bench/cone_groups.sh [RESULTS.md]
 #   CONE_MODELS (bunny00 fandisk lion_head), CONE_DIRECTIONS (20), CONE_FRAMES (20: frames of the
 #   turn for the face pass's table), CONE_HIDER_FRAMES (256: frames of the turn for the hiders'),
-#   CONE_SIZE (320x240)
+#   CONE_SIZE (320x240), CONE_GROUP_SIZES ("0 16 32 64 128": the bakes' --mesh-groups for the last
+#   table, callgrind instructions of the lines style at each; 0: none)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 . tests/lib.sh
@@ -18,7 +19,7 @@ cd "$(dirname "$0")/../.."
 results=${1:-tests/bench/RESULTS.md}
 models=${CONE_MODELS:-bunny00 fandisk lion_head}
 directions=${CONE_DIRECTIONS:-20} frames=${CONE_FRAMES:-20} size=${CONE_SIZE:-320x240}
-hider_frames=${CONE_HIDER_FRAMES:-256}
+hider_frames=${CONE_HIDER_FRAMES:-256} group_sizes=${CONE_GROUP_SIZES:-0 16 32 64 128}
 out=build/bench/cone_groups
 modelc=build/bin/modelc
 [ -x "$modelc" ] || { echo "cone_groups.sh: $modelc missing: run make gen" >&2; exit 1; }
@@ -41,7 +42,29 @@ for m in $models; do
     run "$out/$m-frames" --hiders "$hider_frames" --size "$size" >"$out/$m.hiders.txt"
     echo "$m $out/$m.near.txt" >>"$out/near.txt"
 done
-python3 - "$out/rows.txt" "$directions" "$out/near.txt" "$frames" "$size" "$hider_frames" >"$out/section.md" <<'PY'
+# the face groups (--mesh-groups G): the lines style's instructions a frame at each group size, and
+# the groups' own test (mesh_lines.c group_may_hide, with what it calls) a group
+: >"$out/groups.txt"
+for m in $models; do
+    f=$(model_file "$m")
+    for g in $group_sizes; do
+        name=${m}_g$g
+        rm -rf "${out:?}/$name"
+        run "$modelc" "$f" -o "$out" --name "$name" --depth 1 --as both --mesh-groups "$g" -q
+        # shellcheck disable=SC2086
+        run gcc $cflags -DPM=mc_pmesh_$name -include "$out/$name/$name.h" -o "$out/$name-frames" tests/bench/mesh_frames.c \
+            runtime/src/*.c runtime/front/common/mesh_frame.c "$out/$name"/*.c
+        run valgrind --tool=callgrind --toggle-collect=mc_front_mesh_frame --callgrind-out-file="$out/$name.cg" \
+            "$out/$name-frames" --style lines --frames "$frames" --size "$size" >/dev/null 2>"$out/$name.cg.log"
+        total=$(sed -n 's/^summary: //p' "$out/$name.cg")
+        tests=$(callgrind_annotate --inclusive=yes --threshold=100 "$out/$name.cg" 2>/dev/null |
+            awk '/:group_may_hide/ { gsub(",", "", $1); if ($1 + 0 > best) best = $1 + 0 } END { print best + 0 }')
+        faces=$(python3 -c "import json; print(json.load(open('$out/$name/budget.json'))['pmesh']['faces'])")
+        echo "$m $g $total $tests $faces" >>"$out/groups.txt"
+    done
+done
+cmds+=("callgrind_annotate --inclusive=yes --threshold=100 $out/NAME_gG.cg   # group_may_hide's inclusive count")
+python3 - "$out/rows.txt" "$directions" "$out/near.txt" "$frames" "$size" "$hider_frames" "$out/groups.txt" >"$out/section.md" <<'PY'
 import re, sys
 rows = [l.split() for l in open(sys.argv[1])]
 print("## Face groups and normal cones: what a hierarchy could spare a line drawing\n")
@@ -120,5 +143,25 @@ for line in open(sys.argv[3]):
           f"{field(t, 'line pixels offered per frame'):,.0f} | {field(t, 'line pixels hidden per frame'):,.0f} | "
           f"{pct(field(t, 'ring 1 per frame'))} / {pct(field(t, 'ring 2 per frame'))} | "
           f"{hp(field(t, 'hiders in ring 1 per frame'))} / {hp(field(t, 'hiders in ring 2 per frame'))} | {unions} |")
+
+rows = [l.split() for l in open(sys.argv[7])]
+print("\n### Face groups: the lines style at each group size\n")
+print(f"Each mesh baked with `--mesh-groups G` (pmesh.h groups: the full mesh's faces G at a time in the Morton order of "
+      "their centres, each group's box; 0: none) and drawn in the lines style (`mesh_frames --style lines`, "
+      f"`mc_front_mesh_frame`, the vertex cache on) over {sys.argv[4]} frames of the same turn at {sys.argv[5]}: callgrind "
+      "instructions a frame (`mc_front_mesh_frame` with everything it calls), and the groups' own tests "
+      "(`group_may_hide`, inclusive: the box bound `mc_xform_box_bound` and the scan of the bounded pixels' entries, "
+      "`mc_sdepth_any_from`) a frame and a group. The same drawings at every size (tests/gen/pmesh.sh checks them "
+      "byte for byte against no groups).\n")
+print("| mesh | G | groups | instructions a frame | against none | group tests a frame | a group |")
+print("|---|---:|---:|---:|---:|---:|---:|")
+frames = int(sys.argv[4])
+none = {m: int(t) for m, g, t, _, _ in rows if g == "0"}
+for m, g, total, tests, faces in rows:
+    G, F, T = int(g), int(faces), int(total) / frames
+    n = (F + G - 1) // G if G else 0
+    ratio = f"{int(total) / none[m]:.3f}" if m in none else "-"
+    per = f"{int(tests) / frames / n:.0f}" if n else "-"
+    print(f"| {m} | {G} | {n:,} | {T / 1e6:.2f} M | {ratio} | {int(tests) / frames / 1e6:.2f} M | {per} |")
 PY
 write_section "$results" cone_groups "$out/section.md" "${cmds[@]}"
