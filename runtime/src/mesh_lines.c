@@ -593,7 +593,7 @@ MC_ALWAYS_INLINE void hide_groups(const mc_pmesh_lod *lod, const mc_xform *x, co
         const uint32_t n = faces - first < size ? faces - first : size;
         const uint8_t *r = mc_chunk_record(pm->group_faces, shift, gb, first);   /* (a group lies in one chunk) */
         for (uint32_t k = 0; k < n; k++, r += gb) {
-            const uint32_t f = gb == 2u ? mc_le16(r) : mc_le16(r) | (uint32_t)r[2] << 16;
+            const uint32_t f = mc_pmesh_group_face(r, gb);
             if (cull && !front(facing, f)) continue;
             hide_one(lod, x, cache, sd, cull, f, mc_chunk_record(pm->corners, shift, 3u * ib, f), ib, mode);
         }

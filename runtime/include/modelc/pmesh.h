@@ -115,6 +115,12 @@ MC_ALWAYS_INLINE uint32_t mc_pmesh_half(const uint8_t *r, unsigned hb)
     return o == 0xFFFFu ? MC_NO_HALF_EDGE : o;
 }
 
+/* A face index as group_faces stores it, gb (2 or 3) bytes wide at r. */
+MC_ALWAYS_INLINE uint32_t mc_pmesh_group_face(const uint8_t *r, unsigned gb)
+{
+    return gb == 2 ? mc_le16(r) : mc_le16(r) | (uint32_t)r[2] << 16;
+}
+
 /* Where half-edge h's entry lies in a neighbour table (mc_pmesh_lod_neighbours) of hb-byte entries. */
 #define MC_PMESH_NEIGHBOUR_AT(nbr, h, hb) ((nbr) + (3u * MC_HALF_FACE(h) + MC_HALF_EDGE_INDEX(h)) * (hb))
 
